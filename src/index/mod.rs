@@ -1,0 +1,1 @@
+//! Classic kinematic performance indices (SPEC Parts B and D), for comparison with metric singularity distances.

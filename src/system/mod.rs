@@ -1,0 +1,63 @@
+//! Polynomial systems `F(x; p)`: expressions in named variables and parameters,
+//! exact symbolic differentiation, compilation to a straight-line program, and the
+//! Bertini / PHCpack text formats.
+//!
+//! The numerical layers ([`crate::homotopy`]) see a system only through the
+//! [`Evaluator`] trait: evaluation into caller-provided buffers with a caller-provided
+//! scratch workspace, so the hot loop of the tracker allocates nothing and one
+//! compiled system is shared by all threads (`Send + Sync`, workspaces per thread).
+
+use crate::C64;
+
+/// A compiled parametric polynomial system `F: C^n × C^m → C^k`.
+///
+/// Buffer conventions (checked by implementations with `debug_assert!` only; sizes are
+/// validated once, where a system is built):
+/// - `x.len() == num_variables()`, `p.len() == num_parameters()`,
+/// - `work.len() >= workspace_len()`,
+/// - `f.len() == num_equations()`,
+/// - Jacobians are row-major: entry `(i, j)` of `∂F/∂x` is `jac[i * num_variables() + j]`,
+///   and of `∂F/∂p` is `jac_p[i * num_parameters() + j]`.
+pub trait Evaluator: Send + Sync {
+    /// Number of unknowns n.
+    fn num_variables(&self) -> usize;
+    /// Number of equations k (k = n for square systems).
+    fn num_equations(&self) -> usize;
+    /// Number of parameters m (0 for a plain system).
+    fn num_parameters(&self) -> usize;
+    /// Length of the scratch buffer the evaluation calls need.
+    fn workspace_len(&self) -> usize;
+
+    /// `f ← F(x; p)`.
+    fn evaluate(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]);
+
+    /// `f ← F(x; p)` and `jac ← ∂F/∂x (x; p)`.
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    );
+
+    /// `out ← (∂F/∂p)(x; p) · dp`, the derivative of F along the parameter direction
+    /// `dp` (what a parameter homotopy `p(t) = p₀ + t (p₁ − p₀)` needs as `∂H/∂t`).
+    fn evaluate_parameter_derivative(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        dp: &[C64],
+        work: &mut [C64],
+        out: &mut [C64],
+    );
+
+    /// `jac_p ← ∂F/∂p (x; p)` (row-major, k × m).
+    fn evaluate_parameter_jacobian(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        jac_p: &mut [C64],
+    );
+}
