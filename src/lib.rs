@@ -20,6 +20,7 @@
 //! Arrows point one way: `pipeline → problem → {metric, mechanism, system}`,
 //! `pipeline → homotopy → system`. Nothing numerical depends on [`io`].
 
+pub mod algebra;
 pub mod homotopy;
 pub mod index;
 pub mod io;
