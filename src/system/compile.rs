@@ -65,26 +65,28 @@ impl Tape {
     fn run(&self, work: &mut [C64]) {
         let constants_start = self.num_inputs;
         let temporaries_start = constants_start + self.constants.len();
+        assert!(
+            work.len() >= self.workspace_len(),
+            "workspace shorter than workspace_len()"
+        );
         work[constants_start..temporaries_start].copy_from_slice(&self.constants);
-        let (before, temporaries) = work.split_at_mut(temporaries_start);
-        let temporaries = &mut temporaries[..self.instructions.len()];
+        let registers = work.as_mut_ptr();
         for (k, instruction) in self.instructions.iter().enumerate() {
-            let read = |register: u32| {
-                let register = register as usize;
-                if register < temporaries_start {
-                    before[register]
-                } else {
-                    temporaries[register - temporaries_start]
-                }
-            };
-            let a = read(instruction.a);
-            let value = match instruction.op {
-                Op::Add => a + read(instruction.b),
-                Op::Sub => a - read(instruction.b),
-                Op::Mul => a * read(instruction.b),
-                Op::Neg => -a,
-            };
-            temporaries[k] = value;
+            // SAFETY: `TapeBuilder::finish` only emits operands that are inputs,
+            // constants or earlier temporaries, so `a, b < temporaries_start + k`, and
+            // the destination `temporaries_start + k < workspace_len() <= work.len()`
+            // (asserted above). The pointer comes from a live `&mut [C64]`.
+            unsafe {
+                let a = *registers.add(instruction.a as usize);
+                let b = *registers.add(instruction.b as usize);
+                let value = match instruction.op {
+                    Op::Add => a + b,
+                    Op::Sub => a - b,
+                    Op::Mul => a * b,
+                    Op::Neg => -a,
+                };
+                *registers.add(temporaries_start + k) = value;
+            }
         }
     }
 
@@ -211,17 +213,23 @@ impl<'a> TapeBuilder<'a> {
             Operand::Constant(i) => constants_start + i,
             Operand::Temporary(i) => temporaries_start + i,
         };
+        let instructions: Vec<Instruction> = self
+            .instructions
+            .iter()
+            .map(|&(op, a, b)| Instruction {
+                op,
+                a: register(a),
+                b: register(b),
+            })
+            .collect();
+        // The invariant `Tape::run` relies on: every operand is already computed.
+        for (k, instruction) in instructions.iter().enumerate() {
+            let limit = temporaries_start as usize + k;
+            assert!((instruction.a as usize) < limit && (instruction.b as usize) < limit);
+        }
         Tape {
             num_inputs: self.num_inputs,
-            instructions: self
-                .instructions
-                .iter()
-                .map(|&(op, a, b)| Instruction {
-                    op,
-                    a: register(a),
-                    b: register(b),
-                })
-                .collect(),
+            instructions,
             outputs: outputs.iter().map(|&o| register(o)).collect(),
             constants: self.constants,
         }
@@ -368,6 +376,27 @@ impl CompiledSystem {
     /// Number of instructions of the F + ∂F/∂x tape (a size measure for reports).
     pub fn jacobian_instruction_count(&self) -> usize {
         self.parts.values_and_jacobian.instructions.len()
+    }
+
+    /// Sizes of the tapes: instructions of (F, F + ∂F/∂x, ∂F/∂p, (∂F/∂p)·dp) and
+    /// the number of multiplications of the F + ∂F/∂x tape.
+    pub fn tape_statistics(&self) -> ([usize; 4], usize) {
+        let parts = &self.parts;
+        let multiplications = parts
+            .values_and_jacobian
+            .instructions
+            .iter()
+            .filter(|i| i.op == Op::Mul)
+            .count();
+        (
+            [
+                parts.values.instructions.len(),
+                parts.values_and_jacobian.instructions.len(),
+                parts.parameter_jacobian.instructions.len(),
+                parts.parameter_derivative.instructions.len(),
+            ],
+            multiplications,
+        )
     }
 
     #[inline]
