@@ -161,10 +161,7 @@ fn required<'a>(
 }
 
 /// Reads the three anchors of `key` from a design object.
-fn anchors(
-    map: &serde_json::Map<String, Value>,
-    key: &str,
-) -> Result<[[f64; 2]; 3], FieldError> {
+fn anchors(map: &serde_json::Map<String, Value>, key: &str) -> Result<[[f64; 2]; 3], FieldError> {
     let value = required(map, "", key)?;
     let items = array(value, key)?;
     if items.len() != 3 {
@@ -240,7 +237,10 @@ pub fn motion_from_json(value: &Value) -> Result<Motion, ParseError> {
         let items = array(&map["poses"], "poses")?;
         let mut poses = Vec::with_capacity(items.len());
         for (j, item) in items.iter().enumerate() {
-            poses.push(Pose::from(fixed_numbers::<3>(item, &format!("poses[{j}]"))?));
+            poses.push(Pose::from(fixed_numbers::<3>(
+                item,
+                &format!("poses[{j}]"),
+            )?));
         }
         Motion::Poses(PoseList { poses })
     } else if map.contains_key("tau_range") {

@@ -427,7 +427,11 @@ impl MotionCoordinate {
 
     /// Value at real τ.
     pub fn value(&self, tau: f64) -> f64 {
-        let poly = self.polynomial.iter().rev().fold(0.0, |acc, c| acc * tau + c);
+        let poly = self
+            .polynomial
+            .iter()
+            .rev()
+            .fold(0.0, |acc, c| acc * tau + c);
         let trig: f64 = self
             .cosines
             .iter()
@@ -561,7 +565,9 @@ impl Motion {
     /// `round(τ)` if that is in range.
     pub fn pose(&self, tau: f64) -> Option<Pose> {
         match self {
-            Motion::Analytic(m) => Some(Pose::new(m.x.value(tau), m.y.value(tau), m.phi.value(tau))),
+            Motion::Analytic(m) => {
+                Some(Pose::new(m.x.value(tau), m.y.value(tau), m.phi.value(tau)))
+            }
             Motion::Poses(list) => {
                 let j = tau.round();
                 if j >= 0.0 && (j as usize) < list.poses.len() {

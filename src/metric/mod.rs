@@ -46,12 +46,7 @@ pub fn triangle_distance_sq<T: Ring>(p: [&Point<T>; 3], q: [&Point<T>; 3]) -> T 
     let d1 = difference(p[0], q[0]);
     let d2 = difference(p[1], q[1]);
     let d3 = difference(p[2], q[2]);
-    (dot(&d1, &d1)
-        + dot(&d2, &d2)
-        + dot(&d3, &d3)
-        + dot(&d1, &d2)
-        + dot(&d1, &d3)
-        + dot(&d2, &d3))
+    (dot(&d1, &d1) + dot(&d2, &d2) + dot(&d3, &d3) + dot(&d1, &d2) + dot(&d1, &d3) + dot(&d2, &d3))
         * T::from_f64(1.0 / 6.0)
 }
 
