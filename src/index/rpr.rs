@@ -198,7 +198,10 @@ impl IndexOptions {
             ir: "continuous: two parallel legs at separation d give d/2, three parallel give 0"
                 .into(),
             mti: "min(TI, TI*)".into(),
-            cylinder_radius: format!("phi in [phi - {w}, phi + {w}]", w = self.cylinder_half_width),
+            cylinder_radius: format!(
+                "phi in [phi - {w}, phi + {w}]",
+                w = self.cylinder_half_width
+            ),
         }
     }
 }
@@ -226,18 +229,17 @@ pub struct Legs {
 impl Legs {
     /// Leg lines of K; `None` if a leg has (relative) length 0 and hence no line.
     pub fn new(k: &Configuration) -> Option<Legs> {
-        let scale = k
-            .a
-            .iter()
-            .chain(k.b.iter())
-            .flatten()
-            .fold(1.0_f64, |m, v| m.max(v.abs()));
+        let scale =
+            k.a.iter()
+                .chain(k.b.iter())
+                .flatten()
+                .fold(1.0_f64, |m, v| m.max(v.abs()));
         let mut u = [[0.0; 2]; 3];
         let mut l = [0.0; 3];
         for i in 0..3 {
             let d = difference(&k.a[i], &k.b[i]);
             l[i] = d[0].hypot(d[1]);
-            if !(l[i] > GEOMETRY_TOLERANCE * scale) {
+            if l[i].is_nan() || l[i] <= GEOMETRY_TOLERANCE * scale {
                 return None;
             }
             u[i] = [d[0] / l[i], d[1] / l[i]];
@@ -318,29 +320,31 @@ pub fn incircle_radius(k: &Configuration) -> Option<f64> {
 pub fn pressure_cosines(k: &Configuration, exchanged: bool) -> Option<[f64; 3]> {
     let legs = Legs::new(k)?;
     let legs = if exchanged { legs.exchanged() } else { legs };
-    let scale = k
-        .a
-        .iter()
-        .chain(k.b.iter())
-        .flatten()
-        .fold(1.0_f64, |m, v| m.max(v.abs()));
+    let scale =
+        k.a.iter()
+            .chain(k.b.iter())
+            .flatten()
+            .fold(1.0_f64, |m, v| m.max(v.abs()));
     let mut out = [0.0; 3];
-    for i in 0..3 {
+    for (i, cosine) in out.iter_mut().enumerate() {
         let (j, m) = ((i + 1) % 3, (i + 2) % 3);
         let sine = cross(&legs.u[j], &legs.u[m]);
         if sine.abs() <= GEOMETRY_TOLERANCE {
-            out[i] = dot(&legs.u[i], &rotate_quarter(&legs.u[j])).abs();
+            *cosine = dot(&legs.u[i], &rotate_quarter(&legs.u[j])).abs();
             continue;
         }
         // Q = a_j + s u_j with (a_j + s u_j − a_m) × u_m = 0.
         let s = cross(&difference(&legs.a[j], &legs.a[m]), &legs.u[m]) / sine;
-        let q = [legs.a[j][0] + s * legs.u[j][0], legs.a[j][1] + s * legs.u[j][1]];
+        let q = [
+            legs.a[j][0] + s * legs.u[j][0],
+            legs.a[j][1] + s * legs.u[j][1],
+        ];
         let to_anchor = difference(&q, &legs.b[i]);
         let r = to_anchor[0].hypot(to_anchor[1]);
-        if !(r > GEOMETRY_TOLERANCE * scale) {
+        if r.is_nan() || r <= GEOMETRY_TOLERANCE * scale {
             return None;
         }
-        out[i] = cross(&to_anchor, &legs.u[i]).abs() / r;
+        *cosine = cross(&to_anchor, &legs.u[i]).abs() / r;
     }
     Some(out)
 }
@@ -366,7 +370,11 @@ pub struct ControlNumber {
 /// `H = (K adj J)ᵀ(K adj J)`, stay continuous through singularities where they are 0.
 ///
 /// `None` if a leg has length 0 or `adj J = 0` (J of rank ≤ 1).
-pub fn control_number(k: &Configuration, t: &Point<f64>, variant: CnVariant) -> Option<ControlNumber> {
+pub fn control_number(
+    k: &Configuration,
+    t: &Point<f64>,
+    variant: CnVariant,
+) -> Option<ControlNumber> {
     let legs = Legs::new(k)?;
     let j = legs.inverse_jacobian(t);
     let det = j.determinant();
@@ -396,7 +404,7 @@ pub fn control_number(k: &Configuration, t: &Point<f64>, variant: CnVariant) -> 
     let eig = h.symmetric_eigen().eigenvalues;
     let h_max = eig.max();
     let h_min = eig.min().max(0.0);
-    if !(h_max > 0.0) || !h_max.is_finite() {
+    if h_max.is_nan() || h_max <= 0.0 || !h_max.is_finite() {
         return None;
     }
     let ratio = h_min / h_max;
@@ -507,7 +515,9 @@ impl TrigCubic {
         let mut b = [0.0; 4];
         for j in 0..7 {
             let psi = TAU * j as f64 / 7.0;
-            let s = design.configuration(Pose::new(x, y, origin + psi)).singularity();
+            let s = design
+                .configuration(Pose::new(x, y, origin + psi))
+                .singularity();
             a[0] += s / 7.0;
             for kk in 1..4 {
                 let (sn, cs) = (kk as f64 * psi).sin_cos();
@@ -591,7 +601,7 @@ pub fn singular_orientations(design: &Design, x: f64, y: f64) -> SingularOrienta
     }
     let trig = TrigCubic::fit(design, x, y, best - PI);
     let scale = trig.scale();
-    if !(scale > 0.0) || best_value <= 1e-14 * design.length_scale().powi(4) {
+    if scale.is_nan() || scale <= 0.0 || best_value <= 1e-14 * design.length_scale().powi(4) {
         return SingularOrientations::All;
     }
     let poly = trimmed(&trig.half_angle_polynomial(), 1e-14);
@@ -617,10 +627,7 @@ pub fn singular_orientations(design: &Design, x: f64, y: f64) -> SingularOrienta
         }
         let phi = (trig.origin + psi).rem_euclid(TAU);
         let phi = if phi >= TAU { 0.0 } else { phi };
-        if roots
-            .iter()
-            .all(|r| angular_distance(*r, phi) > 1e-9)
-        {
+        if roots.iter().all(|r| angular_distance(*r, phi) > 1e-9) {
             roots.push(phi);
         }
     }
@@ -647,7 +654,10 @@ pub struct OrientationDistance {
 
 /// Orientation singularity distance; `None` if no orientation at this position is
 /// singular (the platform can turn fully round).
-pub fn orientation_singularity_distance(design: &Design, pose: Pose) -> Option<OrientationDistance> {
+pub fn orientation_singularity_distance(
+    design: &Design,
+    pose: Pose,
+) -> Option<OrientationDistance> {
     let sign = signum(design.configuration(pose).singularity());
     match singular_orientations(design, pose.x, pose.y) {
         SingularOrientations::All => Some(OrientationDistance {
@@ -767,8 +777,12 @@ impl SingularConic {
         let g = self.gradient(p0);
         let beta = [dot(&axes[0], &g), dot(&axes[1], &g)];
         let c = self.value(p0);
-        let to_plane =
-            |z: [f64; 2]| [p0[0] + z[0] * axes[0][0] + z[1] * axes[1][0], p0[1] + z[0] * axes[0][1] + z[1] * axes[1][1]];
+        let to_plane = |z: [f64; 2]| {
+            [
+                p0[0] + z[0] * axes[0][0] + z[1] * axes[1][0],
+                p0[1] + z[0] * axes[0][1] + z[1] * axes[1][1],
+            ]
+        };
         let tiny = 1e-14 * coefficient_scale;
 
         let mut candidates: Vec<Point<f64>> = Vec::new();
@@ -804,7 +818,10 @@ impl SingularConic {
             &mul(&lin(lambda[0]), &lin(lambda[0])),
             &mul(&lin(lambda[1]), &lin(lambda[1])),
         );
-        add(&mut quartic, &all_sq.iter().map(|v| c * v).collect::<Vec<_>>());
+        add(
+            &mut quartic,
+            &all_sq.iter().map(|v| c * v).collect::<Vec<_>>(),
+        );
         let quartic = trimmed(&quartic, 1e-13);
         for mu in polynomial_roots(&quartic) {
             if mu.im.abs() > 1e-3 * (1.0 + mu.re.abs()) {
@@ -853,7 +870,10 @@ impl SingularConic {
         }
         // The centre (a double point when the conic is a pair of crossing lines).
         if lambda[0].abs() > tiny && lambda[1].abs() > tiny {
-            candidates.push(to_plane([-beta[0] / (2.0 * lambda[0]), -beta[1] / (2.0 * lambda[1])]));
+            candidates.push(to_plane([
+                -beta[0] / (2.0 * lambda[0]),
+                -beta[1] / (2.0 * lambda[1]),
+            ]));
         }
         let mut best: Option<(f64, Point<f64>)> = None;
         for mut point in candidates {
@@ -861,13 +881,14 @@ impl SingularConic {
                 let v = self.value(&point);
                 let grad = self.gradient(&point);
                 let g2 = dot(&grad, &grad);
-                if v == 0.0 || !(g2 > 0.0) {
+                if v == 0.0 || g2.is_nan() || g2 <= 0.0 {
                     break;
                 }
                 point = [point[0] - v * grad[0] / g2, point[1] - v * grad[1] / g2];
             }
             let reach = 1.0 + point[0].abs().max(point[1].abs());
-            if !(self.value(&point).abs() <= 1e-10 * coefficient_scale * reach * reach) {
+            let residual = self.value(&point).abs();
+            if residual.is_nan() || residual > 1e-10 * coefficient_scale * reach * reach {
                 continue;
             }
             let d = difference(p0, &point);
@@ -929,13 +950,21 @@ pub fn singularity_free_cylinder_radius(
         return Err(IndexError::BadRange { lo, hi });
     }
     match singular_orientations(design, x, y) {
-        SingularOrientations::All => return Ok(Some(CylinderRadius { radius: 0.0, at_phi: lo })),
+        SingularOrientations::All => {
+            return Ok(Some(CylinderRadius {
+                radius: 0.0,
+                at_phi: lo,
+            }));
+        }
         SingularOrientations::Finite(roots) => {
             for r in roots {
                 let k = ((lo - r) / TAU).ceil();
                 let phi = r + k * TAU;
                 if phi <= hi {
-                    return Ok(Some(CylinderRadius { radius: 0.0, at_phi: phi }));
+                    return Ok(Some(CylinderRadius {
+                        radius: 0.0,
+                        at_phi: phi,
+                    }));
                 }
             }
         }
@@ -957,7 +986,10 @@ pub fn singularity_free_cylinder_radius(
     if !best_value.is_finite() {
         return Ok(None);
     }
-    let (mut a, mut b) = (phis[best.saturating_sub(1)], phis[(best + 1).min(SAMPLES - 1)]);
+    let (mut a, mut b) = (
+        phis[best.saturating_sub(1)],
+        phis[(best + 1).min(SAMPLES - 1)],
+    );
     let ratio = (5f64.sqrt() - 1.0) / 2.0;
     let mut c = b - ratio * (b - a);
     let mut d = a + ratio * (b - a);
@@ -983,7 +1015,10 @@ pub fn singularity_free_cylinder_radius(
     };
     for (phi, value) in [(c, fc), (d, fd)] {
         if value < result.radius {
-            result = CylinderRadius { radius: value, at_phi: phi };
+            result = CylinderRadius {
+                radius: value,
+                at_phi: phi,
+            };
         }
     }
     Ok(Some(result))
@@ -1060,9 +1095,10 @@ pub fn compute_indices(design: &Design, pose: Pose, options: &IndexOptions) -> R
     let orientation = orientation_singularity_distance(design, pose);
     let position = position_singularity_distance(design, pose);
     let w = options.cylinder_half_width.abs();
-    let cylinder = singularity_free_cylinder_radius(design, pose.x, pose.y, [pose.phi - w, pose.phi + w])
-        .ok()
-        .flatten();
+    let cylinder =
+        singularity_free_cylinder_radius(design, pose.x, pose.y, [pose.phi - w, pose.phi + w])
+            .ok()
+            .flatten();
     let both = |f: &dyn Fn([f64; 3]) -> f64| match (cos, cos_star) {
         (Some(c), Some(cs)) => Some(f(c).min(f(cs))),
         _ => None,
@@ -1104,7 +1140,10 @@ pub fn index_columns(indices: &RprIndices) -> [(&'static str, Option<f64>); 14] 
         ("CN", indices.cn),
         ("MCN", indices.mcn),
         ("orientation_distance", indices.orientation_distance),
-        ("orientation_distance_signed", indices.orientation_distance_signed),
+        (
+            "orientation_distance_signed",
+            indices.orientation_distance_signed,
+        ),
         ("position_distance", indices.position_distance),
         ("position_distance_signed", indices.position_distance_signed),
         ("cylinder_radius", indices.cylinder_radius),
