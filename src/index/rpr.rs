@@ -1127,27 +1127,43 @@ pub fn compute_indices(design: &Design, pose: Pose, options: &IndexOptions) -> R
     }
 }
 
-/// The scalar index columns of a motion table, in output order, with their values.
+/// Names of the scalar index columns of a motion table, in output order.
+pub const INDEX_COLUMN_NAMES: [&str; 14] = [
+    "M",
+    "S",
+    "IR",
+    "TI",
+    "DS",
+    "MTI",
+    "MDS",
+    "CN",
+    "MCN",
+    "orientation_distance",
+    "orientation_distance_signed",
+    "position_distance",
+    "position_distance_signed",
+    "cylinder_radius",
+];
+
+/// The scalar index columns of a motion table ([`INDEX_COLUMN_NAMES`]) with their values.
 pub fn index_columns(indices: &RprIndices) -> [(&'static str, Option<f64>); 14] {
-    [
-        ("M", indices.m),
-        ("S", Some(indices.s)),
-        ("IR", indices.ir),
-        ("TI", indices.ti),
-        ("DS", indices.ds),
-        ("MTI", indices.mti),
-        ("MDS", indices.mds),
-        ("CN", indices.cn),
-        ("MCN", indices.mcn),
-        ("orientation_distance", indices.orientation_distance),
-        (
-            "orientation_distance_signed",
-            indices.orientation_distance_signed,
-        ),
-        ("position_distance", indices.position_distance),
-        ("position_distance_signed", indices.position_distance_signed),
-        ("cylinder_radius", indices.cylinder_radius),
-    ]
+    let values = [
+        indices.m,
+        Some(indices.s),
+        indices.ir,
+        indices.ti,
+        indices.ds,
+        indices.mti,
+        indices.mds,
+        indices.cn,
+        indices.mcn,
+        indices.orientation_distance,
+        indices.orientation_distance_signed,
+        indices.position_distance,
+        indices.position_distance_signed,
+        indices.cylinder_radius,
+    ];
+    std::array::from_fn(|j| (INDEX_COLUMN_NAMES[j], values[j]))
 }
 
 impl fmt::Display for DsAggregate {
