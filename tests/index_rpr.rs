@@ -505,3 +505,67 @@ fn options_variants_and_degenerate_outputs() {
     let o = orientation_singularity_distance(&design, pose()).unwrap();
     assert!((o.nearest - 6.194301).abs() < 1e-6);
 }
+
+fn conic(c: [f64; 6]) -> SingularConic {
+    SingularConic {
+        cxx: c[0],
+        cxy: c[1],
+        cyy: c[2],
+        cx: c[3],
+        cy: c[4],
+        c0: c[5],
+    }
+}
+
+/// Degenerate branches of the Lagrange quartic: points on symmetry axes, circle centres,
+/// line pairs, parabolas, lines, empty and vanishing conics.
+#[test]
+fn nearest_point_on_special_conics() {
+    let cases: [([f64; 6], [f64; 2], Option<f64>); 9] = [
+        // Circle x² + y² = 4 from its centre: every point is nearest.
+        ([1.0, 0.0, 1.0, 0.0, 0.0, -4.0], [0.0, 0.0], Some(2.0)),
+        // Ellipse x²/4 + y² = 1 from its centre: the minor axis (degenerate μ = 1/(2λ)).
+        ([0.25, 0.0, 1.0, 0.0, 0.0, -1.0], [0.0, 0.0], Some(1.0)),
+        // Same ellipse from (1, 0) on the major axis: d² = ¾x² − 2x + 2, minimal 2/3 at x = 4/3.
+        (
+            [0.25, 0.0, 1.0, 0.0, 0.0, -1.0],
+            [1.0, 0.0],
+            Some((2.0f64 / 3.0).sqrt()),
+        ),
+        // Line pair xy = 0 from (1, 2).
+        ([0.0, 1.0, 0.0, 0.0, 0.0, 0.0], [1.0, 2.0], Some(1.0)),
+        // Parabola y = x² from (0, 2): feet (±sqrt(1.5), 1.5).
+        (
+            [1.0, 0.0, 0.0, 0.0, -1.0, 0.0],
+            [0.0, 2.0],
+            Some(1.75f64.sqrt()),
+        ),
+        // Line 2x + y = 5 from the origin.
+        (
+            [0.0, 0.0, 0.0, 2.0, 1.0, -5.0],
+            [0.0, 0.0],
+            Some(5.0 / 5.0f64.sqrt()),
+        ),
+        // Empty conic x² + y² + 1 = 0.
+        ([1.0, 0.0, 1.0, 0.0, 0.0, 1.0], [0.3, 0.1], None),
+        // S ≡ 0: every position singular.
+        ([0.0; 6], [0.3, 0.1], Some(0.0)),
+        // Rotated hyperbola (x − 1)(y + 2) = 1 from its centre (1, −2): distance sqrt(2).
+        (
+            [0.0, 1.0, 0.0, 2.0, -1.0, -3.0],
+            [1.0, -2.0],
+            Some(2.0f64.sqrt()),
+        ),
+    ];
+    for (coefficients, p0, expected) in cases {
+        let got = conic(coefficients).nearest_point(&p0);
+        match (got, expected) {
+            (Some((d, foot)), Some(e)) => {
+                assert!((d - e).abs() < 1e-9, "{coefficients:?}: {d} vs {e}");
+                assert!(conic(coefficients).value(&foot).abs() < 1e-9);
+            }
+            (None, None) => {}
+            other => panic!("{coefficients:?}: {other:?}"),
+        }
+    }
+}
