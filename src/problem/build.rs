@@ -133,7 +133,7 @@ impl LagrangeProblem {
     ///
     /// Variables: the unknown coordinates of K′ (a rigid part lists only its first two
     /// points), then the multipliers (`lambda`, `mu_base`, `mu_platform`), or for
-    /// all-collinear `qx qy wx wy t1..t6 nu`, for coincident points `qx qy` + the rigid
+    /// all-collinear `qx qy wx wy t2..t6 nu` (point 1 is q), for coincident points `qx qy` + the rigid
     /// part's coordinates + its multiplier. Parameters: `A1x … B3y`, then
     /// `u_base v_base r2_base` and/or `u_platform v_platform r2_platform`.
     pub fn new(id: ProblemId) -> Result<Self, ProblemError> {
@@ -176,13 +176,14 @@ impl LagrangeProblem {
                 let q = [var("qx"), var("qy")];
                 let w = [var("wx"), var("wy")];
                 variables.extend(["qx", "qy", "wx", "wy"].map(String::from));
-                let points: Vec<Point<Expr>> = (1..=6)
-                    .map(|k| {
-                        let t = format!("t{k}");
-                        variables.push(t.clone());
-                        [q[0].clone() + var(&t) * w[0].clone(), q[1].clone() + var(&t) * w[1].clone()]
-                    })
-                    .collect();
+                // Paper Eq. 56: the first point is q itself, the others q + t_k w
+                // (fixing t_1 = 0 removes the slide of q along the line).
+                let mut points: Vec<Point<Expr>> = vec![q.clone()];
+                points.extend((2..=6).map(|k| {
+                    let t = format!("t{k}");
+                    variables.push(t.clone());
+                    [q[0].clone() + var(&t) * w[0].clone(), q[1].clone() + var(&t) * w[1].clone()]
+                }));
                 let norm = w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
                 constraints.push((norm, "nu".to_string()));
                 let base = [points[0].clone(), points[1].clone(), points[2].clone()];

@@ -21,7 +21,7 @@
 
 mod build;
 
-pub use build::{LagrangeProblem, ProblemError};
+pub use build::{CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, LagrangeProblem, ProblemError};
 
 use crate::metric::{Metric, Part};
 use std::fmt;
