@@ -1,1 +1,3 @@
 //! Classic kinematic performance indices (SPEC Parts B and D), for comparison with metric singularity distances.
+
+pub mod rpr;

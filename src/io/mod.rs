@@ -1,1 +1,5 @@
 //! Serde types of every input and output file, and the CSV / JSON / SVG writers.
+
+pub mod rpr;
+
+pub use rpr::{load_design, load_motion};

@@ -1,1 +1,9 @@
 //! The stages of the main job (SPEC A.9): ab-initio, user homotopy, parameter homotopy, post-processing.
+
+pub mod start_file;
+pub mod start_pair;
+
+/// Start-solution files embedded at build time from `supplementary/start/` (see `build.rs`).
+pub mod embedded {
+    include!(concat!(env!("OUT_DIR"), "/start_files.rs"));
+}

@@ -9,6 +9,16 @@
 
 use crate::C64;
 
+pub mod builder;
+pub mod compile;
+pub mod expr;
+pub mod sparse;
+
+pub use builder::{System, SystemError};
+pub use compile::CompiledSystem;
+pub use expr::Expr;
+pub use sparse::SparsePolynomial;
+
 /// A compiled parametric polynomial system `F: C^n × C^m → C^k`.
 ///
 /// Buffer conventions (checked by implementations with `debug_assert!` only; sizes are

@@ -1,0 +1,294 @@
+//! Construction of each sub-problem's Lagrange system with the system builder.
+
+use super::{ProblemId, SubProblem};
+use crate::algebra::Point;
+use crate::mechanism::rpr::{self, Design};
+use crate::metric::Part;
+use crate::system::{CompiledSystem, Evaluator, Expr, System};
+use crate::C64;
+
+/// Errors of the problem layer.
+#[derive(Debug, thiserror::Error)]
+pub enum ProblemError {
+    /// A name that is not a metric, sub-problem or problem.
+    #[error("unknown name `{name}`; valid: {valid}")]
+    UnknownName {
+        /// What was given.
+        name: String,
+        /// What would have been accepted.
+        valid: String,
+    },
+    /// A sub-problem that the metric does not need (SPEC A.6).
+    #[error("problem `{problem}` is not part of its metric; that metric needs: {needed}")]
+    NotNeeded {
+        /// The problem name given.
+        problem: String,
+        /// The sub-problems the metric needs.
+        needed: String,
+    },
+    /// The sub-problem does not exist for this design (e.g. all-collinear with a
+    /// rigid part whose anchors are not collinear).
+    #[error("problem `{problem}` is not applicable: {reason}")]
+    NotApplicable {
+        /// The problem name.
+        problem: String,
+        /// Why.
+        reason: String,
+    },
+    /// The system builder rejected the Lagrangian (a bug, reported rather than hidden).
+    #[error("building the system of `{problem}` failed: {message}")]
+    Build {
+        /// The problem name.
+        problem: String,
+        /// The builder's message.
+        message: String,
+    },
+}
+
+/// Names of the twelve coordinates of a configuration, in the order of SPEC A.1:
+/// `a1x a1y a2x a2y a3x a3y b1x b1y b2x b2y b3x b3y`.
+pub const COORDINATE_NAMES: [&str; 12] = [
+    "a1x", "a1y", "a2x", "a2y", "a3x", "a3y", "b1x", "b1y", "b2x", "b2y", "b3x", "b3y",
+];
+
+/// Names of the parameters holding the given configuration K (fixed frame).
+pub const CONFIGURATION_PARAMETER_NAMES: [&str; 12] = [
+    "A1x", "A1y", "A2x", "A2y", "A3x", "A3y", "B1x", "B1y", "B2x", "B2y", "B3x", "B3y",
+];
+
+/// A sub-problem's compiled Lagrange system `∇Λ = 0` together with the map from a
+/// solution back to the configuration `K′` it describes.
+#[derive(Clone)]
+pub struct LagrangeProblem {
+    id: ProblemId,
+    system: System,
+    compiled: CompiledSystem,
+    /// `K′(x; p)`: twelve coordinates as functions of the unknowns and parameters.
+    configuration_map: CompiledSystem,
+}
+
+impl std::fmt::Debug for LagrangeProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LagrangeProblem")
+            .field("id", &self.id.name())
+            .field("variables", &self.system.variables())
+            .field("parameters", &self.system.parameters())
+            .finish()
+    }
+}
+
+fn var(name: &str) -> Expr {
+    Expr::variable(name)
+}
+
+fn par(name: &str) -> Expr {
+    Expr::parameter(name)
+}
+
+/// The unknown points of one part (base or platform) and the constraint of a rigid part.
+struct PartUnknowns {
+    points: [Point<Expr>; 3],
+    variables: Vec<String>,
+    parameters: Vec<String>,
+    /// `g = |x₂′ − x₁′|² − r²` and its multiplier's name, for a rigid part.
+    rigidity: Option<(Expr, String)>,
+}
+
+fn part_unknowns(part: Part, prefix: char, role: &str) -> PartUnknowns {
+    let coordinate = |k: usize, c: char| format!("{prefix}{k}{c}");
+    let point = |k: usize| [var(&coordinate(k, 'x')), var(&coordinate(k, 'y'))];
+    match part {
+        Part::Rigid => {
+            let (p1, p2) = (point(1), point(2));
+            let (u, v, r2) = (format!("u_{role}"), format!("v_{role}"), format!("r2_{role}"));
+            let p3 = rpr::reconstruct_third_point(&p1, &p2, par(&u), par(&v));
+            let g = rpr::rigidity_constraint(&p1, &p2, par(&r2));
+            PartUnknowns {
+                points: [p1, p2, p3],
+                variables: (1..=2).flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')]).collect(),
+                parameters: vec![u, v, r2],
+                rigidity: Some((g, format!("mu_{role}"))),
+            }
+        }
+        Part::Plate | Part::Bars => PartUnknowns {
+            points: [point(1), point(2), point(3)],
+            variables: (1..=3).flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')]).collect(),
+            parameters: Vec::new(),
+            rigidity: None,
+        },
+    }
+}
+
+fn flatten(base: &[Point<Expr>; 3], platform: &[Point<Expr>; 3]) -> [Expr; 12] {
+    let mut out: Vec<Expr> = Vec::with_capacity(12);
+    for p in base.iter().chain(platform.iter()) {
+        out.push(p[0].clone());
+        out.push(p[1].clone());
+    }
+    out.try_into().unwrap_or_else(|_| unreachable!("six points have twelve coordinates"))
+}
+
+impl LagrangeProblem {
+    /// Builds and compiles the Lagrange system of `id` (SPEC A.6).
+    ///
+    /// Variables: the unknown coordinates of K′ (a rigid part lists only its first two
+    /// points), then the multipliers (`lambda`, `mu_base`, `mu_platform`), or for
+    /// all-collinear `qx qy wx wy t2..t6 nu` (point 1 is q), for coincident points `qx qy` + the rigid
+    /// part's coordinates + its multiplier. Parameters: `A1x … B3y`, then
+    /// `u_base v_base r2_base` and/or `u_platform v_platform r2_platform`.
+    pub fn new(id: ProblemId) -> Result<Self, ProblemError> {
+        let metric = id.metric;
+        let given: [Expr; 12] = std::array::from_fn(|i| par(CONFIGURATION_PARAMETER_NAMES[i]));
+        let mut parameters: Vec<String> =
+            CONFIGURATION_PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
+        let mut variables: Vec<String> = Vec::new();
+        let mut constraints: Vec<(Expr, String)> = Vec::new();
+
+        let configuration: [Expr; 12] = match id.subproblem {
+            SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
+                let base = part_unknowns(metric.base, 'a', "base");
+                let platform = part_unknowns(metric.platform, 'b', "platform");
+                variables.extend(base.variables.iter().cloned());
+                variables.extend(platform.variables.iter().cloned());
+                let k_prime = flatten(&base.points, &platform.points);
+                let condition = match id.subproblem {
+                    SubProblem::Singularity => rpr::singularity_polynomial(&k_prime),
+                    SubProblem::CollinearPlatform => rpr::collinearity_platform(&k_prime),
+                    _ => rpr::collinearity_base(&k_prime),
+                };
+                constraints.push((condition, "lambda".to_string()));
+                for part in [base, platform] {
+                    parameters.extend(part.parameters);
+                    constraints.extend(part.rigidity);
+                }
+                k_prime
+            }
+            SubProblem::AllCollinear => {
+                if metric.base == Part::Rigid || metric.platform == Part::Rigid {
+                    return Err(ProblemError::NotApplicable {
+                        problem: id.name(),
+                        reason: "all six points collinear under a rigid part requires that part's \
+                                 anchors to be collinear (paper §4.1.1); such degenerate designs \
+                                 are not supported by this sub-problem"
+                            .to_string(),
+                    });
+                }
+                let q = [var("qx"), var("qy")];
+                let w = [var("wx"), var("wy")];
+                variables.extend(["qx", "qy", "wx", "wy"].map(String::from));
+                // Paper Eq. 56: the first point is q itself, the others q + t_k w
+                // (fixing t_1 = 0 removes the slide of q along the line).
+                let mut points: Vec<Point<Expr>> = vec![q.clone()];
+                points.extend((2..=6).map(|k| {
+                    let t = format!("t{k}");
+                    variables.push(t.clone());
+                    [q[0].clone() + var(&t) * w[0].clone(), q[1].clone() + var(&t) * w[1].clone()]
+                }));
+                let norm = w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
+                constraints.push((norm, "nu".to_string()));
+                let base = [points[0].clone(), points[1].clone(), points[2].clone()];
+                let platform = [points[3].clone(), points[4].clone(), points[5].clone()];
+                flatten(&base, &platform)
+            }
+            SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => {
+                let q = [var("qx"), var("qy")];
+                variables.extend(["qx", "qy"].map(String::from));
+                let coincident = [q.clone(), q.clone(), q];
+                let (base, platform) = if id.subproblem == SubProblem::CoincidentPlatform {
+                    let base = part_unknowns(Part::Rigid, 'a', "base");
+                    variables.extend(base.variables.iter().cloned());
+                    parameters.extend(base.parameters.iter().cloned());
+                    constraints.extend(base.rigidity.clone());
+                    (base.points, coincident)
+                } else {
+                    let platform = part_unknowns(Part::Rigid, 'b', "platform");
+                    variables.extend(platform.variables.iter().cloned());
+                    parameters.extend(platform.parameters.iter().cloned());
+                    constraints.extend(platform.rigidity.clone());
+                    (coincident, platform.points)
+                };
+                flatten(&base, &platform)
+            }
+        };
+
+        let mut lagrangian = metric.distance_sq(&given, &configuration);
+        for (constraint, multiplier) in constraints {
+            lagrangian = lagrangian - var(&multiplier) * constraint;
+            variables.push(multiplier);
+        }
+        let build_error = |e: &dyn std::fmt::Display| ProblemError::Build {
+            problem: id.name(),
+            message: e.to_string(),
+        };
+        let system = System::lagrange(&lagrangian, variables.clone(), parameters.clone())
+            .map_err(|e| build_error(&e))?;
+        let configuration_map = System::new(variables, parameters, configuration.to_vec())
+            .map_err(|e| build_error(&e))?;
+        Ok(LagrangeProblem {
+            id,
+            compiled: system.compile(),
+            system,
+            configuration_map: configuration_map.compile(),
+        })
+    }
+
+    /// Which metric and sub-problem this is.
+    pub fn id(&self) -> ProblemId {
+        self.id
+    }
+
+    /// The symbolic system `∇Λ = 0`.
+    pub fn system(&self) -> &System {
+        &self.system
+    }
+
+    /// The compiled system, for the tracker.
+    pub fn evaluator(&self) -> &CompiledSystem {
+        &self.compiled
+    }
+
+    /// Names of the unknowns, in order.
+    pub fn variable_names(&self) -> &[String] {
+        self.system.variables()
+    }
+
+    /// Names of the parameters, in order.
+    pub fn parameter_names(&self) -> &[String] {
+        self.system.parameters()
+    }
+
+    /// Parameter vector for the given configuration `k` (twelve coordinates, possibly
+    /// complex) of `design`: `k` followed by the rigid parts' shape constants
+    /// `(u, v, r²)` of SPEC A.5, computed from the design's base and platform anchors.
+    pub fn parameters_for(&self, design: &Design, k: &[C64; 12]) -> Vec<C64> {
+        let mut out: Vec<C64> = k.to_vec();
+        for name in &self.system.parameters()[12..] {
+            let shape = if name.ends_with("_base") {
+                design.base_shape()
+            } else {
+                design.platform_shape()
+            };
+            let value = if name.starts_with("u_") {
+                shape.u
+            } else if name.starts_with("v_") {
+                shape.v
+            } else {
+                shape.r2
+            };
+            out.push(C64::new(value, 0.0));
+        }
+        out
+    }
+
+    /// `K′` described by the solution `x` at parameters `p` (twelve coordinates).
+    pub fn configuration(&self, x: &[C64], p: &[C64], work: &mut [C64]) -> [C64; 12] {
+        let mut out = [C64::new(0.0, 0.0); 12];
+        self.configuration_map.evaluate(x, p, work, &mut out);
+        out
+    }
+
+    /// Scratch length sufficient for both the system and the configuration map.
+    pub fn workspace_len(&self) -> usize {
+        self.compiled.workspace_len().max(self.configuration_map.workspace_len())
+    }
+}

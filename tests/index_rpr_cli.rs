@@ -1,0 +1,129 @@
+//! `singdist indices` end to end: single-pose JSON, motion table, plot, errors.
+
+use std::process::Command;
+
+fn singdist(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_singdist"))
+        .args(args)
+        .output()
+        .expect("run singdist")
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("singdist-indices-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn single_pose_json_has_every_key_and_the_test_vector_values() {
+    let out = singdist(&["indices", "--pose", "4,3,0.3", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let expected = [
+        ("M", 1.781467),
+        ("S", 125.29749),
+        ("IR", 0.744749),
+        ("TI", 0.787796),
+        ("MTI", 0.319097),
+        ("CN", 0.0111666),
+        ("MCN", 0.528921),
+        ("orientation_distance", 0.388884),
+        ("position_distance", 2.589166),
+    ];
+    for (key, value) in expected {
+        let got = v[key].as_f64().unwrap_or_else(|| panic!("missing {key}"));
+        assert!((got - value).abs() < 1e-5, "{key}: {got}");
+    }
+    for key in [
+        "DS",
+        "MDS",
+        "orientation_distance_signed",
+        "position_distance_signed",
+    ] {
+        assert!(v[key].is_number(), "{key}");
+    }
+    assert!(
+        v["variants"]["DS"]
+            .as_str()
+            .unwrap()
+            .contains("reconstructed")
+    );
+}
+
+#[test]
+fn motion_table_plot_and_errors() {
+    let csv_path = temp("indices.csv");
+    let svg_path = temp("indices.svg");
+    let out = singdist(&[
+        "indices",
+        "--poses",
+        "40",
+        "--out",
+        csv_path.to_str().unwrap(),
+        "--plot",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 41);
+    assert!(
+        lines[0].starts_with("tau,x,y,phi,M,S,IR,TI,"),
+        "{}",
+        lines[0]
+    );
+    assert!(lines[0].contains("DS(product,reconstructed)"));
+    assert!(!text.to_ascii_lowercase().contains("nan"));
+    // S changes sign exactly twice along the example motion.
+    let s: Vec<f64> = lines[1..]
+        .iter()
+        .map(|l| l.split(',').nth(5).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(s.windows(2).filter(|w| w[0] * w[1] < 0.0).count(), 2);
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(svg.contains("<svg") && svg.matches("singular pose").count() == 2);
+
+    let json_path = temp("indices.json");
+    let out = singdist(&[
+        "indices",
+        "--poses",
+        "5",
+        "--out",
+        json_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    assert_eq!(v["poses"].as_array().unwrap().len(), 5);
+
+    let bad = temp("bad_design.json");
+    std::fs::write(
+        &bad,
+        "{\"base\": [[0,0],[1,0]], \"platform\": [[0,0],[1,0],[0,1]]}",
+    )
+    .unwrap();
+    let out = singdist(&[
+        "indices",
+        "--design",
+        bad.to_str().unwrap(),
+        "--pose",
+        "1,1,0",
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad_design.json") && err.contains("base"),
+        "{err}"
+    );
+    let out = singdist(&["indices", "--out", temp("x.txt").to_str().unwrap()]);
+    assert!(!out.status.success());
+}

@@ -1,0 +1,83 @@
+//! The Lagrange sub-problems of SPEC A.6: every metric's list, the unknown counts of
+//! SPEC A.7, and start pairs whose configuration satisfies the constraint.
+
+use singdist::C64;
+use singdist::mechanism::rpr;
+use singdist::metric::{Metric, Part};
+use singdist::pipeline::start_pair::find_start_pair;
+use singdist::problem::{LagrangeProblem, ProblemId, SubProblem, subproblems_of};
+use singdist::system::Evaluator;
+
+fn metric(name: &str) -> Metric {
+    name.parse().expect("valid metric name")
+}
+
+#[test]
+fn each_metric_needs_the_subproblems_of_spec_a6() {
+    let names = |m: &str| -> Vec<&'static str> {
+        subproblems_of(metric(m)).iter().map(|k| k.name()).collect()
+    };
+    assert_eq!(names("plate/plate"), ["singularity", "all-collinear"]);
+    assert_eq!(names("bars/plate"), ["singularity", "collinear-platform"]);
+    assert_eq!(names("bars/bars"), ["singularity", "collinear-platform", "collinear-base"]);
+    assert_eq!(names("bars/rigid"), ["singularity", "collinear-platform", "coincident-platform"]);
+    assert_eq!(names("rigid/bars"), ["singularity", "collinear-base", "coincident-base"]);
+    assert_eq!(names("rigid/rigid"), ["singularity", "all-collinear"]);
+    assert_eq!(ProblemId::all().len(), 9 + 6 + 4 + 2);
+    let id: ProblemId = "bars/rigid:collinear-platform".parse().unwrap();
+    assert_eq!(id.file_stem(), "bars-rigid-collinear-platform");
+    assert!("bars/rigid:collinear-base".parse::<ProblemId>().is_err());
+    assert!("bars/rigid:nonsense".parse::<ProblemId>().is_err());
+}
+
+/// Unknown counts of SPEC A.7's table (and of our parameterisation of the others).
+#[test]
+fn unknown_counts_match_spec_a7() {
+    for id in ProblemId::all() {
+        let rigid_parts = [id.metric.platform, id.metric.base].iter().filter(|p| **p == Part::Rigid).count();
+        let expected = match id.subproblem {
+            SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
+                [13, 12, 11][rigid_parts]
+            }
+            SubProblem::AllCollinear => 10,
+            SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 7,
+        };
+        if id.subproblem == SubProblem::AllCollinear && rigid_parts > 0 {
+            assert!(LagrangeProblem::new(id).is_err(), "{id}");
+            continue;
+        }
+        let problem = LagrangeProblem::new(id).unwrap_or_else(|e| panic!("{id}: {e}"));
+        assert_eq!(problem.evaluator().num_variables(), expected, "{id}");
+        assert_eq!(problem.evaluator().num_equations(), expected, "{id}");
+        assert_eq!(problem.parameter_names().len(), 12 + 3 * rigid_parts.min(match id.subproblem {
+            SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 1,
+            _ => 2,
+        }), "{id}");
+    }
+}
+
+/// A start pair found by minimum-norm Gauss–Newton solves the system, and the
+/// configuration it describes lies on the constraint variety (checked with the
+/// independent numeric S, C_p, C_b of the mechanism module).
+#[test]
+fn start_pairs_lie_on_their_constraint_variety() {
+    for id in ProblemId::all() {
+        let Ok(problem) = LagrangeProblem::new(id) else { continue };
+        let pair = find_start_pair(problem.evaluator(), 11).unwrap_or_else(|e| panic!("{id}: {e}"));
+        let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
+        let mut f = vec![C64::new(0.0, 0.0); pair.x.len()];
+        problem.evaluator().evaluate(&pair.x, &pair.p, &mut work, &mut f);
+        assert!(f.iter().all(|v| v.norm() < 1e-10), "{id}: residual");
+        let k = problem.configuration(&pair.x, &pair.p, &mut work);
+        let scale = k.iter().map(|v| v.norm()).fold(1.0, f64::max);
+        let condition = match id.subproblem {
+            SubProblem::Singularity => rpr::singularity_polynomial(&k),
+            SubProblem::CollinearPlatform => rpr::collinearity_platform(&k),
+            SubProblem::CollinearBase => rpr::collinearity_base(&k),
+            SubProblem::AllCollinear => rpr::collinearity_platform(&k) + rpr::collinearity_base(&k),
+            SubProblem::CoincidentPlatform => (k[6] - k[8]) + (k[9] - k[11]) * C64::new(0.0, 1.0),
+            SubProblem::CoincidentBase => (k[0] - k[2]) + (k[3] - k[5]) * C64::new(0.0, 1.0),
+        };
+        assert!(condition.norm() < 1e-9 * scale.powi(4), "{id}: constraint {condition}");
+    }
+}

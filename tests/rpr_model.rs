@@ -1,0 +1,327 @@
+//! 3-RPR model: design validation, singularity polynomial (SPEC A.2), rigid shapes
+//! (SPEC A.5), motions and the built-in example, design/motion files.
+
+use nalgebra::Matrix3;
+use singdist::C64;
+use singdist::io::{load_design, load_motion};
+use singdist::mechanism::rpr::{
+    Design, Motion, Pose, PoseList, RprError, collinearity_base, collinearity_platform,
+    example_design, example_motion, reconstruct_third_point, rigid_shape, singularity_polynomial,
+};
+use singdist::random::{seeded, uniform};
+
+fn test_design() -> Design {
+    Design::new(
+        [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
+    )
+    .unwrap()
+}
+
+#[test]
+fn spec_test_vector_configuration_and_s() {
+    let k = test_design().configuration(Pose::new(4.0, 3.0, 0.3));
+    let expected_b = [[4.0, 3.0], [6.866009, 3.886561], [4.364296, 5.206193]];
+    for (b, expected) in k.b.iter().zip(expected_b) {
+        assert!((b[0] - expected[0]).abs() < 1e-6 && (b[1] - expected[1]).abs() < 1e-6);
+    }
+    assert!((k.singularity() - 125.29749).abs() < 1e-5);
+    let arr = k.to_array();
+    assert_eq!(arr[0..6], [0.0, 0.0, 10.0, 0.0, 4.0, 8.0]);
+    assert_eq!(singdist::mechanism::rpr::Configuration::from_array(&arr), k);
+}
+
+/// Independent computation: S = l1 l2 l3 det J with J rows [u_i, (b_i − t) × u_i].
+#[test]
+fn s_equals_leg_lengths_times_det_inverse_jacobian() {
+    let mut rng = seeded(11);
+    for _ in 0..200 {
+        let mut pts = [[0.0; 2]; 6];
+        for p in pts.iter_mut() {
+            *p = [uniform(&mut rng, -5.0, 5.0), uniform(&mut rng, -5.0, 5.0)];
+        }
+        let design = Design::new([pts[0], pts[1], pts[2]], [pts[3], pts[4], pts[5]]).unwrap();
+        let pose = Pose::new(
+            uniform(&mut rng, -3.0, 3.0),
+            uniform(&mut rng, -3.0, 3.0),
+            uniform(&mut rng, -3.2, 3.2),
+        );
+        let k = design.configuration(pose);
+        let mut j = Matrix3::zeros();
+        let mut lengths = 1.0;
+        for i in 0..3 {
+            let d = [k.b[i][0] - k.a[i][0], k.b[i][1] - k.a[i][1]];
+            let l = d[0].hypot(d[1]);
+            lengths *= l;
+            let u = [d[0] / l, d[1] / l];
+            let r = [k.b[i][0] - pose.x, k.b[i][1] - pose.y];
+            j[(i, 0)] = u[0];
+            j[(i, 1)] = u[1];
+            j[(i, 2)] = r[0] * u[1] - r[1] * u[0];
+        }
+        let s = k.singularity();
+        let direct = lengths * j.determinant();
+        assert!(
+            (s - direct).abs() <= 1e-9 * (1.0 + s.abs()),
+            "S = {s}, l1l2l3 det J = {direct}"
+        );
+    }
+}
+
+#[test]
+fn s_sign_follows_permutation_parity_under_relabelling() {
+    let mut rng = seeded(12);
+    let perms: [([usize; 3], f64); 6] = [
+        ([0, 1, 2], 1.0),
+        ([1, 2, 0], 1.0),
+        ([2, 0, 1], 1.0),
+        ([1, 0, 2], -1.0),
+        ([0, 2, 1], -1.0),
+        ([2, 1, 0], -1.0),
+    ];
+    for _ in 0..50 {
+        let k: [f64; 12] = std::array::from_fn(|_| uniform(&mut rng, -4.0, 4.0));
+        let s = singularity_polynomial(&k);
+        for (perm, sign) in perms {
+            let mut q = [0.0; 12];
+            for (new, &old) in perm.iter().enumerate() {
+                q[2 * new] = k[2 * old];
+                q[2 * new + 1] = k[2 * old + 1];
+                q[6 + 2 * new] = k[6 + 2 * old];
+                q[6 + 2 * new + 1] = k[6 + 2 * old + 1];
+            }
+            let sp = singularity_polynomial(&q);
+            assert!((sp - sign * s).abs() < 1e-9 * (1.0 + s.abs()), "{perm:?}");
+        }
+    }
+}
+
+#[test]
+fn s_vanishes_for_concurrent_and_parallel_legs() {
+    // Legs through the common point (1, 1).
+    let k = [0.0, 0.0, 3.0, 0.0, 0.0, 4.0, 2.0, 2.0, -1.0, 2.0, 2.0, -2.0];
+    assert!(singularity_polynomial(&k).abs() < 1e-12);
+    // Three parallel legs (direction (1, 2)).
+    let k = [0.0, 0.0, 1.0, 0.0, 5.0, 1.0, 1.0, 2.0, 3.0, 4.0, 4.0, -1.0];
+    assert!(singularity_polynomial(&k).abs() < 1e-12);
+    // A generic configuration is not singular.
+    let k = [0.0, 0.0, 1.0, 0.0, 5.0, 1.0, 1.0, 2.0, 3.0, 4.0, 4.0, 1.0];
+    assert!(singularity_polynomial(&k).abs() > 1e-3);
+}
+
+#[test]
+fn collinearity_is_twice_the_signed_area() {
+    let k = [0.0, 0.0, 4.0, 0.0, 0.0, 3.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0];
+    assert!((collinearity_base(&k) - 12.0).abs() < 1e-12);
+    assert!(collinearity_platform(&k).abs() < 1e-12);
+}
+
+#[test]
+fn complex_configuration_matches_real_and_is_analytic() {
+    let design = test_design();
+    let pose = Pose::new(1.5, -0.5, 0.7);
+    let real = design.configuration(pose).to_array();
+    let complex =
+        design.configuration_complex(C64::new(1.5, 0.0), C64::new(-0.5, 0.0), C64::new(0.7, 0.0));
+    for j in 0..12 {
+        assert!((complex[j] - real[j]).norm() < 1e-14);
+    }
+    // At complex φ the platform stays congruent in the complex sense: |b2 − b1|² (bilinear) = |P2 − P1|².
+    let k =
+        design.configuration_complex(C64::new(0.3, 1.1), C64::new(-2.0, 0.4), C64::new(0.5, -0.8));
+    let dx = k[8] - k[6];
+    let dy = k[9] - k[7];
+    assert!((dx * dx + dy * dy - 9.0).norm() < 1e-12);
+}
+
+#[test]
+fn rigid_shape_reconstructs_third_point_after_rigid_motion() {
+    let mut rng = seeded(13);
+    for _ in 0..50 {
+        let p: [[f64; 2]; 3] =
+            std::array::from_fn(|_| [uniform(&mut rng, -3.0, 3.0), uniform(&mut rng, -3.0, 3.0)]);
+        let shape = rigid_shape(&p[0], &p[1], &p[2]);
+        let (s, c) = uniform(&mut rng, -3.0, 3.0).sin_cos();
+        let t = [uniform(&mut rng, -3.0, 3.0), uniform(&mut rng, -3.0, 3.0)];
+        let m = |q: [f64; 2]| [t[0] + c * q[0] - s * q[1], t[1] + s * q[0] + c * q[1]];
+        let q3 = reconstruct_third_point(&m(p[0]), &m(p[1]), shape.u, shape.v);
+        let e = m(p[2]);
+        assert!((q3[0] - e[0]).abs() < 1e-10 && (q3[1] - e[1]).abs() < 1e-10);
+        let d = [p[1][0] - p[0][0], p[1][1] - p[0][1]];
+        assert!((shape.r2 - (d[0] * d[0] + d[1] * d[1])).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn design_validation_names_the_field() {
+    let base = [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]];
+    let err = Design::new(base, [[0.0, 0.0], [0.0, 0.0], [1.0, 2.0]]).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("platform[1]: coincides with platform[0]"),
+        "{err}"
+    );
+    let err = Design::new(
+        [[0.0, 0.0], [10.0, f64::NAN], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
+    )
+    .unwrap_err();
+    assert!(matches!(err, RprError::NotFinite { ref field, .. } if field == "base[1].y"));
+    assert!(err.to_string().contains("base[1].y"));
+    // A base collapsed to a point.
+    let err = Design::new([[1.0, 1.0]; 3], [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]]).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("base[1]: coincides with base[0]"),
+        "{err}"
+    );
+    // Three distinct but collinear anchors are a valid design.
+    assert!(Design::new([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], base).is_ok());
+}
+
+#[test]
+fn example_motion_crosses_the_singularity_variety_exactly_twice() {
+    let design = example_design();
+    let motion = example_motion();
+    motion.validate().unwrap();
+    let samples = motion.sample(20001);
+    assert_eq!(samples.len(), 20001);
+    assert_eq!(samples[0].tau, -1.0);
+    assert_eq!(samples[20000].tau, 4.5);
+    let values: Vec<f64> = samples
+        .iter()
+        .map(|s| design.configuration(s.pose).singularity())
+        .collect();
+    let crossings: Vec<f64> = (0..values.len() - 1)
+        .filter(|&j| values[j] * values[j + 1] < 0.0)
+        .map(|j| samples[j].tau)
+        .collect();
+    assert_eq!(crossings.len(), 2, "{crossings:?}");
+    assert!((crossings[0] + 0.086).abs() < 0.01 && (crossings[1] - 3.107).abs() < 0.01);
+    // Apart from the crossings S stays clear of 0: no tangential touching.
+    let far: f64 = samples
+        .iter()
+        .zip(&values)
+        .filter(|(s, _)| crossings.iter().all(|c| (s.tau - c).abs() > 0.1))
+        .map(|(_, v)| v.abs())
+        .fold(f64::INFINITY, f64::min);
+    assert!(far > 1.0, "{far}");
+}
+
+#[test]
+fn example_files_equal_the_built_in_example() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let design = load_design(format!("{root}/systems/rpr_example_design.json")).unwrap();
+    assert_eq!(design, example_design());
+    let motion = load_motion(format!("{root}/systems/rpr_example_motion.json")).unwrap();
+    assert_eq!(motion, example_motion());
+}
+
+#[test]
+fn motion_evaluates_at_complex_tau_consistently() {
+    let motion = example_motion();
+    for tau in [-1.0, 0.0, 1.3, 4.5] {
+        let real = motion.pose(tau).unwrap();
+        let complex = motion.pose_complex(C64::new(tau, 0.0)).unwrap();
+        assert!((complex[0] - real.x).norm() < 1e-14);
+        assert!((complex[1] - real.y).norm() < 1e-14);
+        assert!((complex[2] - real.phi).norm() < 1e-14);
+    }
+    // Analytic continuation: sin(τ) at τ = i is i sinh(1).
+    let z = motion.pose_complex(C64::new(0.0, 1.0)).unwrap();
+    assert!((z[0] - C64::new(4.0, 1f64.sinh())).norm() < 1e-12);
+    let list = Motion::Poses(PoseList {
+        poses: vec![Pose::new(0.0, 0.0, 0.0), Pose::new(1.0, 0.0, 0.1)],
+    });
+    assert!(list.pose_complex(C64::new(0.5, 0.1)).is_none());
+    assert_eq!(list.sample(100).len(), 2);
+    // Serde round trip of both forms.
+    for m in [motion, list] {
+        let text = serde_json::to_string(&m).unwrap();
+        let back: Motion = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, m);
+    }
+}
+
+fn write_temp(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("singdist-rpr-model-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn file_errors_name_file_and_field() {
+    let cases: [(&str, &str, &str); 7] = [
+        ("malformed.json", "{\"base\": [[0,0],", "malformed JSON"),
+        (
+            "missing.json",
+            "{\"base\": [[0,0],[1,0],[0,1]]}",
+            "platform: missing field",
+        ),
+        (
+            "short.json",
+            "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[0,0],[1,0,3],[0,1]]}",
+            "platform[1]: expected an array of 2 numbers, got 3 elements",
+        ),
+        (
+            "two.json",
+            "{\"base\": [[0,0],[1,0]], \"platform\": [[0,0],[1,0],[0,1]]}",
+            "base: expected 3 anchors",
+        ),
+        (
+            "string.json",
+            "{\"base\": [[0,0],[1,\"x\"],[0,1]], \"platform\": [[0,0],[1,0],[0,1]]}",
+            "base[1][1]: expected a number, got a string",
+        ),
+        (
+            "nan.json",
+            "{\"base\": [[0,0],[1,NaN],[0,1]], \"platform\": [[0,0],[1,0],[0,1]]}",
+            "malformed JSON",
+        ),
+        (
+            "coincident.json",
+            "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[0,0],[0,0],[0,1]]}",
+            "platform[1]: coincides with platform[0]",
+        ),
+    ];
+    for (name, text, expected) in cases {
+        let path = write_temp(name, text);
+        let err = load_design(&path).unwrap_err().to_string();
+        assert!(err.contains(name), "{err}");
+        assert!(err.contains(expected), "{name}: {err}");
+    }
+    let motion_cases: [(&str, &str, &str); 4] = [
+        (
+            "m1.json",
+            "{\"poses\": [[0,0,0],[1,2]]}",
+            "poses[1]: expected an array of 3",
+        ),
+        (
+            "m2.json",
+            "{\"poses\": []}",
+            "poses: the pose list is empty",
+        ),
+        (
+            "m3.json",
+            "{\"tau_range\": [1, 0], \"x\": {}, \"y\": {}, \"phi\": {}}",
+            "tau_range: must be two finite numbers",
+        ),
+        (
+            "m4.json",
+            "{\"tau_range\": [0, 1], \"x\": {\"cosines\": [[1, 2]]}, \"y\": {}, \"phi\": {}}",
+            "x.cosines[0]: expected an array of 3 numbers",
+        ),
+    ];
+    for (name, text, expected) in motion_cases {
+        let path = write_temp(name, text);
+        let err = load_motion(&path).unwrap_err().to_string();
+        assert!(
+            err.contains(name) && err.contains(expected),
+            "{name}: {err}"
+        );
+    }
+    let err = load_design("/nonexistent/d.json").unwrap_err().to_string();
+    assert!(err.contains("/nonexistent/d.json: cannot read"), "{err}");
+}
