@@ -324,9 +324,9 @@ pub fn collinearity_base<T: Ring>(k: &[T; 12]) -> T {
 /// `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RigidShape {
-    /// Coordinate of `p_3 − p_1` along `e`, in units of `|e|`².
+    /// Dimensionless coordinate of `p_3 − p_1` along `e`.
     pub u: f64,
-    /// Coordinate of `p_3 − p_1` along `E e`, in units of `|e|`².
+    /// Dimensionless coordinate of `p_3 − p_1` along `E e`.
     pub v: f64,
     /// `|e|² = |p_2 − p_1|²`.
     pub r2: f64,
