@@ -358,3 +358,39 @@ fn generic_formulas_agree_between_real_and_complex_rings() {
     let predicted = s_at(C64::new(tau, 0.0)) + C64::new(0.0, h) * derivative;
     assert!((s_at(C64::new(tau, h)) - predicted).norm() < 1e-6 * (1.0 + derivative.norm()));
 }
+
+#[test]
+fn relabelling_per_lemma_2() {
+    let base = [[0.0, 0.0], [0.0, 0.0], [4.0, 8.0]];
+    let platform = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.0]];
+    assert!(Design::new(base, platform).is_err());
+    let (design, labels) = Design::with_relabelling(base, platform).unwrap();
+    assert_ne!(design.base()[0], design.base()[1]);
+    assert_ne!(design.platform()[0], design.platform()[1]);
+    for i in 0..3 {
+        assert_eq!(design.base()[i], base[labels[i]]);
+        assert_eq!(design.platform()[i], platform[labels[i]]);
+    }
+    // Rigid shapes are finite after relabelling.
+    let shape = design.base_shape();
+    assert!(shape.u.is_finite() && shape.v.is_finite() && shape.r2 > 0.0);
+    // No relabelling needed: identity.
+    let (_, labels) = Design::with_relabelling(
+        [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
+    )
+    .unwrap();
+    assert_eq!(labels, [0, 1, 2]);
+    // A collapsed part is rejected with a clear message.
+    let err = Design::with_relabelling(base, [[1.0, 1.0]; 3]).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "platform: collapsed to a point (all three anchors coincide)"
+    );
+    let err = Design::with_relabelling([[0.0, f64::INFINITY], [1.0, 0.0], [0.0, 1.0]], platform)
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("base[0].y: not a finite number")
+    );
+}
