@@ -502,6 +502,15 @@ fn options_variants_and_degenerate_outputs() {
     );
     let variants: IndexVariants = IndexOptions::default().variants();
     assert_eq!(variants.cn, "lambda_min/lambda_max");
+    // At t = A_1 with P_1 = 0 leg 1 has length 0 for every φ: S ≡ 0 in φ and C_0 = 0.
+    assert_eq!(
+        singular_orientations(&design, 0.0, 0.0),
+        SingularOrientations::All
+    );
+    let at_origin = orientation_singularity_distance(&design, Pose::new(0.0, 0.0, 1.0)).unwrap();
+    assert_eq!(at_origin.distance, 0.0);
+    let p = position_singularity_distance(&design, Pose::new(0.0, 0.0, 1.0)).unwrap();
+    assert!(p.distance < 1e-12);
     let o = orientation_singularity_distance(&design, pose()).unwrap();
     assert!((o.nearest - 6.194301).abs() < 1e-6);
 }

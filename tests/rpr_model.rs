@@ -325,3 +325,72 @@ fn file_errors_name_file_and_field() {
     let err = load_design("/nonexistent/d.json").unwrap_err().to_string();
     assert!(err.contains("/nonexistent/d.json: cannot read"), "{err}");
 }
+
+/// The generic formulas give the same numbers in f64 and C64 (the ring the seeds of the
+/// parameter homotopy live in), and S at a complex pose is the complex continuation.
+#[test]
+fn generic_formulas_agree_between_real_and_complex_rings() {
+    use singdist::metric::Metric;
+    let mut rng = seeded(14);
+    for _ in 0..20 {
+        let k: [f64; 12] = std::array::from_fn(|_| uniform(&mut rng, -4.0, 4.0));
+        let k2: [f64; 12] = std::array::from_fn(|_| uniform(&mut rng, -4.0, 4.0));
+        let kc = k.map(|v| C64::new(v, 0.0));
+        let k2c = k2.map(|v| C64::new(v, 0.0));
+        assert!((singularity_polynomial(&kc) - singularity_polynomial(&k)).norm() < 1e-9);
+        assert!((collinearity_platform(&kc) - collinearity_platform(&k)).norm() < 1e-12);
+        for metric in Metric::all() {
+            let real = metric.distance_sq(&k, &k2);
+            assert!((metric.distance_sq(&kc, &k2c) - real).norm() < 1e-12 * (1.0 + real));
+        }
+    }
+    // Complex pose: S(K(τ)) along the analytic motion is holomorphic, so its value at
+    // τ + ih matches the Taylor expansion from real τ to first order.
+    let design = example_design();
+    let motion = example_motion();
+    let s_at = |tau: C64| {
+        let [x, y, phi] = motion.pose_complex(tau).unwrap();
+        singularity_polynomial(&design.configuration_complex(x, y, phi))
+    };
+    let tau = 1.0;
+    let h = 1e-5;
+    let derivative = (s_at(C64::new(tau + h, 0.0)) - s_at(C64::new(tau - h, 0.0))) / (2.0 * h);
+    let predicted = s_at(C64::new(tau, 0.0)) + C64::new(0.0, h) * derivative;
+    assert!((s_at(C64::new(tau, h)) - predicted).norm() < 1e-6 * (1.0 + derivative.norm()));
+}
+
+#[test]
+fn relabelling_per_lemma_2() {
+    let base = [[0.0, 0.0], [0.0, 0.0], [4.0, 8.0]];
+    let platform = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.0]];
+    assert!(Design::new(base, platform).is_err());
+    let (design, labels) = Design::with_relabelling(base, platform).unwrap();
+    assert_ne!(design.base()[0], design.base()[1]);
+    assert_ne!(design.platform()[0], design.platform()[1]);
+    for i in 0..3 {
+        assert_eq!(design.base()[i], base[labels[i]]);
+        assert_eq!(design.platform()[i], platform[labels[i]]);
+    }
+    // Rigid shapes are finite after relabelling.
+    let shape = design.base_shape();
+    assert!(shape.u.is_finite() && shape.v.is_finite() && shape.r2 > 0.0);
+    // No relabelling needed: identity.
+    let (_, labels) = Design::with_relabelling(
+        [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
+    )
+    .unwrap();
+    assert_eq!(labels, [0, 1, 2]);
+    // A collapsed part is rejected with a clear message.
+    let err = Design::with_relabelling(base, [[1.0, 1.0]; 3]).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "platform: collapsed to a point (all three anchors coincide)"
+    );
+    let err = Design::with_relabelling([[0.0, f64::INFINITY], [1.0, 0.0], [0.0, 1.0]], platform)
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("base[0].y: not a finite number")
+    );
+}

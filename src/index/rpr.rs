@@ -463,11 +463,20 @@ pub fn polynomial_roots(coefficients: &[f64]) -> Vec<C64> {
     let mut z: Vec<C64> = (0..n)
         .map(|k| C64::from_polar(0.5 * radius, TAU * k as f64 / n as f64 + 0.4))
         .collect();
+    let mut converged = vec![false; n];
     for _ in 0..500 {
-        let mut largest_step = 0.0_f64;
         for k in 0..n {
+            if converged[k] {
+                continue;
+            }
             let (p, dp) = horner(coefficients, z[k]);
-            if p.norm() == 0.0 {
+            // Rounding-error bound of Horner's scheme: |p| at this level is a root.
+            let bound: f64 = coefficients
+                .iter()
+                .rev()
+                .fold(0.0, |acc, c| acc * z[k].norm() + c.abs());
+            if p.norm() <= 4.0 * f64::EPSILON * bound {
+                converged[k] = true;
                 continue;
             }
             let ratio = p / dp;
@@ -485,10 +494,12 @@ pub fn polynomial_roots(coefficients: &[f64]) -> Vec<C64> {
             let step = ratio / (C64::new(1.0, 0.0) - ratio * repulsion);
             if step.is_finite() {
                 z[k] -= step;
-                largest_step = largest_step.max(step.norm() / (1.0 + z[k].norm()));
+                if step.norm() <= 1e-15 * (1.0 + z[k].norm()) {
+                    converged[k] = true;
+                }
             }
         }
-        if largest_step < 1e-15 {
+        if converged.iter().all(|&c| c) {
             break;
         }
     }
@@ -884,7 +895,11 @@ impl SingularConic {
                 if v == 0.0 || g2.is_nan() || g2 <= 0.0 {
                     break;
                 }
-                point = [point[0] - v * grad[0] / g2, point[1] - v * grad[1] / g2];
+                let step = [v * grad[0] / g2, v * grad[1] / g2];
+                point = [point[0] - step[0], point[1] - step[1]];
+                if step[0].hypot(step[1]) <= 1e-15 * (1.0 + point[0].hypot(point[1])) {
+                    break;
+                }
             }
             let reach = 1.0 + point[0].abs().max(point[1].abs());
             let residual = self.value(&point).abs();
@@ -937,7 +952,7 @@ pub struct CylinderRadius {
 /// `min` over φ ∈ `[lo, hi]` of the position singularity distance at (x, y) (SPEC B).
 /// It is 0 if some φ in the range is a singular orientation at (x, y) (always the case
 /// for an unbounded range unless the position admits no singular orientation).
-/// Otherwise: 97 samples, then golden-section refinement around the best one.
+/// Otherwise: 33 samples, then golden-section refinement around the best one.
 /// `Ok(None)` if no orientation in the range has a singular position.
 pub fn singularity_free_cylinder_radius(
     design: &Design,
@@ -973,7 +988,13 @@ pub fn singularity_free_cylinder_radius(
         position_singularity_distance(design, Pose::new(x, y, phi))
             .map_or(f64::INFINITY, |d| d.distance)
     };
-    const SAMPLES: usize = 97;
+    if lo == hi {
+        let radius = f(lo);
+        return Ok(radius
+            .is_finite()
+            .then_some(CylinderRadius { radius, at_phi: lo }));
+    }
+    const SAMPLES: usize = 33;
     let phis: Vec<f64> = (0..SAMPLES)
         .map(|j| lo + (hi - lo) * j as f64 / (SAMPLES - 1) as f64)
         .collect();
@@ -994,7 +1015,7 @@ pub fn singularity_free_cylinder_radius(
     let mut c = b - ratio * (b - a);
     let mut d = a + ratio * (b - a);
     let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..60 {
+    for _ in 0..50 {
         if fc < fd {
             b = d;
             d = c;

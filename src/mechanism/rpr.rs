@@ -43,6 +43,12 @@ pub enum RprError {
         /// Index of the second anchor.
         second: usize,
     },
+    /// All three anchors of a part coincide (no labelling can make `A_1 ≠ A_2`).
+    #[error("{part}: collapsed to a point (all three anchors coincide)")]
+    Collapsed {
+        /// `base` or `platform`.
+        part: &'static str,
+    },
     /// A field of a motion is invalid.
     #[error("{field}: {reason}")]
     InvalidMotion {
@@ -60,11 +66,11 @@ pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
 /// A 3-RPR design: base anchors `A_i` (fixed frame) and platform anchors `P_i`
 /// (moving frame), SPEC A.1.
 ///
-/// Invariants (checked by [`Design::new`]): all coordinates finite and the three
-/// anchors of each part pairwise distinct. Distinct anchors give `A_1 ≠ A_2` and
-/// `P_1 ≠ P_2`, the labelling the rigid-part representation of SPEC A.5 needs
-/// (paper Lemma 2); designs with coincident anchors (including a part collapsed to a
-/// point) are rejected rather than relabelled, so leg `i` is always the user's leg `i`.
+/// Invariants: all coordinates finite, `A_1 ≠ A_2` and `P_1 ≠ P_2` (the labelling the
+/// rigid-part representation of SPEC A.5 needs, paper Lemma 2). [`Design::new`] (used
+/// by the file loader) is strict: it rejects any coincident anchors, so leg `i` is
+/// always the user's leg `i`. [`Design::with_relabelling`] accepts coincident pairs
+/// and relabels the legs per Lemma 2, rejecting only a part collapsed to a point.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "DesignFields", into = "DesignFields")]
 pub struct Design {
@@ -138,6 +144,61 @@ impl Design {
         check_part("base", &base, scale)?;
         check_part("platform", &platform, scale)?;
         Ok(Design { base, platform })
+    }
+
+    /// Design that tolerates coincident anchors (SPEC A.5, paper Lemma 2): the legs are
+    /// relabelled, if needed, so that `A_1 ≠ A_2` and `P_1 ≠ P_2`, which the
+    /// point-based representation of rigid parts needs. Returns the design and
+    /// `labels`, where internal leg `i` is the caller's leg `labels[i]` (the identity
+    /// when no relabelling was needed). Rejects non-finite numbers and a base or
+    /// platform collapsed to a point, the only cases where no labelling works.
+    pub fn with_relabelling(
+        base: [Point<f64>; 3],
+        platform: [Point<f64>; 3],
+    ) -> Result<(Self, [usize; 3]), RprError> {
+        let scale = base
+            .iter()
+            .chain(platform.iter())
+            .flatten()
+            .filter(|v| v.is_finite())
+            .fold(1.0_f64, |m, v| m.max(v.abs()));
+        let distinct = |p: &Point<f64>, q: &Point<f64>| {
+            let d = difference(p, q);
+            dot(&d, &d).sqrt() > COINCIDENCE_TOLERANCE * scale
+        };
+        for (part, points) in [("base", &base), ("platform", &platform)] {
+            match check_part(part, points, scale) {
+                Err(RprError::CoincidentAnchors { .. }) | Ok(()) => {}
+                Err(other) => return Err(other),
+            }
+            if !distinct(&points[0], &points[1])
+                && !distinct(&points[1], &points[2])
+                && !distinct(&points[0], &points[2])
+            {
+                return Err(RprError::Collapsed { part });
+            }
+        }
+        const PERMUTATIONS: [[usize; 3]; 6] = [
+            [0, 1, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [0, 2, 1],
+            [1, 0, 2],
+            [2, 1, 0],
+        ];
+        let labels = PERMUTATIONS
+            .into_iter()
+            .find(|s| {
+                distinct(&base[s[0]], &base[s[1]]) && distinct(&platform[s[0]], &platform[s[1]])
+            })
+            .ok_or(RprError::Collapsed { part: "base" })?;
+        Ok((
+            Design {
+                base: labels.map(|i| base[i]),
+                platform: labels.map(|i| platform[i]),
+            },
+            labels,
+        ))
     }
 
     /// Base anchors `A_1, A_2, A_3` (fixed frame).
@@ -324,9 +385,9 @@ pub fn collinearity_base<T: Ring>(k: &[T; 12]) -> T {
 /// `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RigidShape {
-    /// Coordinate of `p_3 − p_1` along `e`, in units of `|e|`².
+    /// Dimensionless coordinate of `p_3 − p_1` along `e`.
     pub u: f64,
-    /// Coordinate of `p_3 − p_1` along `E e`, in units of `|e|`².
+    /// Dimensionless coordinate of `p_3 − p_1` along `E e`.
     pub v: f64,
     /// `|e|² = |p_2 − p_1|²`.
     pub r2: f64,

@@ -87,13 +87,13 @@ impl Part {
         Part::ALL.into_iter().find(|p| p.name() == name)
     }
 
-    /// The summands of this part for points `p` (in K) and `q` (in K′).
-    fn push_summands<T: Ring>(self, p: [&Point<T>; 3], q: [&Point<T>; 3], out: &mut Vec<T>) {
+    /// Calls `sink` with each summand of this part for points `p` (in K) and `q` (in K′).
+    fn each_summand<T: Ring>(self, p: [&Point<T>; 3], q: [&Point<T>; 3], sink: &mut impl FnMut(T)) {
         match self {
-            Part::Plate => out.push(triangle_distance_sq(p, q)),
+            Part::Plate => sink(triangle_distance_sq(p, q)),
             Part::Bars => {
                 for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-                    out.push(segment_distance_sq([p[i], p[j]], [q[i], q[j]]));
+                    sink(segment_distance_sq([p[i], p[j]], [q[i], q[j]]));
                 }
             }
             Part::Rigid => {}
@@ -162,33 +162,49 @@ impl Metric {
         3 + self.platform.number_of_summands() + self.base.number_of_summands()
     }
 
-    /// The unnormalised summands of D²(K, K′) (SPEC A.4): the three leg terms
-    /// `seg²(a_i b_i, a_i′ b_i′)`, then the platform's (`tri²` of `b_1 b_2 b_3` for a
-    /// plate, `seg²` of its edges 12, 23, 31 for bars), then the base's likewise. Rigid
-    /// parts contribute nothing: the caller guarantees K′ moved them rigidly.
-    /// `D² = (Σ summands) / n`.
-    pub fn summands<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> Vec<T> {
+    /// Calls `sink` with each unnormalised summand of D²(K, K′) (SPEC A.4), in order:
+    /// the three leg terms `seg²(a_i b_i, a_i′ b_i′)`, then the platform's (`tri²` of
+    /// `b_1 b_2 b_3` for a plate, `seg²` of its edges 12, 23, 31 for bars), then the
+    /// base's likewise. Rigid parts contribute nothing: the caller guarantees K′ moved
+    /// them rigidly. `D² = (Σ summands) / n`. Allocation-free.
+    pub fn for_each_summand<T: Ring>(
+        &self,
+        k: &[T; 12],
+        k_prime: &[T; 12],
+        mut sink: impl FnMut(T),
+    ) {
         let a: [Point<T>; 3] = [point(k, 0), point(k, 2), point(k, 4)];
         let b: [Point<T>; 3] = [point(k, 6), point(k, 8), point(k, 10)];
         let a2: [Point<T>; 3] = [point(k_prime, 0), point(k_prime, 2), point(k_prime, 4)];
         let b2: [Point<T>; 3] = [point(k_prime, 6), point(k_prime, 8), point(k_prime, 10)];
-        let mut out = Vec::with_capacity(self.number_of_summands());
         for i in 0..3 {
-            out.push(segment_distance_sq([&a[i], &b[i]], [&a2[i], &b2[i]]));
+            sink(segment_distance_sq([&a[i], &b[i]], [&a2[i], &b2[i]]));
         }
         self.platform
-            .push_summands([&b[0], &b[1], &b[2]], [&b2[0], &b2[1], &b2[2]], &mut out);
+            .each_summand([&b[0], &b[1], &b[2]], [&b2[0], &b2[1], &b2[2]], &mut sink);
         self.base
-            .push_summands([&a[0], &a[1], &a[2]], [&a2[0], &a2[1], &a2[2]], &mut out);
+            .each_summand([&a[0], &a[1], &a[2]], [&a2[0], &a2[1], &a2[2]], &mut sink);
+    }
+
+    /// The unnormalised summands of D²(K, K′) as a vector (see
+    /// [`Metric::for_each_summand`] for the order); handy for building Lagrangians.
+    pub fn summands<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> Vec<T> {
+        let mut out = Vec::with_capacity(self.number_of_summands());
+        self.for_each_summand(k, k_prime, |t| out.push(t));
         out
     }
 
-    /// `D²(K, K′) = (Σ summands) / n` (SPEC A.4), generic over the ring.
+    /// `D²(K, K′) = (Σ summands) / n` (SPEC A.4), generic over the ring; allocation-free.
     pub fn distance_sq<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> T {
         let n = self.number_of_summands() as f64;
-        let mut terms = self.summands(k, k_prime).into_iter();
-        let first = terms.next().unwrap_or_else(|| T::from_f64(0.0));
-        terms.fold(first, |acc, t| acc + t) * T::from_f64(1.0 / n)
+        let mut total: Option<T> = None;
+        self.for_each_summand(k, k_prime, |t| {
+            total = Some(match total.take() {
+                Some(acc) => acc + t,
+                None => t,
+            })
+        });
+        total.unwrap_or_else(|| T::from_f64(0.0)) * T::from_f64(1.0 / n)
     }
 
     /// `D(K, K′)`, the square root of [`Metric::distance_sq`], for real configurations.
