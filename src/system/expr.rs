@@ -305,6 +305,17 @@ impl Expr {
         result
     }
 
+    /// `Σ terms`, combined as a balanced binary tree (depth `⌈log₂ len⌉`, so that
+    /// long sums do not make deep recursions). The empty sum is 0.
+    pub fn balanced_sum(terms: Vec<Expr>) -> Expr {
+        balanced(terms, &add).unwrap_or_else(Expr::zero)
+    }
+
+    /// `Π factors`, combined as a balanced binary tree. The empty product is 1.
+    pub fn balanced_product(factors: Vec<Expr>) -> Expr {
+        balanced(factors, &mul).unwrap_or_else(Expr::one)
+    }
+
     /// Number of distinct nodes of the DAG.
     pub fn node_count(&self) -> usize {
         let mut seen = std::collections::HashSet::new();
@@ -324,6 +335,19 @@ impl Expr {
         }
         seen.len()
     }
+}
+
+fn balanced(mut items: Vec<Expr>, combine: &dyn Fn(&Expr, &Expr) -> Expr) -> Option<Expr> {
+    while items.len() > 1 {
+        let mut next = Vec::with_capacity(items.len().div_ceil(2));
+        let mut iter = items.chunks_exact(2);
+        for pair in &mut iter {
+            next.push(combine(&pair[0], &pair[1]));
+        }
+        next.extend(iter.remainder().iter().cloned());
+        items = next;
+    }
+    items.pop()
 }
 
 fn add(a: &Expr, b: &Expr) -> Expr {
@@ -524,20 +548,30 @@ impl<T: Into<Expr>> MulAssign<T> for Expr {
 }
 
 impl std::iter::Sum for Expr {
+    /// Balanced sum (see [`Expr::balanced_sum`]).
     fn sum<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::zero(), |acc, e| acc + e)
+        Expr::balanced_sum(iter.collect())
     }
 }
 
 impl<'a> std::iter::Sum<&'a Expr> for Expr {
+    /// Balanced sum (see [`Expr::balanced_sum`]).
     fn sum<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::zero(), |acc, e| acc + e)
+        Expr::balanced_sum(iter.cloned().collect())
     }
 }
 
 impl std::iter::Product for Expr {
+    /// Balanced product (see [`Expr::balanced_product`]).
     fn product<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::one(), |acc, e| acc * e)
+        Expr::balanced_product(iter.collect())
+    }
+}
+
+impl<'a> std::iter::Product<&'a Expr> for Expr {
+    /// Balanced product (see [`Expr::balanced_product`]).
+    fn product<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
+        Expr::balanced_product(iter.cloned().collect())
     }
 }
 

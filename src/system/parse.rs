@@ -342,18 +342,19 @@ impl TokenCursor {
         resolve: &dyn Fn(&str) -> Resolved,
         depth: usize,
     ) -> Result<Expr, ParseError> {
-        let mut value = self.product(resolve, depth)?;
+        // Terms are combined as a balanced tree so that long sums stay shallow.
+        let mut terms = vec![self.product(resolve, depth)?];
         loop {
             match self.peek().token {
                 Token::Plus => {
                     self.advance();
-                    value += self.product(resolve, depth)?;
+                    terms.push(self.product(resolve, depth)?);
                 }
                 Token::Minus => {
                     self.advance();
-                    value -= self.product(resolve, depth)?;
+                    terms.push(-self.product(resolve, depth)?);
                 }
-                _ => return Ok(value),
+                _ => return Ok(Expr::balanced_sum(terms)),
             }
         }
     }
@@ -363,19 +364,19 @@ impl TokenCursor {
         resolve: &dyn Fn(&str) -> Resolved,
         depth: usize,
     ) -> Result<Expr, ParseError> {
-        let mut value = self.unary(resolve, depth)?;
+        let mut factors = vec![self.unary(resolve, depth)?];
         loop {
             match self.peek().token {
                 Token::Star => {
                     self.advance();
-                    value *= self.unary(resolve, depth)?;
+                    factors.push(self.unary(resolve, depth)?);
                 }
                 Token::Slash => {
                     let at = self.advance();
                     let divisor = self.unary(resolve, depth)?;
                     match divisor.as_constant() {
                         Some(c) if c != C64::new(0.0, 0.0) => {
-                            value *= Expr::constant(C64::new(1.0, 0.0) / c);
+                            factors.push(Expr::constant(C64::new(1.0, 0.0) / c));
                         }
                         _ => {
                             return Err(ParseError {
@@ -386,7 +387,7 @@ impl TokenCursor {
                         }
                     }
                 }
-                _ => return Ok(value),
+                _ => return Ok(Expr::balanced_product(factors)),
             }
         }
     }
