@@ -112,6 +112,7 @@ impl Tape {
 
     #[inline]
     fn write_outputs(&self, work: &[C64], out: &mut [C64]) {
+        debug_assert_eq!(out.len(), self.outputs.len(), "output buffer length");
         for (target, &register) in out.iter_mut().zip(&self.outputs) {
             *target = work[register as usize];
         }
@@ -509,9 +510,11 @@ impl Evaluator for CompiledSystem {
         jac: &mut [C64],
     ) {
         self.load(x, p, work);
+        let k = self.parts.num_equations;
+        debug_assert_eq!(f.len(), k);
+        debug_assert_eq!(jac.len(), k * x.len());
         let tape = &self.parts.values_and_jacobian;
         tape.run(work);
-        let k = self.parts.num_equations;
         for (target, &register) in f.iter_mut().zip(&tape.outputs[..k]) {
             *target = work[register as usize];
         }

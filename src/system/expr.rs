@@ -379,6 +379,13 @@ fn mul(a: &Expr, b: &Expr) -> Expr {
         _ if b.is_one() => a.clone(),
         (Kind::Constant(x), _) if *x == -ONE => neg(b),
         (_, Kind::Constant(y)) if *y == -ONE => neg(a),
+        // c₁·(c₂·e) = (c₁c₂)·e
+        (Kind::Constant(x), Kind::Mul(c, e)) if c.as_constant().is_some() => {
+            mul(&Expr::constant(x * c.as_constant().unwrap_or(ONE)), e)
+        }
+        (Kind::Mul(c, e), Kind::Constant(y)) if c.as_constant().is_some() => {
+            mul(&Expr::constant(y * c.as_constant().unwrap_or(ONE)), e)
+        }
         (Kind::Neg(x), Kind::Neg(y)) => mul(x, y),
         (Kind::Neg(x), _) => neg(&mul(x, b)),
         (_, Kind::Neg(y)) => neg(&mul(a, y)),
