@@ -691,3 +691,72 @@ impl fmt::Debug for Expr {
         fmt::Display::fmt(self, f)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn x() -> Expr {
+        Expr::variable("x")
+    }
+
+    #[test]
+    fn constructors_simplify_locally() {
+        assert_eq!(x() + 0.0, x());
+        assert_eq!(0.0 + x(), x());
+        assert!((x() * 0.0).is_zero());
+        assert_eq!(1.0 * x(), x());
+        assert_eq!(-(-x()), x());
+        assert_eq!(x() * x(), x().pow(2));
+        assert_eq!(x().pow(2).pow(3), x().pow(6));
+        assert_eq!(x().pow(1), x());
+        assert!(x().pow(0).is_one());
+        assert_eq!(
+            (Expr::from(2.0) * 3.0).as_constant(),
+            Some(C64::new(6.0, 0.0))
+        );
+        // c₁·(c₂·x) folds the constants; x·c puts the constant first.
+        assert_eq!(2.0 * (3.0 * x()), 6.0 * x());
+        assert_eq!(x() * 2.0, 2.0 * x());
+        // a + (−b) is a − b, −(a − b) is b − a.
+        let y = Expr::variable("y");
+        assert_eq!(x() + (-&y), x() - &y);
+        assert_eq!(-(x() - &y), &y - x());
+        assert_ne!(x() - &y, &y - x());
+    }
+
+    #[test]
+    fn display_parenthesises_by_precedence() {
+        let y = Expr::variable("y");
+        assert_eq!((x() + &y).pow(2).to_string(), "(x + y)^2");
+        assert_eq!((x() - (&y - 1.0)).to_string(), "x - (y - 1.0)");
+        assert_eq!((x() * -(&y)).to_string(), "-(x*y)");
+        assert_eq!((x() * (&y + 1.0)).to_string(), "x*(y + 1.0)");
+        assert_eq!(
+            Expr::constant(C64::new(-1.5, 0.0)).pow(3).to_string(),
+            "(-3.375)"
+        );
+        assert_eq!((x() + C64::new(0.5, -2.0)).to_string(), "x + (0.5-2.0*I)");
+        assert_eq!((x() * -2.0).to_string(), "(-2.0)*x");
+    }
+
+    #[test]
+    fn shared_subexpressions_are_evaluated_once_and_counted_once() {
+        let s = (x() + 1.0).pow(3);
+        let e = &s * &s + &s;
+        // s·s becomes s², whose node shares s: nodes {e, s², s, x + 1, x, 1}.
+        assert_eq!(e.node_count(), 6);
+        let value = e.evaluate(|_| Some(C64::new(1.0, 0.0))).unwrap();
+        assert_eq!(value, C64::new(64.0 + 8.0, 0.0));
+        assert_eq!(e.evaluate(|_| None), Err("x".to_string()));
+        assert_eq!(e.symbols(), vec!["x".to_string()]);
+    }
+
+    #[test]
+    fn substitution_rebuilds_with_simplification() {
+        let y = Expr::variable("y");
+        let e = x() * &y + &y;
+        let replaced = e.substitute(&|name| (name == "y").then(Expr::zero));
+        assert!(replaced.is_zero());
+    }
+}
