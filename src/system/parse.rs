@@ -150,9 +150,9 @@ pub(crate) struct Spanned {
     pub end_column: usize,
 }
 
-/// Splits `text` into tokens; `%` (and, if `hash_comments`, also `#`) start a comment
-/// to the end of the line. Unknown characters become [`Token::Other`] so that
-/// free-form sections (Bertini's CONFIG) can be skipped.
+/// Splits `text` into tokens; `%` starts a comment to the end of the line. Unknown
+/// characters become [`Token::Other`] so that free-form sections (Bertini's CONFIG)
+/// can be skipped.
 pub(crate) fn tokenize(text: &str) -> Result<Vec<Spanned>, ParseError> {
     let chars: Vec<char> = text.chars().collect();
     let mut tokens = Vec::new();
@@ -434,10 +434,9 @@ impl TokenCursor {
         }
         let at = self.peek().clone();
         let value = match &at.token {
-            Token::Number(value, text)
+            Token::Number(value, _)
                 if value.fract() == 0.0 && *value >= 0.0 && *value <= u32::MAX as f64 =>
             {
-                let _ = text;
                 *value as u32
             }
             other => {
