@@ -52,8 +52,19 @@ struct Tape {
     num_inputs: usize,
     constants: Vec<C64>,
     instructions: Vec<Instruction>,
+    /// Runs `start..end` of consecutive instructions with the same operation, so the
+    /// inner loops do not branch on the operation.
+    blocks: Vec<Block>,
     /// Register of each output value.
     outputs: Vec<u32>,
+}
+
+/// A run of instructions with the same operation.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    op: Op,
+    start: u32,
+    end: u32,
 }
 
 impl Tape {
@@ -71,27 +82,37 @@ impl Tape {
         );
         work[constants_start..temporaries_start].copy_from_slice(&self.constants);
         let registers = work.as_mut_ptr();
-        for (k, instruction) in self.instructions.iter().enumerate() {
-            // SAFETY: `TapeBuilder::finish` only emits operands that are inputs,
-            // constants or earlier temporaries, so `a, b < temporaries_start + k`, and
-            // the destination `temporaries_start + k < workspace_len() <= work.len()`
-            // (asserted above). The pointer comes from a live `&mut [C64]`.
-            unsafe {
-                let a = *registers.add(instruction.a as usize);
-                let b = *registers.add(instruction.b as usize);
-                let value = match instruction.op {
-                    Op::Add => a + b,
-                    Op::Sub => a - b,
-                    Op::Mul => a * b,
-                    Op::Neg => -a,
-                };
-                *registers.add(temporaries_start + k) = value;
+        let instructions = self.instructions.as_slice();
+        // SAFETY (all blocks): `TapeBuilder::finish` checks that every operand of
+        // instruction k is an input, a constant or a temporary computed before k, so
+        // `a, b < temporaries_start + k`, that the blocks cover `0..instructions.len()`,
+        // and the destination `temporaries_start + k < workspace_len() <= work.len()`
+        // (asserted above). The pointer comes from a live `&mut [C64]`.
+        macro_rules! run_block {
+            ($block:expr, |$a:ident, $b:ident| $value:expr) => {
+                for k in $block.start as usize..$block.end as usize {
+                    let instruction = &instructions[k];
+                    unsafe {
+                        let $a = *registers.add(instruction.a as usize);
+                        let $b = *registers.add(instruction.b as usize);
+                        *registers.add(temporaries_start + k) = $value;
+                    }
+                }
+            };
+        }
+        for block in &self.blocks {
+            match block.op {
+                Op::Add => run_block!(block, |a, b| a + b),
+                Op::Sub => run_block!(block, |a, b| a - b),
+                Op::Mul => run_block!(block, |a, b| a * b),
+                Op::Neg => run_block!(block, |a, _b| -a),
             }
         }
     }
 
     #[inline]
     fn write_outputs(&self, work: &[C64], out: &mut [C64]) {
+        debug_assert_eq!(out.len(), self.outputs.len(), "output buffer length");
         for (target, &register) in out.iter_mut().zip(&self.outputs) {
             *target = work[register as usize];
         }
@@ -205,31 +226,76 @@ impl<'a> TapeBuilder<'a> {
         result
     }
 
+    /// Schedules the instructions level by level (an instruction's level is one more
+    /// than its operands'), grouping equal operations within a level into blocks, and
+    /// assigns registers `[inputs | constants | temporaries]`.
     fn finish(self, outputs: &[Operand]) -> Tape {
+        let count = self.instructions.len();
+        let mut level = vec![0u32; count];
+        for (k, &(_, a, b)) in self.instructions.iter().enumerate() {
+            let of = |operand: Operand| match operand {
+                Operand::Temporary(i) => level[i as usize] + 1,
+                _ => 0,
+            };
+            level[k] = of(a).max(of(b));
+        }
+        let rank = |op: Op| match op {
+            Op::Mul => 0u8,
+            Op::Add => 1,
+            Op::Sub => 2,
+            Op::Neg => 3,
+        };
+        let mut order: Vec<usize> = (0..count).collect();
+        order.sort_by_key(|&k| (level[k], rank(self.instructions[k].0)));
+        let mut position = vec![0u32; count];
+        for (new, &old) in order.iter().enumerate() {
+            position[old] = new as u32;
+        }
+
         let constants_start = self.num_inputs as u32;
         let temporaries_start = constants_start + self.constants.len() as u32;
         let register = |operand: Operand| match operand {
             Operand::Input(i) => i,
             Operand::Constant(i) => constants_start + i,
-            Operand::Temporary(i) => temporaries_start + i,
+            Operand::Temporary(i) => temporaries_start + position[i as usize],
         };
-        let instructions: Vec<Instruction> = self
-            .instructions
+        let instructions: Vec<Instruction> = order
             .iter()
-            .map(|&(op, a, b)| Instruction {
-                op,
-                a: register(a),
-                b: register(b),
+            .map(|&old| {
+                let (op, a, b) = self.instructions[old];
+                Instruction {
+                    op,
+                    a: register(a),
+                    b: register(b),
+                }
             })
             .collect();
-        // The invariant `Tape::run` relies on: every operand is already computed.
+        let mut blocks: Vec<Block> = Vec::new();
+        for (k, instruction) in instructions.iter().enumerate() {
+            match blocks.last_mut() {
+                Some(block) if block.op == instruction.op => block.end = k as u32 + 1,
+                _ => blocks.push(Block {
+                    op: instruction.op,
+                    start: k as u32,
+                    end: k as u32 + 1,
+                }),
+            }
+        }
+        // The invariants `Tape::run` relies on: every operand is already computed and
+        // the blocks cover the instructions in order.
         for (k, instruction) in instructions.iter().enumerate() {
             let limit = temporaries_start as usize + k;
             assert!((instruction.a as usize) < limit && (instruction.b as usize) < limit);
         }
+        assert!(
+            blocks.first().is_none_or(|b| b.start == 0)
+                && blocks.windows(2).all(|w| w[0].end == w[1].start)
+                && blocks.last().map_or(0, |b| b.end as usize) == instructions.len()
+        );
         Tape {
             num_inputs: self.num_inputs,
             instructions,
+            blocks,
             outputs: outputs.iter().map(|&o| register(o)).collect(),
             constants: self.constants,
         }
@@ -444,9 +510,11 @@ impl Evaluator for CompiledSystem {
         jac: &mut [C64],
     ) {
         self.load(x, p, work);
+        let k = self.parts.num_equations;
+        debug_assert_eq!(f.len(), k);
+        debug_assert_eq!(jac.len(), k * x.len());
         let tape = &self.parts.values_and_jacobian;
         tape.run(work);
-        let k = self.parts.num_equations;
         for (target, &register) in f.iter_mut().zip(&tape.outputs[..k]) {
             *target = work[register as usize];
         }
