@@ -14,7 +14,11 @@ fn main() {
             let path = entry.path();
             println!("cargo:rerun-if-changed={}", path.display());
             if path.extension().is_some_and(|e| e == "json") {
-                let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+                let stem = path
+                    .file_stem()
+                    .and_then(|s| s.to_str())
+                    .unwrap_or_default()
+                    .to_string();
                 entries.push((stem, path.display().to_string()));
             }
         }
@@ -28,6 +32,7 @@ fn main() {
         code.push_str(&format!("    ({stem:?}, include_str!({path:?})),\n"));
     }
     code.push_str("];\n");
-    let out = Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("start_files.rs");
+    let out =
+        Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("start_files.rs");
     fs::write(out, code).expect("OUT_DIR is writable");
 }

@@ -65,7 +65,7 @@ mod tests {
         // Rule of Sarrus by hand.
         // Products along the three diagonals minus the three anti-diagonals.
         let diagonals = [2.0 * 4.0 * 1.0, -1.0 * -2.0 * 1.0, 3.0 * 0.5 * 1.0];
-        let anti_diagonals = [3.0 * 4.0 * 1.0, -1.0 * 0.5 * 1.0, 2.0 * -2.0 * 1.0];
+        let anti_diagonals = [3.0 * 4.0 * 1.0, -0.5, 2.0 * -2.0 * 1.0];
         let sarrus: f64 = diagonals.iter().sum::<f64>() - anti_diagonals.iter().sum::<f64>();
         assert!((det3(&m) - sarrus).abs() < 1e-14);
         let swapped = [m[1], m[0], m[2]];

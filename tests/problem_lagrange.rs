@@ -19,9 +19,18 @@ fn each_metric_needs_the_subproblems_of_spec_a6() {
     };
     assert_eq!(names("plate/plate"), ["singularity", "all-collinear"]);
     assert_eq!(names("bars/plate"), ["singularity", "collinear-platform"]);
-    assert_eq!(names("bars/bars"), ["singularity", "collinear-platform", "collinear-base"]);
-    assert_eq!(names("bars/rigid"), ["singularity", "collinear-platform", "coincident-platform"]);
-    assert_eq!(names("rigid/bars"), ["singularity", "collinear-base", "coincident-base"]);
+    assert_eq!(
+        names("bars/bars"),
+        ["singularity", "collinear-platform", "collinear-base"]
+    );
+    assert_eq!(
+        names("bars/rigid"),
+        ["singularity", "collinear-platform", "coincident-platform"]
+    );
+    assert_eq!(
+        names("rigid/bars"),
+        ["singularity", "collinear-base", "coincident-base"]
+    );
     assert_eq!(names("rigid/rigid"), ["singularity", "all-collinear"]);
     assert_eq!(ProblemId::all().len(), 9 + 6 + 4 + 2);
     let id: ProblemId = "bars/rigid:collinear-platform".parse().unwrap();
@@ -34,7 +43,10 @@ fn each_metric_needs_the_subproblems_of_spec_a6() {
 #[test]
 fn unknown_counts_match_spec_a7() {
     for id in ProblemId::all() {
-        let rigid_parts = [id.metric.platform, id.metric.base].iter().filter(|p| **p == Part::Rigid).count();
+        let rigid_parts = [id.metric.platform, id.metric.base]
+            .iter()
+            .filter(|p| **p == Part::Rigid)
+            .count();
         let expected = match id.subproblem {
             SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
                 [13, 12, 11][rigid_parts]
@@ -49,10 +61,14 @@ fn unknown_counts_match_spec_a7() {
         let problem = LagrangeProblem::new(id).unwrap_or_else(|e| panic!("{id}: {e}"));
         assert_eq!(problem.evaluator().num_variables(), expected, "{id}");
         assert_eq!(problem.evaluator().num_equations(), expected, "{id}");
-        assert_eq!(problem.parameter_names().len(), 12 + 3 * rigid_parts.min(match id.subproblem {
-            SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 1,
-            _ => 2,
-        }), "{id}");
+        assert_eq!(
+            problem.parameter_names().len(),
+            12 + 3 * rigid_parts.min(match id.subproblem {
+                SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 1,
+                _ => 2,
+            }),
+            "{id}"
+        );
     }
 }
 
@@ -62,11 +78,15 @@ fn unknown_counts_match_spec_a7() {
 #[test]
 fn start_pairs_lie_on_their_constraint_variety() {
     for id in ProblemId::all() {
-        let Ok(problem) = LagrangeProblem::new(id) else { continue };
+        let Ok(problem) = LagrangeProblem::new(id) else {
+            continue;
+        };
         let pair = find_start_pair(problem.evaluator(), 11).unwrap_or_else(|e| panic!("{id}: {e}"));
         let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
         let mut f = vec![C64::new(0.0, 0.0); pair.x.len()];
-        problem.evaluator().evaluate(&pair.x, &pair.p, &mut work, &mut f);
+        problem
+            .evaluator()
+            .evaluate(&pair.x, &pair.p, &mut work, &mut f);
         assert!(f.iter().all(|v| v.norm() < 1e-10), "{id}: residual");
         let k = problem.configuration(&pair.x, &pair.p, &mut work);
         let scale = k.iter().map(|v| v.norm()).fold(1.0, f64::max);
@@ -78,6 +98,9 @@ fn start_pairs_lie_on_their_constraint_variety() {
             SubProblem::CoincidentPlatform => (k[6] - k[8]) + (k[9] - k[11]) * C64::new(0.0, 1.0),
             SubProblem::CoincidentBase => (k[0] - k[2]) + (k[3] - k[5]) * C64::new(0.0, 1.0),
         };
-        assert!(condition.norm() < 1e-9 * scale.powi(4), "{id}: constraint {condition}");
+        assert!(
+            condition.norm() < 1e-9 * scale.powi(4),
+            "{id}: constraint {condition}"
+        );
     }
 }

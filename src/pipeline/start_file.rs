@@ -57,7 +57,12 @@ impl StartSolutions {
     pub fn parameter_vector(&self, names: &[String]) -> Result<Vec<C64>, String> {
         names
             .iter()
-            .map(|name| self.parameters.get(name).copied().ok_or_else(|| name.clone()))
+            .map(|name| {
+                self.parameters
+                    .get(name)
+                    .copied()
+                    .ok_or_else(|| name.clone())
+            })
             .collect()
     }
 }

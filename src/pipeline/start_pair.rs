@@ -15,16 +15,18 @@
 //! so this succeeds from almost every random start; a few damped retries with fresh
 //! random points cover the rest.
 
+use crate::C64;
 use crate::random::{self, SeededRng};
 use crate::system::Evaluator;
-use crate::C64;
 use nalgebra::{DMatrix, DVector};
 
 /// Why no start pair was found.
 #[derive(Debug, thiserror::Error)]
 pub enum StartPairError {
     /// Gauss–Newton did not reach the variety from any of the random starts.
-    #[error("no start pair found after {attempts} random starts (best residual {best_residual:.3e})")]
+    #[error(
+        "no start pair found after {attempts} random starts (best residual {best_residual:.3e})"
+    )]
     NotFound {
         /// Random starts tried.
         attempts: usize,
@@ -32,7 +34,9 @@ pub enum StartPairError {
         best_residual: f64,
     },
     /// The system is not square.
-    #[error("the system has {equations} equations in {variables} unknowns; a square system is required")]
+    #[error(
+        "the system has {equations} equations in {variables} unknowns; a square system is required"
+    )]
     NotSquare {
         /// Number of equations.
         equations: usize,
@@ -55,11 +59,17 @@ pub struct StartPair {
 /// Finds a start pair by minimum-norm Gauss–Newton from random complex points
 /// (seeded). Accepts a point when `‖F‖_∞ < 1e-13 · (1 + ‖(x,p)‖_∞)` and the smallest
 /// pivot of `∂F/∂x` is not negligible.
-pub fn find_start_pair<E: Evaluator + ?Sized>(system: &E, seed: u64) -> Result<StartPair, StartPairError> {
+pub fn find_start_pair<E: Evaluator + ?Sized>(
+    system: &E,
+    seed: u64,
+) -> Result<StartPair, StartPairError> {
     let n = system.num_variables();
     let m = system.num_parameters();
     if system.num_equations() != n {
-        return Err(StartPairError::NotSquare { equations: system.num_equations(), variables: n });
+        return Err(StartPairError::NotSquare {
+            equations: system.num_equations(),
+            variables: n,
+        });
     }
     let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
     let mut f = vec![C64::new(0.0, 0.0); n];
@@ -75,7 +85,11 @@ pub fn find_start_pair<E: Evaluator + ?Sized>(system: &E, seed: u64) -> Result<S
             system.evaluate_with_jacobian(&x, &p, &mut work, &mut f, &mut jx);
             system.evaluate_parameter_jacobian(&x, &p, &mut work, &mut jp);
             let residual = f.iter().map(|v| v.norm()).fold(0.0, f64::max);
-            let scale = 1.0 + x.iter().chain(p.iter()).map(|v| v.norm()).fold(0.0, f64::max);
+            let scale = 1.0
+                + x.iter()
+                    .chain(p.iter())
+                    .map(|v| v.norm())
+                    .fold(0.0, f64::max);
             if !residual.is_finite() {
                 break;
             }
@@ -87,7 +101,11 @@ pub fn find_start_pair<E: Evaluator + ?Sized>(system: &E, seed: u64) -> Result<S
                 break;
             }
             let jacobian = DMatrix::from_fn(n, n + m, |i, j| {
-                if j < n { jx[i * n + j] } else { jp[i * m + (j - n)] }
+                if j < n {
+                    jx[i * n + j]
+                } else {
+                    jp[i * m + (j - n)]
+                }
             });
             let gram = &jacobian * jacobian.adjoint();
             let Some(y) = gram.lu().solve(&DVector::from_column_slice(&f)) else {
@@ -102,7 +120,10 @@ pub fn find_start_pair<E: Evaluator + ?Sized>(system: &E, seed: u64) -> Result<S
             }
         }
     }
-    Err(StartPairError::NotFound { attempts: ATTEMPTS, best_residual })
+    Err(StartPairError::NotFound {
+        attempts: ATTEMPTS,
+        best_residual,
+    })
 }
 
 /// `∂F/∂x` is regular when its smallest singular value is not negligible relative to

@@ -1,11 +1,11 @@
 //! Construction of each sub-problem's Lagrange system with the system builder.
 
 use super::{ProblemId, SubProblem};
+use crate::C64;
 use crate::algebra::Point;
 use crate::mechanism::rpr::{self, Design};
 use crate::metric::Part;
 use crate::system::{CompiledSystem, Evaluator, Expr, System};
-use crate::C64;
 
 /// Errors of the problem layer.
 #[derive(Debug, thiserror::Error)]
@@ -100,19 +100,27 @@ fn part_unknowns(part: Part, prefix: char, role: &str) -> PartUnknowns {
     match part {
         Part::Rigid => {
             let (p1, p2) = (point(1), point(2));
-            let (u, v, r2) = (format!("u_{role}"), format!("v_{role}"), format!("r2_{role}"));
+            let (u, v, r2) = (
+                format!("u_{role}"),
+                format!("v_{role}"),
+                format!("r2_{role}"),
+            );
             let p3 = rpr::reconstruct_third_point(&p1, &p2, par(&u), par(&v));
             let g = rpr::rigidity_constraint(&p1, &p2, par(&r2));
             PartUnknowns {
                 points: [p1, p2, p3],
-                variables: (1..=2).flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')]).collect(),
+                variables: (1..=2)
+                    .flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')])
+                    .collect(),
                 parameters: vec![u, v, r2],
                 rigidity: Some((g, format!("mu_{role}"))),
             }
         }
         Part::Plate | Part::Bars => PartUnknowns {
             points: [point(1), point(2), point(3)],
-            variables: (1..=3).flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')]).collect(),
+            variables: (1..=3)
+                .flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')])
+                .collect(),
             parameters: Vec::new(),
             rigidity: None,
         },
@@ -125,7 +133,8 @@ fn flatten(base: &[Point<Expr>; 3], platform: &[Point<Expr>; 3]) -> [Expr; 12] {
         out.push(p[0].clone());
         out.push(p[1].clone());
     }
-    out.try_into().unwrap_or_else(|_| unreachable!("six points have twelve coordinates"))
+    out.try_into()
+        .unwrap_or_else(|_| unreachable!("six points have twelve coordinates"))
 }
 
 impl LagrangeProblem {
@@ -139,8 +148,10 @@ impl LagrangeProblem {
     pub fn new(id: ProblemId) -> Result<Self, ProblemError> {
         let metric = id.metric;
         let given: [Expr; 12] = std::array::from_fn(|i| par(CONFIGURATION_PARAMETER_NAMES[i]));
-        let mut parameters: Vec<String> =
-            CONFIGURATION_PARAMETER_NAMES.iter().map(|s| s.to_string()).collect();
+        let mut parameters: Vec<String> = CONFIGURATION_PARAMETER_NAMES
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
         let mut variables: Vec<String> = Vec::new();
         let mut constraints: Vec<(Expr, String)> = Vec::new();
 
@@ -182,9 +193,13 @@ impl LagrangeProblem {
                 points.extend((2..=6).map(|k| {
                     let t = format!("t{k}");
                     variables.push(t.clone());
-                    [q[0].clone() + var(&t) * w[0].clone(), q[1].clone() + var(&t) * w[1].clone()]
+                    [
+                        q[0].clone() + var(&t) * w[0].clone(),
+                        q[1].clone() + var(&t) * w[1].clone(),
+                    ]
                 }));
-                let norm = w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
+                let norm =
+                    w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
                 constraints.push((norm, "nu".to_string()));
                 let base = [points[0].clone(), points[1].clone(), points[2].clone()];
                 let platform = [points[3].clone(), points[4].clone(), points[5].clone()];
@@ -213,7 +228,7 @@ impl LagrangeProblem {
 
         let mut lagrangian = metric.distance_sq(&given, &configuration);
         for (constraint, multiplier) in constraints {
-            lagrangian = lagrangian - var(&multiplier) * constraint;
+            lagrangian -= var(&multiplier) * constraint;
             variables.push(multiplier);
         }
         let build_error = |e: &dyn std::fmt::Display| ProblemError::Build {
@@ -289,6 +304,8 @@ impl LagrangeProblem {
 
     /// Scratch length sufficient for both the system and the configuration map.
     pub fn workspace_len(&self) -> usize {
-        self.compiled.workspace_len().max(self.configuration_map.workspace_len())
+        self.compiled
+            .workspace_len()
+            .max(self.configuration_map.workspace_len())
     }
 }

@@ -83,7 +83,11 @@ impl FromStr for SubProblem {
             .find(|k| k.name() == s)
             .ok_or_else(|| ProblemError::UnknownName {
                 name: s.to_string(),
-                valid: SubProblem::ALL.iter().map(|k| k.name()).collect::<Vec<_>>().join(", "),
+                valid: SubProblem::ALL
+                    .iter()
+                    .map(|k| k.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })
     }
 }
@@ -130,7 +134,11 @@ impl ProblemId {
 
     /// File stem of the start-solution file: `PLATFORM-BASE-SUBPROBLEM`.
     pub fn file_stem(&self) -> String {
-        format!("{}-{}", self.metric.name().replace('/', "-"), self.subproblem.name())
+        format!(
+            "{}-{}",
+            self.metric.name().replace('/', "-"),
+            self.subproblem.name()
+        )
     }
 
     /// Every (metric, sub-problem) pair that some metric needs, metrics in the
@@ -168,7 +176,11 @@ impl FromStr for ProblemId {
         if !subproblems_of(metric).contains(&subproblem) {
             return Err(ProblemError::NotNeeded {
                 problem: s.to_string(),
-                needed: subproblems_of(metric).iter().map(|k| k.name()).collect::<Vec<_>>().join(", "),
+                needed: subproblems_of(metric)
+                    .iter()
+                    .map(|k| k.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
             });
         }
         Ok(ProblemId { metric, subproblem })
