@@ -11,12 +11,14 @@
 //! * [`local`]: a projected quasi-Newton (BFGS) ascent with central finite-difference
 //!   gradients and box bounds, a compact SQP-like method for bound constraints (the
 //!   quadratic model is maximised over the free variables, the step projected on the box).
+//! * [`redundancy`]: redundancy resolution of the 3-PRRR along a task (SPEC D.3).
 //! * [`maximize`]: the hybrid of seed 000 §4: the GA's best individual seeds the local solver.
 //!
 //! Objective values that are NaN are treated as `−∞` (never selected, never accepted).
 
 pub mod genetic;
 pub mod local;
+pub mod redundancy;
 
 pub use genetic::{GaResult, GeneticOptions, genetic_maximize};
 pub use local::{LocalOptions, LocalResult, local_maximize};
