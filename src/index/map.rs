@@ -472,8 +472,9 @@ fn draw_svg(
 ) -> Result<(), String> {
     use plotters::prelude::*;
     let o = &map.options;
-    let panels: Vec<(String, Box<dyn Fn(usize) -> Option<f64>>, (f64, f64))> = {
-        let mut p: Vec<(String, Box<dyn Fn(usize) -> Option<f64>>, (f64, f64))> = vec![(
+    type Panel<'a> = (String, Box<dyn Fn(usize) -> Option<f64> + 'a>, (f64, f64));
+    let panels: Vec<Panel> = {
+        let mut p: Vec<Panel> = vec![(
             format!(
                 "{} {} (alpha = {:.3} rad), min {:.3}",
                 match o.robot {
