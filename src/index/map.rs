@@ -14,7 +14,7 @@
 
 use crate::index::prrr::{LciVariant, inverse_condition_3x3};
 use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
-use nalgebra::{Matrix3, SMatrix};
+use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::io::Write;
@@ -310,33 +310,26 @@ fn leg_row(
     })
 }
 
-/// Index of three assembled leg rows.
+/// Index of three assembled leg rows (same formulas as [`crate::index::prrr::lci`]:
+/// `1/κ(Ā⁻¹B̄) = 1/κ(diag(1/‖b̄_k‖) Ā)`).
 fn index_of_rows(rows: [&LegRow; 3], robot: Robot, variant: LciVariant) -> f64 {
-    let a = Matrix3::from_fn(|i, j| rows[i].a_bar[j]);
-    match variant {
-        LciVariant::DirectA => inverse_condition_3x3(&a),
-        LciVariant::InverseAB => {
-            let Some(inv) = a.try_inverse() else {
-                return 0.0;
+    let mut a = Matrix3::from_fn(|i, j| rows[i].a_bar[j]);
+    if variant == LciVariant::InverseAB {
+        for (k, row) in rows.iter().enumerate() {
+            let b_prismatic = match robot {
+                Robot::ThreePrrr => row.b_prismatic,
+                Robot::ThreeRrr => 0.0,
             };
-            match robot {
-                Robot::ThreeRrr => {
-                    let b = Matrix3::from_fn(|i, j| if i == j { rows[i].b_revolute } else { 0.0 });
-                    inverse_condition_3x3(&(inv * b))
-                }
-                Robot::ThreePrrr => {
-                    let mut b = SMatrix::<f64, 3, 6>::zeros();
-                    for k in 0..3 {
-                        b[(k, k)] = rows[k].b_revolute;
-                        b[(k, k + 3)] = rows[k].b_prismatic;
-                    }
-                    let sv = (inv * b).singular_values();
-                    let r = sv.min() / sv.max();
-                    if r.is_finite() { r } else { 0.0 }
-                }
+            let norm = row.b_revolute.hypot(b_prismatic);
+            if norm.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return 0.0;
+            }
+            for j in 0..3 {
+                a[(k, j)] /= norm;
             }
         }
     }
+    inverse_condition_3x3(&a)
 }
 
 /// Compute a conditioning map (SPEC D.4).
