@@ -12,8 +12,10 @@
 //! computes the 3·k leg solutions (rows of Ā and B̄), then assembles the k³ matrices.
 //! Nodes are evaluated in parallel with results in grid order (deterministic).
 
-use crate::index::prrr::{LciVariant, inverse_condition_3x3};
-use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
+use crate::index::prrr::{LciVariant, lci_from_parts};
+use crate::mechanism::prrr::{
+    Pose, PrrrDesign, PrrrError, Robot, WorkingMode, a_row, b_prismatic, b_revolute,
+};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -266,15 +268,15 @@ fn linspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// One leg's contribution: row of Ā and (b̄_kk, b̄_k,k+3).
+/// One leg's contribution: row of Ā and the homogenised entries of its row of B̄.
 #[derive(Clone, Copy)]
 struct LegRow {
     a_bar: [f64; 3],
-    b_revolute: f64,
-    b_prismatic: f64,
+    b_bar: [f64; 2],
 }
 
-/// Solve leg `leg` alone at `pose` with input δ (SPEC D.1 inverse kinematics).
+/// Solve leg `leg` alone at `pose` with input δ and form its rows with the same
+/// functions as [`crate::mechanism::prrr::PrrrConfiguration`] (bit-identical values).
 fn leg_row(
     design: &PrrrDesign,
     leg: usize,
@@ -282,54 +284,27 @@ fn leg_row(
     delta: f64,
     mode: WorkingMode,
 ) -> Option<LegRow> {
-    let a = design.base_joint(leg, delta);
-    let c = design.platform_joint(leg, pose);
-    let (mu, rho) = (c[0] - a[0], c[1] - a[1]);
-    let reach = mu.hypot(rho);
-    let argument =
-        (reach * reach + design.l1 * design.l1 - design.l2 * design.l2) / (2.0 * design.l1 * reach);
-    if !(argument.is_finite() && (-1.0..=1.0).contains(&argument)) {
-        return None;
-    }
-    let theta = rho.atan2(mu) + mode.sign() * argument.acos();
-    let b = [
-        a[0] + design.l1 * theta.cos(),
-        a[1] + design.l1 * theta.sin(),
-    ];
-    let beta = (c[1] - b[1]).atan2(c[0] - b[0]);
-    let (sb, cb) = beta.sin_cos();
+    let s = design.solve_leg(leg, pose, delta, mode).ok()?;
+    let mut a_bar = a_row(&s.elbow, &s.platform, pose);
+    a_bar[2] /= design.characteristic_length;
     Some(LegRow {
-        a_bar: [
-            design.l2 * cb,
-            design.l2 * sb,
-            design.l2 * design.h * (beta - pose.alpha - design.platform_angles[leg]).sin()
-                / design.characteristic_length,
+        a_bar,
+        b_bar: [
+            b_revolute(&s.base, &s.elbow, &s.platform),
+            design.pitch / (2.0 * PI) * b_prismatic(&s.elbow, &s.platform, design.gamma[leg]),
         ],
-        b_revolute: design.l1 * design.l2 * (beta - theta).sin(),
-        b_prismatic: design.l2 * (beta - design.gamma[leg]).cos() * design.pitch / (2.0 * PI),
     })
 }
 
-/// Index of three assembled leg rows (same formulas as [`crate::index::prrr::lci`]:
-/// `1/κ(Ā⁻¹B̄) = 1/κ(diag(1/‖b̄_k‖) Ā)`).
+/// Index of three assembled leg rows.
 fn index_of_rows(rows: [&LegRow; 3], robot: Robot, variant: LciVariant) -> f64 {
-    let mut a = Matrix3::from_fn(|i, j| rows[i].a_bar[j]);
-    if variant == LciVariant::InverseAB {
-        for (k, row) in rows.iter().enumerate() {
-            let b_prismatic = match robot {
-                Robot::ThreePrrr => row.b_prismatic,
-                Robot::ThreeRrr => 0.0,
-            };
-            let norm = row.b_revolute.hypot(b_prismatic);
-            if norm.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-                return 0.0;
-            }
-            for j in 0..3 {
-                a[(k, j)] /= norm;
-            }
-        }
-    }
-    inverse_condition_3x3(&a)
+    let a = Matrix3::from_fn(|i, j| rows[i].a_bar[j]);
+    lci_from_parts(
+        &a,
+        &[rows[0].b_bar, rows[1].b_bar, rows[2].b_bar],
+        robot,
+        variant,
+    )
 }
 
 /// Compute a conditioning map (SPEC D.4).

@@ -112,29 +112,46 @@ pub fn lci(
     robot: Robot,
     variant: LciVariant,
 ) -> f64 {
-    let mut a_bar = configuration.matrix_a_bar(design);
+    let scale = design.pitch / (2.0 * std::f64::consts::PI);
+    let b_bar_rows = [0, 1, 2].map(|k| {
+        [
+            configuration.b_revolute(k),
+            scale * configuration.b_prismatic(design, k),
+        ]
+    });
+    lci_from_parts(
+        &configuration.matrix_a_bar(design),
+        &b_bar_rows,
+        robot,
+        variant,
+    )
+}
+
+/// LCI from `Ā` and the rows of `B̄` given as `(b̄_kk, b̄_k,k+3)` (the prismatic entry is
+/// ignored for the 3RRR); the shared kernel of [`lci`] and the conditioning maps.
+pub fn lci_from_parts(
+    a_bar: &Matrix3<f64>,
+    b_bar_rows: &[[f64; 2]; 3],
+    robot: Robot,
+    variant: LciVariant,
+) -> f64 {
     match variant {
-        LciVariant::DirectA => inverse_condition_3x3(&a_bar),
+        LciVariant::DirectA => inverse_condition_3x3(a_bar),
         LciVariant::InverseAB => {
-            let scale = design.pitch / (2.0 * std::f64::consts::PI);
-            for k in 0..3 {
-                let b_revolute =
-                    design.l1 * design.l2 * (configuration.beta[k] - configuration.theta[k]).sin();
-                let b_prismatic = match robot {
-                    Robot::ThreePrrr => {
-                        design.l2 * scale * (configuration.beta[k] - design.gamma[k]).cos()
-                    }
-                    Robot::ThreeRrr => 0.0,
+            let mut scaled = *a_bar;
+            for (k, row) in b_bar_rows.iter().enumerate() {
+                let norm = match robot {
+                    Robot::ThreePrrr => row[0].hypot(row[1]),
+                    Robot::ThreeRrr => row[0].abs(),
                 };
-                let norm = b_revolute.hypot(b_prismatic);
                 if norm.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                     return 0.0;
                 }
                 for j in 0..3 {
-                    a_bar[(k, j)] /= norm;
+                    scaled[(k, j)] /= norm;
                 }
             }
-            inverse_condition_3x3(&a_bar)
+            inverse_condition_3x3(&scaled)
         }
     }
 }
