@@ -19,12 +19,15 @@ pub struct MapArgs {
     /// Fixed orientation α (rad).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     alpha: f64,
-    /// Grid extent `lo,hi` (m), used for both x and y.
-    #[arg(long, default_value = "-0.25,0.25", allow_hyphen_values = true)]
-    range: String,
-    /// Grid nodes per axis.
-    #[arg(long, default_value_t = 101)]
-    nodes: usize,
+    /// Grid extent in x, `lo,hi` (m).
+    #[arg(long, default_value = "-0.4,0.4", allow_hyphen_values = true)]
+    x_range: String,
+    /// Grid extent in y, `lo,hi` (m).
+    #[arg(long, default_value = "-0.25,0.45", allow_hyphen_values = true)]
+    y_range: String,
+    /// Grid spacing (m).
+    #[arg(long, default_value_t = 0.005)]
+    step: f64,
     /// Levels k of each δ_i (3prrr).
     #[arg(long, default_value_t = 11)]
     levels: usize,
@@ -45,16 +48,40 @@ pub struct MapArgs {
     json: bool,
 }
 
+/// Parse `lo,hi` with `lo < hi`, both finite.
+fn parse_range(text: &str, option: &str) -> anyhow::Result<(f64, f64)> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [lo, hi] = parts.as_slice() else {
+        bail!("--{option}: expected `lo,hi`, got `{text}`");
+    };
+    let lo: f64 = lo
+        .parse()
+        .with_context(|| format!("--{option}: lower bound `{lo}`"))?;
+    let hi: f64 = hi
+        .parse()
+        .with_context(|| format!("--{option}: upper bound `{hi}`"))?;
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        bail!("--{option}: [{lo}, {hi}] must be finite with lo < hi");
+    }
+    Ok((lo, hi))
+}
+
 /// Runs `singdist map`.
 pub fn run(args: MapArgs) -> anyhow::Result<()> {
     let design = PrrrDesign::preset(&args.preset).context("--preset")?;
     let robot: Robot = args.robot.parse().context("--robot")?;
-    let parts: Vec<&str> = args.range.split(',').map(str::trim).collect();
-    let [lo, hi] = parts.as_slice() else {
-        bail!("--range: expected `lo,hi`, got `{}`", args.range);
+    let x_range = parse_range(&args.x_range, "x-range")?;
+    let y_range = parse_range(&args.y_range, "y-range")?;
+    if !(args.step.is_finite() && args.step > 0.0) {
+        bail!("--step: {} must be a positive length", args.step);
+    }
+    let nodes = |(lo, hi): (f64, f64)| -> anyhow::Result<usize> {
+        let n = ((hi - lo) / args.step).round() + 1.0;
+        if !(n.is_finite() && (2.0..=100_000.0).contains(&n)) {
+            bail!("--step: {} gives {n} nodes over [{lo}, {hi}]", args.step);
+        }
+        Ok(n as usize)
     };
-    let lo: f64 = lo.parse().context("--range: lower bound")?;
-    let hi: f64 = hi.parse().context("--range: upper bound")?;
     let modes = if args.modes.trim().eq_ignore_ascii_case("all") {
         ModeSelection::Best
     } else {
@@ -68,10 +95,10 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
     let options = MapOptions {
         robot,
         alpha: args.alpha,
-        x_range: (lo, hi),
-        y_range: (lo, hi),
-        nx: args.nodes,
-        ny: args.nodes,
+        x_range,
+        y_range,
+        nx: nodes(x_range)?,
+        ny: nodes(y_range)?,
         delta_levels: args.levels,
         modes,
         variant,

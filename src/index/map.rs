@@ -70,15 +70,16 @@ pub struct MapOptions {
 }
 
 impl Default for MapOptions {
-    /// 3-PRRR, α = 0, [−0.25, 0.25]² with 101×101 nodes, k = 11, σ = (+,+,+), `1/κ(Ā)`.
+    /// 3-PRRR, α = 0, x ∈ [−0.4, 0.4], y ∈ [−0.25, 0.45] (the whole 3-PRRR workspace of
+    /// both presets) with 161×141 nodes (5 mm), k = 11, σ = (+,+,+), `1/κ(Ā)`.
     fn default() -> Self {
         Self {
             robot: Robot::ThreePrrr,
             alpha: 0.0,
-            x_range: (-0.25, 0.25),
-            y_range: (-0.25, 0.25),
-            nx: 101,
-            ny: 101,
+            x_range: (-0.4, 0.4),
+            y_range: (-0.25, 0.45),
+            nx: 161,
+            ny: 141,
             delta_levels: 11,
             modes: ModeSelection::Fixed([WorkingMode::Plus; 3]),
             variant: LciVariant::DirectA,
