@@ -46,6 +46,11 @@ pub enum MapError {
     },
 }
 
+/// Largest grid accepted by [`conditioning_map`] (nodes).
+pub const MAX_NODES: usize = 4_000_000;
+/// Largest number of δ levels k accepted (k³ combinations per node).
+pub const MAX_DELTA_LEVELS: usize = 200;
+
 /// Options of [`conditioning_map`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MapOptions {
@@ -329,10 +334,19 @@ pub fn conditioning_map(
     if !options.alpha.is_finite() {
         return bad("alpha", format!("{} must be finite", options.alpha));
     }
-    if options.delta_levels == 0 || options.delta_levels > 1000 {
+    if options.nx.saturating_mul(options.ny) > MAX_NODES {
+        return bad(
+            "nx/ny",
+            format!(
+                "{}×{} grid exceeds {MAX_NODES} nodes",
+                options.nx, options.ny
+            ),
+        );
+    }
+    if options.delta_levels == 0 || options.delta_levels > MAX_DELTA_LEVELS {
         return bad(
             "delta_levels",
-            format!("{} not in 1..=1000", options.delta_levels),
+            format!("{} not in 1..={MAX_DELTA_LEVELS}", options.delta_levels),
         );
     }
     let xs = linspace(options.x_range.0, options.x_range.1, options.nx);

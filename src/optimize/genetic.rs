@@ -63,8 +63,14 @@ impl GeneticOptions {
         let bad = |field: &'static str, reason: String| {
             Err(OptimizeError::InvalidOption { field, reason })
         };
-        if self.population < 2 {
-            return bad("population", format!("{} < 2", self.population));
+        if !(2..=1_000_000).contains(&self.population) {
+            return bad(
+                "population",
+                format!("{} not in 2..=1000000", self.population),
+            );
+        }
+        if self.generations > 1_000_000 {
+            return bad("generations", format!("{} > 1000000", self.generations));
         }
         if !(0.0..=1.0).contains(&self.crossover) {
             return bad("crossover", format!("{} not in [0, 1]", self.crossover));

@@ -227,6 +227,9 @@ impl std::str::FromStr for Aggregate {
     }
 }
 
+/// Largest number of samples along a task.
+pub const MAX_SAMPLES: usize = 1_000_000;
+
 /// Quintic blend `10s³ − 15s⁴ + 6s⁵` (zero velocity and acceleration at s = 0, 1).
 pub fn quintic(s: f64) -> f64 {
     s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
@@ -274,10 +277,10 @@ impl RedundancyProblem {
         samples: usize,
     ) -> Result<Self, RedundancyError> {
         design.validate()?;
-        if samples < 2 {
+        if !(2..=MAX_SAMPLES).contains(&samples) {
             return Err(RedundancyError::InvalidOption {
                 field: "samples",
-                reason: format!("{samples} < 2"),
+                reason: format!("{samples} not in 2..={MAX_SAMPLES}"),
             });
         }
         let s: Vec<f64> = (0..samples)
