@@ -81,6 +81,9 @@ pub struct ResolveArgs {
     /// Write the table to this file: JSON if it ends in `.json`, CSV otherwise.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Write the optimised joint trajectories (s, pose, δ, LCI, NSIR per sample) as CSV.
+    #[arg(long)]
+    profile: Option<PathBuf>,
     /// Print JSON on stdout instead of CSV.
     #[arg(long)]
     json: bool,
@@ -256,6 +259,21 @@ fn run_resolve(args: ResolveArgs) -> anyhow::Result<()> {
     };
     let local = LocalOptions::default();
     let mut results = Vec::new();
+    let mut profile = csv::Writer::from_writer(Vec::new());
+    profile.write_record([
+        "trajectory",
+        "scheme",
+        "index",
+        "s",
+        "x",
+        "y",
+        "alpha",
+        "delta1",
+        "delta2",
+        "delta3",
+        "lci",
+        "nsir",
+    ])?;
     for &trajectory in &trajectories {
         for &scheme in &schemes {
             for &index in &indices {
@@ -301,6 +319,23 @@ fn run_resolve(args: ResolveArgs) -> anyhow::Result<()> {
                     result.objective_at_zero,
                     result.optimisation_seconds
                 );
+                for sample in problem.profile(&result.variables) {
+                    let field = |v: Option<f64>| v.map(|v| format!("{v:.6}")).unwrap_or_default();
+                    profile.write_record([
+                        trajectory.name().to_string(),
+                        scheme.name().to_string(),
+                        index.name().to_string(),
+                        format!("{:.6}", sample.s),
+                        format!("{:.6}", sample.pose.x),
+                        format!("{:.6}", sample.pose.y),
+                        format!("{:.6}", sample.pose.alpha),
+                        format!("{:.6}", sample.delta[0]),
+                        format!("{:.6}", sample.delta[1]),
+                        format!("{:.6}", sample.delta[2]),
+                        field(sample.lci),
+                        field(sample.nsir),
+                    ])?;
+                }
                 results.push(result);
             }
         }
@@ -321,6 +356,10 @@ fn run_resolve(args: ResolveArgs) -> anyhow::Result<()> {
             csv_text()?
         };
         std::fs::write(path, text).with_context(|| format!("--out {}", path.display()))?;
+    }
+    if let Some(path) = &args.profile {
+        std::fs::write(path, profile.into_inner()?)
+            .with_context(|| format!("--profile {}", path.display()))?;
     }
     if args.json {
         println!("{}", json_text()?);
