@@ -19,8 +19,10 @@ use nalgebra::Matrix3;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LciVariant {
     /// `1/κ(Ā⁻¹B̄)`, seed 000 (default for redundancy resolution).
+    #[serde(rename = "lci_inv_a_b")]
     InverseAB,
     /// `1/κ(Ā)`, seed 001 (conditioning maps).
+    #[serde(rename = "lci_a")]
     DirectA,
 }
 

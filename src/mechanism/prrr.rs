@@ -61,8 +61,10 @@ pub enum PrrrError {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Robot {
     /// Non-redundant 3RRR: δ = 0, B is the first three columns.
+    #[serde(rename = "3rrr")]
     ThreeRrr,
     /// Kinematically redundant 3-PRRR.
+    #[serde(rename = "3prrr")]
     ThreePrrr,
 }
 

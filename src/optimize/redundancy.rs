@@ -42,6 +42,7 @@ pub enum RedundancyError {
 
 /// The four tasks of seed 000 §4 (SPEC D.3), parametrised by `s ∈ [0, 1]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Trajectory {
     /// Straight line from (−0.02, −0.09, α = 0.2) to (0.02, 0.09, α = 0); α interpolated linearly.
     Line,
@@ -128,6 +129,7 @@ impl std::str::FromStr for Trajectory {
 
 /// Redundancy-resolution scheme (seed 000 Eqs. 27–28).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Scheme {
     /// δ fixed along the task: 3 variables.
     Prepositioning,
@@ -171,6 +173,7 @@ impl std::str::FromStr for Scheme {
 
 /// Index optimised along the task.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum TaskIndex {
     /// LCI `1/κ(Ā⁻¹B̄)` (seed 000).
     Lci,
@@ -206,6 +209,7 @@ impl std::str::FromStr for TaskIndex {
 
 /// How per-sample index values become the objective F.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Aggregate {
     /// Arithmetic mean (default).
     Mean,
