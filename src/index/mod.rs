@@ -1,1 +1,2 @@
 //! Classic kinematic performance indices (SPEC Parts B and D), for comparison with metric singularity distances.
+pub mod actuation;

@@ -1,1 +1,2 @@
 //! Planar parallel manipulators: 3-RPR, 3-RRR and 3-PRRR designs, poses, motions, configurations, inverse kinematics and Jacobians.
+pub mod rrr;
