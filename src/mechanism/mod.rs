@@ -1,2 +1,3 @@
 //! Planar parallel manipulators: 3-RPR, 3-RRR and 3-PRRR designs, poses, motions, configurations, inverse kinematics and Jacobians.
+pub mod prrr;
 pub mod rrr;

@@ -1,0 +1,476 @@
+//! Redundancy resolution of the 3-PRRR along a task (SPEC D.3; seed 000 §4).
+//!
+//! The end effector follows one of four trajectories sampled at `s_k = k/(N−1)`; the
+//! redundant prismatic inputs δ are chosen to maximise an objective
+//! `F = aggregate_k index(IK(pose(s_k), δ(s_k)))`:
+//!
+//! * **prepositioning** (seed 000 Eq. 27): three variables, δ fixed during the task;
+//! * **continuous positioning** (Eq. 28): six variables `(δ_o, δ_f)`,
+//!   `δ_i(s) = δ_o,i + (δ_f,i − δ_o,i)(10s³ − 15s⁴ + 6s⁵)` (quintic with zero end velocity and
+//!   acceleration);
+//!
+//! with bounds `δ_min ≤ δ ≤ δ_max` on every variable. The index is LCI `1/κ(Ā⁻¹B̄)` or NSIR
+//! (SPEC D.2); the aggregate is the mean (default, **Choice**) or the minimum along the samples;
+//! an unreachable sample contributes 0. The optimiser is [`super::maximize`]: GA, then the
+//! local projected quasi-Newton refinement from the GA's best.
+
+use super::{GaResult, GeneticOptions, LocalOptions, LocalResult, OptimizeError, maximize};
+use crate::index::prrr::{LciVariant, lci, nsir};
+use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
+use std::f64::consts::TAU;
+use std::time::Instant;
+use thiserror::Error;
+
+/// Errors of redundancy resolution.
+#[derive(Debug, Error)]
+pub enum RedundancyError {
+    /// Invalid design.
+    #[error(transparent)]
+    Design(#[from] PrrrError),
+    /// Optimiser rejected its input.
+    #[error(transparent)]
+    Optimize(#[from] OptimizeError),
+    /// Unknown name or bad option.
+    #[error("`{field}`: {reason}")]
+    InvalidOption {
+        /// Option name.
+        field: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// The four tasks of seed 000 §4 (SPEC D.3), parametrised by `s ∈ [0, 1]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Trajectory {
+    /// Straight line from (−0.02, −0.09, α = 0.2) to (0.02, 0.09, α = 0); α interpolated linearly.
+    Line,
+    /// Circle of radius 0.05 about the origin from (0, 0.05), `(0.05 sin 2πs, 0.05 cos 2πs)`
+    /// (clockwise, as the spiral), α = 0.5.
+    Circle,
+    /// Archimedean spiral `x = (0.01 + k u) sin 2πu`, `y = (0.01 + k u) cos 2πu`,
+    /// `u = 6s ∈ [0, 6]`, `k = 0.04/6`, α = 0.5.
+    Spiral,
+    /// Square of side 0.12 centred at the origin from (−0.06, −0.06), counter-clockwise at
+    /// constant speed, α = 0.3.
+    Square,
+}
+
+impl Trajectory {
+    /// All four, in seed order.
+    pub const ALL: [Trajectory; 4] = [
+        Trajectory::Line,
+        Trajectory::Circle,
+        Trajectory::Spiral,
+        Trajectory::Square,
+    ];
+
+    /// Name as used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Trajectory::Line => "line",
+            Trajectory::Circle => "circle",
+            Trajectory::Spiral => "spiral",
+            Trajectory::Square => "square",
+        }
+    }
+
+    /// Default number of samples: 361 for the six-turn spiral, 121 otherwise.
+    pub fn default_samples(self) -> usize {
+        match self {
+            Trajectory::Spiral => 361,
+            _ => 121,
+        }
+    }
+
+    /// Pose at `s ∈ [0, 1]`.
+    pub fn pose_at(self, s: f64) -> Pose {
+        match self {
+            Trajectory::Line => Pose::new(-0.02 + 0.04 * s, -0.09 + 0.18 * s, 0.2 * (1.0 - s)),
+            Trajectory::Circle => {
+                let (sn, cs) = (TAU * s).sin_cos();
+                Pose::new(0.05 * sn, 0.05 * cs, 0.5)
+            }
+            Trajectory::Spiral => {
+                let u = 6.0 * s;
+                let radius = 0.01 + 0.04 / 6.0 * u;
+                let (sn, cs) = (TAU * u).sin_cos();
+                Pose::new(radius * sn, radius * cs, 0.5)
+            }
+            Trajectory::Square => {
+                let t = (4.0 * s).clamp(0.0, 4.0);
+                let side = (t.floor() as usize).min(3);
+                let f = 0.12 * (t - side as f64);
+                let (x, y) = match side {
+                    0 => (-0.06 + f, -0.06),
+                    1 => (0.06, -0.06 + f),
+                    2 => (0.06 - f, 0.06),
+                    _ => (-0.06, 0.06 - f),
+                };
+                Pose::new(x, y, 0.3)
+            }
+        }
+    }
+}
+
+impl std::str::FromStr for Trajectory {
+    type Err = RedundancyError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Trajectory::ALL
+            .into_iter()
+            .find(|t| t.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| RedundancyError::InvalidOption {
+                field: "trajectory",
+                reason: format!("unknown trajectory `{s}` (line, circle, spiral, square)"),
+            })
+    }
+}
+
+/// Redundancy-resolution scheme (seed 000 Eqs. 27–28).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Scheme {
+    /// δ fixed along the task: 3 variables.
+    Prepositioning,
+    /// Quintic δ(s) from δ_o to δ_f: 6 variables.
+    Continuous,
+}
+
+impl Scheme {
+    /// Both schemes.
+    pub const ALL: [Scheme; 2] = [Scheme::Prepositioning, Scheme::Continuous];
+
+    /// Command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Prepositioning => "prepositioning",
+            Scheme::Continuous => "continuous",
+        }
+    }
+
+    /// Number of optimisation variables (3 or 6).
+    pub fn dimension(self) -> usize {
+        match self {
+            Scheme::Prepositioning => 3,
+            Scheme::Continuous => 6,
+        }
+    }
+}
+
+impl std::str::FromStr for Scheme {
+    type Err = RedundancyError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Scheme::ALL
+            .into_iter()
+            .find(|t| t.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| RedundancyError::InvalidOption {
+                field: "scheme",
+                reason: format!("unknown scheme `{s}` (prepositioning, continuous)"),
+            })
+    }
+}
+
+/// Index optimised along the task.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum TaskIndex {
+    /// LCI `1/κ(Ā⁻¹B̄)` (seed 000).
+    Lci,
+    /// NSIR.
+    Nsir,
+}
+
+impl TaskIndex {
+    /// Both indices.
+    pub const ALL: [TaskIndex; 2] = [TaskIndex::Lci, TaskIndex::Nsir];
+
+    /// Command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            TaskIndex::Lci => "lci",
+            TaskIndex::Nsir => "nsir",
+        }
+    }
+}
+
+impl std::str::FromStr for TaskIndex {
+    type Err = RedundancyError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        TaskIndex::ALL
+            .into_iter()
+            .find(|t| t.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| RedundancyError::InvalidOption {
+                field: "index",
+                reason: format!("unknown index `{s}` (lci, nsir)"),
+            })
+    }
+}
+
+/// How per-sample index values become the objective F.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Aggregate {
+    /// Arithmetic mean (default).
+    Mean,
+    /// Minimum.
+    Min,
+}
+
+impl std::str::FromStr for Aggregate {
+    type Err = RedundancyError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "mean" => Ok(Aggregate::Mean),
+            "min" => Ok(Aggregate::Min),
+            _ => Err(RedundancyError::InvalidOption {
+                field: "aggregate",
+                reason: format!("unknown aggregate `{s}` (mean, min)"),
+            }),
+        }
+    }
+}
+
+/// Quintic blend `10s³ − 15s⁴ + 6s⁵` (zero velocity and acceleration at s = 0, 1).
+pub fn quintic(s: f64) -> f64 {
+    s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+}
+
+/// Mean, minimum and maximum of an index along the samples (unreachable samples count 0).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Stats {
+    /// Mean.
+    pub mean: f64,
+    /// Minimum.
+    pub min: f64,
+    /// Maximum.
+    pub max: f64,
+}
+
+/// One redundancy-resolution problem: design, task, scheme, index and aggregate.
+#[derive(Debug, Clone)]
+pub struct RedundancyProblem {
+    /// The 3-PRRR.
+    pub design: PrrrDesign,
+    /// The task.
+    pub trajectory: Trajectory,
+    /// Scheme (3 or 6 variables).
+    pub scheme: Scheme,
+    /// Index to maximise.
+    pub index: TaskIndex,
+    /// Mean or min along the task.
+    pub aggregate: Aggregate,
+    /// Working modes, the same along the task.
+    pub modes: [WorkingMode; 3],
+    poses: Vec<Pose>,
+    blends: Vec<f64>,
+}
+
+impl RedundancyProblem {
+    /// Build a problem with `samples` (≥ 2) poses along the trajectory.
+    pub fn new(
+        design: PrrrDesign,
+        trajectory: Trajectory,
+        scheme: Scheme,
+        index: TaskIndex,
+        aggregate: Aggregate,
+        modes: [WorkingMode; 3],
+        samples: usize,
+    ) -> Result<Self, RedundancyError> {
+        design.validate()?;
+        if samples < 2 {
+            return Err(RedundancyError::InvalidOption {
+                field: "samples",
+                reason: format!("{samples} < 2"),
+            });
+        }
+        let s: Vec<f64> = (0..samples)
+            .map(|k| k as f64 / (samples - 1) as f64)
+            .collect();
+        Ok(Self {
+            design,
+            trajectory,
+            scheme,
+            index,
+            aggregate,
+            modes,
+            poses: s.iter().map(|&s| trajectory.pose_at(s)).collect(),
+            blends: s.iter().map(|&s| quintic(s)).collect(),
+        })
+    }
+
+    /// The sampled poses.
+    pub fn poses(&self) -> &[Pose] {
+        &self.poses
+    }
+
+    /// Box of the optimisation variables: `[δ_min, δ_max]` for each.
+    pub fn bounds(&self) -> Vec<(f64, f64)> {
+        vec![self.design.delta_range; self.scheme.dimension()]
+    }
+
+    /// δ at sample `k` for the variable vector (3 for prepositioning, 6 for continuous).
+    pub fn delta_at(&self, variables: &[f64], k: usize) -> [f64; 3] {
+        match self.scheme {
+            Scheme::Prepositioning => [variables[0], variables[1], variables[2]],
+            Scheme::Continuous => {
+                let b = self.blends[k];
+                [0, 1, 2].map(|i| variables[i] + (variables[i + 3] - variables[i]) * b)
+            }
+        }
+    }
+
+    /// Index value at sample `k` (0 if unreachable).
+    pub fn index_at(&self, index: TaskIndex, variables: &[f64], k: usize) -> f64 {
+        let delta = self.delta_at(variables, k);
+        match self
+            .design
+            .inverse_kinematics(&self.poses[k], &delta, &self.modes)
+        {
+            Ok(c) => match index {
+                TaskIndex::Lci => lci(&self.design, &c, Robot::ThreePrrr, LciVariant::InverseAB),
+                TaskIndex::Nsir => nsir(&self.design, &c, Robot::ThreePrrr).nsir,
+            },
+            Err(_) => 0.0,
+        }
+    }
+
+    /// Objective F: aggregate of the problem's index along the samples (SPEC D.3).
+    /// Allocation-free. Variables of the wrong length give −∞.
+    pub fn objective(&self, variables: &[f64]) -> f64 {
+        if variables.len() != self.scheme.dimension() {
+            return f64::NEG_INFINITY;
+        }
+        let n = self.poses.len();
+        match self.aggregate {
+            Aggregate::Mean => {
+                (0..n)
+                    .map(|k| self.index_at(self.index, variables, k))
+                    .sum::<f64>()
+                    / n as f64
+            }
+            Aggregate::Min => (0..n)
+                .map(|k| self.index_at(self.index, variables, k))
+                .fold(f64::INFINITY, f64::min),
+        }
+    }
+
+    /// Mean/min/max of `index` along the task for these variables.
+    pub fn stats(&self, index: TaskIndex, variables: &[f64]) -> Stats {
+        let n = self.poses.len();
+        let (mut sum, mut min, mut max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        for k in 0..n {
+            let v = self.index_at(index, variables, k);
+            sum += v;
+            min = min.min(v);
+            max = max.max(v);
+        }
+        Stats {
+            mean: sum / n as f64,
+            min,
+            max,
+        }
+    }
+
+    /// Number of unreachable samples for these variables.
+    pub fn unreachable_samples(&self, variables: &[f64]) -> usize {
+        (0..self.poses.len())
+            .filter(|&k| {
+                self.design
+                    .inverse_kinematics(&self.poses[k], &self.delta_at(variables, k), &self.modes)
+                    .is_err()
+            })
+            .count()
+    }
+
+    /// Mean wall time in nanoseconds of one evaluation (inverse kinematics + index) of
+    /// `index`, over `repetitions` passes along the task.
+    pub fn time_per_evaluation_ns(
+        &self,
+        index: TaskIndex,
+        variables: &[f64],
+        repetitions: usize,
+    ) -> f64 {
+        let n = self.poses.len();
+        let start = Instant::now();
+        let mut sink = 0.0;
+        for _ in 0..repetitions.max(1) {
+            for k in 0..n {
+                sink +=
+                    std::hint::black_box(self.index_at(index, std::hint::black_box(variables), k));
+            }
+        }
+        std::hint::black_box(sink);
+        start.elapsed().as_nanos() as f64 / (repetitions.max(1) * n) as f64
+    }
+}
+
+/// Outcome of [`resolve`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Resolution {
+    /// Task name.
+    pub trajectory: Trajectory,
+    /// Scheme.
+    pub scheme: Scheme,
+    /// Optimised index.
+    pub index: TaskIndex,
+    /// Aggregate.
+    pub aggregate: Aggregate,
+    /// Optimal variables: δ (3) or (δ_o, δ_f) (6), metres.
+    pub variables: Vec<f64>,
+    /// Objective at the optimum.
+    pub objective: f64,
+    /// Objective with δ = 0 (the 3RRR-like reference).
+    pub objective_at_zero: f64,
+    /// LCI along the optimised task.
+    pub lci: Stats,
+    /// NSIR along the optimised task.
+    pub nsir: Stats,
+    /// Unreachable samples on the optimised task.
+    pub unreachable_samples: usize,
+    /// Samples along the task.
+    pub samples: usize,
+    /// Genetic stage.
+    pub genetic: GaResult,
+    /// Local stage.
+    pub local: LocalResult,
+    /// Wall time of the whole optimisation (s).
+    pub optimisation_seconds: f64,
+    /// Mean time of one IK + LCI evaluation along the task (ns).
+    pub ns_per_lci: f64,
+    /// Mean time of one IK + NSIR evaluation along the task (ns).
+    pub ns_per_nsir: f64,
+}
+
+/// Solve a redundancy-resolution problem with the hybrid GA + local optimiser.
+pub fn resolve(
+    problem: &RedundancyProblem,
+    genetic: &GeneticOptions,
+    local: &LocalOptions,
+    timing_repetitions: usize,
+) -> Result<Resolution, RedundancyError> {
+    let bounds = problem.bounds();
+    let start = Instant::now();
+    let result = maximize(|x: &[f64]| problem.objective(x), &bounds, genetic, local)?;
+    let optimisation_seconds = start.elapsed().as_secs_f64();
+    let zero = vec![0.0; problem.scheme.dimension()];
+    let variables = result.best.clone();
+    Ok(Resolution {
+        trajectory: problem.trajectory,
+        scheme: problem.scheme,
+        index: problem.index,
+        aggregate: problem.aggregate,
+        objective: result.best_value,
+        objective_at_zero: problem.objective(&zero),
+        lci: problem.stats(TaskIndex::Lci, &variables),
+        nsir: problem.stats(TaskIndex::Nsir, &variables),
+        unreachable_samples: problem.unreachable_samples(&variables),
+        samples: problem.poses.len(),
+        ns_per_lci: problem.time_per_evaluation_ns(TaskIndex::Lci, &variables, timing_repetitions),
+        ns_per_nsir: problem.time_per_evaluation_ns(
+            TaskIndex::Nsir,
+            &variables,
+            timing_repetitions,
+        ),
+        variables,
+        genetic: result.genetic,
+        local: result.local,
+        optimisation_seconds,
+    })
+}
