@@ -2,6 +2,8 @@
 //! inverse kinematics for all eight schemes and both ψ models, scheme names, and singularity
 //! classification on constructed singular configurations.
 
+#![allow(clippy::needless_range_loop)] // matrix loops read best with indices
+
 use singdist::index::actuation::{
     Actuator, PsiModel, Scheme, SingularityTolerance, SingularityType, active_joints, classify,
     jacobians, leg_singularity_measure,
@@ -42,8 +44,16 @@ fn fd_joint_jacobian(
                 minus.phi -= h
             }
         }
-        let qp = active_joints(&design.inverse_kinematics(&plus, modes).unwrap(), scheme, model);
-        let qm = active_joints(&design.inverse_kinematics(&minus, modes).unwrap(), scheme, model);
+        let qp = active_joints(
+            &design.inverse_kinematics(&plus, modes).unwrap(),
+            scheme,
+            model,
+        );
+        let qm = active_joints(
+            &design.inverse_kinematics(&minus, modes).unwrap(),
+            scheme,
+            model,
+        );
         for leg in 0..3 {
             d[leg][k] = wrap(qp[leg] - qm[leg]) / (2.0 * h);
         }
@@ -57,10 +67,18 @@ fn jacobians_match_finite_differences_for_all_schemes_and_models() {
     let designs = [
         RrrDesign::symmetric(5.0, 1.3, 3.0, 3.5).unwrap(),
         RrrDesign::new(
-            [Point::new(-4.0, -2.0), Point::new(4.5, -1.5), Point::new(0.5, 4.2)],
+            [
+                Point::new(-4.0, -2.0),
+                Point::new(4.5, -1.5),
+                Point::new(0.5, 4.2),
+            ],
             [2.6, 3.1, 2.8],
             [3.3, 2.7, 3.0],
-            [Point::new(-0.9, -0.4), Point::new(1.1, -0.3), Point::new(0.2, 0.8)],
+            [
+                Point::new(-0.9, -0.4),
+                Point::new(1.1, -0.3),
+                Point::new(0.2, 0.8),
+            ],
         )
         .unwrap(),
     ];
@@ -118,7 +136,14 @@ fn schemes_by_number_and_name() {
         assert_eq!(scheme.number() as usize, k + 1);
         assert_eq!(scheme.name(), names[k]);
         assert_eq!(names[k].parse::<Scheme>().unwrap(), scheme);
-        assert_eq!(scheme.ascii_name().to_uppercase().parse::<Scheme>().unwrap(), scheme);
+        assert_eq!(
+            scheme
+                .ascii_name()
+                .to_uppercase()
+                .parse::<Scheme>()
+                .unwrap(),
+            scheme
+        );
         assert_eq!((k + 1).to_string().parse::<Scheme>().unwrap(), scheme);
     }
     assert_eq!(
@@ -127,7 +152,13 @@ fn schemes_by_number_and_name() {
     );
     assert!("9".parse::<Scheme>().is_err());
     assert!("0".parse::<Scheme>().is_err());
-    assert!("tpx".parse::<Scheme>().unwrap_err().to_string().contains("tpx"));
+    assert!(
+        "tpx"
+            .parse::<Scheme>()
+            .unwrap_err()
+            .to_string()
+            .contains("tpx")
+    );
 }
 
 fn modes_of(bases: &[Point; 3], elbows: &[Point; 3], platform: &[Point; 3]) -> WorkingModes {
@@ -267,8 +298,20 @@ fn type_i_fires_on_a_stretched_leg_for_every_scheme() {
     }
     // Slightly inside the workspace: no longer Type I at this tolerance.
     let config = design
-        .inverse_kinematics(&RrrPose::new(0.0, r - a - b - c + 0.05, 0.0), &POSITIVE_MODES)
+        .inverse_kinematics(
+            &RrrPose::new(0.0, r - a - b - c + 0.05, 0.0),
+            &POSITIVE_MODES,
+        )
         .unwrap();
-    let kind = classify(&design, &config, Scheme::from_number(1).unwrap(), PsiModel::Seed, tol);
-    assert!(!matches!(kind, SingularityType::TypeI | SingularityType::TypeIII));
+    let kind = classify(
+        &design,
+        &config,
+        Scheme::from_number(1).unwrap(),
+        PsiModel::Seed,
+        tol,
+    );
+    assert!(!matches!(
+        kind,
+        SingularityType::TypeI | SingularityType::TypeIII
+    ));
 }

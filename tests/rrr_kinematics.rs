@@ -211,9 +211,9 @@ fn parallel_determinant_vanishes_when_distal_lines_are_concurrent() {
     let config = design
         .inverse_kinematics(&RrrPose::new(0.0, 0.0, 0.0), &modes)
         .unwrap();
-    for i in 0..3 {
+    for (i, elbow) in elbows.iter().enumerate() {
         assert!(
-            (config.elbow[i] - elbows[i]).norm() < 1e-12,
+            (config.elbow[i] - elbow).norm() < 1e-12,
             "IK reproduces elbow {i}"
         );
     }

@@ -9,17 +9,24 @@
 use anyhow::{Context, bail};
 use clap::Args;
 use singdist::index::actuation::{
-    ConditionNorm, DesignOptimum, DesignProblem, ExampleGeometry, GciDomain, GciOptions,
-    GciResult, LociMap, PsiModel, Scheme, WorkspaceGrid, gci, optimize_design, plot_loci_svg,
+    ConditionNorm, DesignOptimum, DesignProblem, ExampleGeometry, GciDomain, GciOptions, GciResult,
+    LociMap, PsiModel, Scheme, WorkspaceGrid, gci, optimize_design, plot_loci_svg,
     singularity_loci,
 };
 use singdist::mechanism::rrr::{ElbowMode, WorkingModes};
 use singdist::optimize::GeneticOptions;
 use std::path::PathBuf;
 
-/// Arguments of `singdist schemes`.
+/// Arguments of `singdist schemes` (boxed: the option set is large).
 #[derive(Args, Debug)]
 pub struct SchemesArgs {
+    #[command(flatten)]
+    options: Box<SchemesOptions>,
+}
+
+/// The options of `singdist schemes`.
+#[derive(Args, Debug)]
+struct SchemesOptions {
     /// Constant platform orientation in degrees (default: both 0 and 20, as in seed 003).
     #[arg(long, value_name = "DEG")]
     orientation: Option<f64>,
@@ -128,6 +135,7 @@ fn parse_modes(text: &str) -> anyhow::Result<WorkingModes> {
 
 /// Runs `singdist schemes`.
 pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
+    let args = *args.options;
     let schemes: Vec<Scheme> = if args.scheme.eq_ignore_ascii_case("all") {
         Scheme::all().to_vec()
     } else {
@@ -178,7 +186,8 @@ pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
         let phi = deg.to_radians();
         for &scheme in &schemes {
             let result: GciResult = gci(&design, scheme, phi, &grid, &options)?;
-            let loci = singularity_loci(&design, scheme, phi, &grid, &options.modes, options.model)?;
+            let loci =
+                singularity_loci(&design, scheme, phi, &grid, &options.modes, options.model)?;
             let optimum: Option<DesignOptimum> = if args.optimize {
                 let mut problem = DesignProblem::example(scheme, phi, args.optimize_grid);
                 problem.base_radius = args.base_radius;
@@ -235,17 +244,27 @@ pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.plot {
         plot_loci_svg(path, &maps, schemes.len())?;
-        eprintln!("loci plot written to {} (grey reachable, blue Type I, red Type II)", path.display());
+        eprintln!(
+            "loci plot written to {} (grey reachable, blue Type I, red Type II)",
+            path.display()
+        );
     }
     Ok(())
 }
 
 fn print_table(rows: &[Row], optimized: bool, optimize_domain: GciDomain) {
-    print!("{:>7} {:>6} {:>4} {:>8} {:>8} {:>9} {:>9}", "phi_deg", "scheme", "name", "GCI", "GCI_grid", "reachable", "TypeII_pts");
+    print!(
+        "{:>7} {:>6} {:>4} {:>8} {:>8} {:>9} {:>9}",
+        "phi_deg", "scheme", "name", "GCI", "GCI_grid", "reachable", "TypeII_pts"
+    );
     if optimized {
         print!(
             " | {:>6} {:>6} {:>6} {:>9} {:>9}",
-            "a*", "b*", "c*", format!("opt_{}", optimize_domain.name()), "initial"
+            "a*",
+            "b*",
+            "c*",
+            format!("opt_{}", optimize_domain.name()),
+            "initial"
         );
     }
     println!();
@@ -317,7 +336,10 @@ fn write_table(path: &std::path::Path, rows: &[Row]) -> anyhow::Result<()> {
             }
             writer.flush()?;
         }
-        other => bail!("--out {}: unknown extension `{other}` (use .csv or .json)", path.display()),
+        other => bail!(
+            "--out {}: unknown extension `{other}` (use .csv or .json)",
+            path.display()
+        ),
     }
     Ok(())
 }

@@ -989,10 +989,16 @@ impl DesignProblem {
             reason,
         };
         if !(self.base_radius.is_finite() && self.base_radius > 0.0) {
-            return Err(bad("base_radius", format!("{} must be > 0", self.base_radius)));
+            return Err(bad(
+                "base_radius",
+                format!("{} must be > 0", self.base_radius),
+            ));
         }
         if !(self.size_limit.is_finite() && self.size_limit > 0.0) {
-            return Err(bad("size_limit", format!("{} must be > 0", self.size_limit)));
+            return Err(bad(
+                "size_limit",
+                format!("{} must be > 0", self.size_limit),
+            ));
         }
         if !self.phi.is_finite() {
             return Err(bad("orientation", format!("{} must be finite", self.phi)));
@@ -1014,7 +1020,11 @@ impl DesignProblem {
         if initial.iter().sum::<f64>() > self.size_limit {
             return Err(bad(
                 "initial",
-                format!("a + b + c = {} exceeds λ = {}", initial.iter().sum::<f64>(), self.size_limit),
+                format!(
+                    "a + b + c = {} exceeds λ = {}",
+                    initial.iter().sum::<f64>(),
+                    self.size_limit
+                ),
             ));
         }
         Ok(())
@@ -1059,7 +1069,13 @@ pub fn optimize_design(
         design_vector[1],
         design_vector[2],
     )?;
-    let gci_result = gci(&design, problem.scheme, problem.phi, &problem.grid, &problem.gci)?;
+    let gci_result = gci(
+        &design,
+        problem.scheme,
+        problem.phi,
+        &problem.grid,
+        &problem.gci,
+    )?;
     Ok(DesignOptimum {
         design_vector,
         objective: result.best_value,
