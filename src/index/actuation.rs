@@ -30,6 +30,16 @@
 //! Type I: `det J_q = 0` (some leg has `O_i, B_i, C_i` aligned; identical for all schemes).
 //! Type II: `det J_x = 0`. Type III: both.
 //!
+//! Two facts of the symmetric family ([`RrrDesign::symmetric`]) worth knowing when reading a
+//! GCI table: (1) a rotation of the whole robot by 120° maps leg i to leg i+1 at the *same*
+//! orientation φ, so θθψ, θψθ, ψθθ (schemes 3–5) have equal GCIs on a 120°-invariant region,
+//! and so have θψψ, ψψθ, ψθψ (6–8); on the square grid they differ only by discretisation
+//! (the seed's Table II, where they differ by up to 20 %, therefore cannot come from a
+//! symmetric design with symmetric limits and grid). (2) With the relative-elbow model, ψψψ
+//! is singular at *every* position when φ = 0: base and platform triangles are similar and
+//! equally oriented, so the lines `O_iC_i` all pass through `R·P/(R − a)` (the architecture
+//! singularity of the similar-triangle 3-RPR); its GCI at φ = 0 is 0.
+//!
 //! # GCI (seed 003 Eq. 20)
 //! `GCI = ∫_W (1/κ) dw / ∫_W dw`, discretised as the mean of `1/κ(J)`, `J = J_q⁻¹ J_x`, over
 //! the nodes of an (x, y) grid at constant orientation. **Choice** ([`GciDomain`]): by default
