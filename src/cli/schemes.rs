@@ -28,7 +28,7 @@ pub struct SchemesArgs {
 #[derive(Args, Debug)]
 struct SchemesOptions {
     /// Constant platform orientation in degrees (default: both 0 and 20, as in seed 003).
-    #[arg(long, value_name = "DEG")]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     orientation: Option<f64>,
     /// Also optimise (a, b, c) per scheme with the GA (a + b + c <= lambda).
     #[arg(long)]
