@@ -264,3 +264,26 @@ fn ga_design_optimisation_is_reproducible_feasible_and_not_worse_than_the_start(
     let err = optimize_design(&problem, [3.0, 4.0, 4.0], &ga).unwrap_err();
     assert!(err.to_string().contains("initial"), "{err}");
 }
+
+#[test]
+fn relative_elbow_psi_psi_psi_is_architecturally_singular_at_zero_orientation() {
+    // Similar, equally oriented base and platform triangles: lines O_iC_i concurrent at
+    // R·P/(R − a) for every P when φ = 0, so the relative-elbow ψψψ has GCI 0 there only.
+    let design = RrrDesign::symmetric(5.0, 1.5, 3.0, 3.5).unwrap();
+    let grid = WorkspaceGrid::square(5.0, 21);
+    let scheme = Scheme::from_number(2).unwrap();
+    let relative = GciOptions {
+        model: PsiModel::RelativeElbow,
+        ..GciOptions::default()
+    };
+    let at_zero = gci(&design, scheme, 0.0, &grid, &relative).unwrap();
+    assert!(at_zero.reachable_nodes > 50);
+    assert!(at_zero.gci < 1e-8, "{}", at_zero.gci);
+    assert!(gci(&design, scheme, 0.3, &grid, &relative).unwrap().gci > 0.05);
+    assert!(
+        gci(&design, scheme, 0.0, &grid, &GciOptions::default())
+            .unwrap()
+            .gci
+            > 0.05
+    );
+}

@@ -229,6 +229,15 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
         SingularityType::Regular
     );
 
+    // Type III: same concurrent distal lines, and leg 0 stretched (O_0 on the line B_0C_0).
+    let mut stretched_bases = bases;
+    stretched_bases[0] = elbows[0] + 1.7 * radial[0];
+    let (design3, config3) = design_through(stretched_bases, elbows, PLATFORM);
+    assert_eq!(
+        classify(&design3, &config3, theta_scheme, PsiModel::Seed, tol),
+        SingularityType::TypeIII
+    );
+
     // ψψψ, seed model: the lines through C_i parallel to O_iB_i pass through Q.
     let elbows = [0, 1, 2].map(|i| PLATFORM[i] + 2.0 * rotate(radial[i], 0.9));
     let bases = [0, 1, 2].map(|i| elbows[i] - 1.6 * radial[i]);
