@@ -717,7 +717,9 @@ pub fn gci(
 /// Type I loci: sign changes of `Π_i (|d_i|² − (b_i+c_i)²)(|d_i|² − (b_i−c_i)²)`,
 /// `d_i = C_i − O_i`, which vanishes exactly where some leg is stretched or folded, i.e. where
 /// `det J_q = 0` in either working mode (with fixed modes, `det J_q` keeps its sign inside the
-/// workspace and these loci are the workspace boundary). Type II loci: sign changes of
+/// workspace and these loci are the workspace boundary; crossings between two unreachable
+/// nodes, i.e. annulus boundaries of single legs outside the workspace, are not drawn).
+/// Type II loci: sign changes of
 /// `det J_x` between two reachable neighbours. Unreachable nodes are blank.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LociMap {
@@ -731,7 +733,8 @@ pub struct LociMap {
     pub reachable: Vec<bool>,
     /// `det J_x` per node (`None` when unreachable).
     pub det_jx: Vec<Option<f64>>,
-    /// Midpoints of grid edges across which the Type I function changes sign.
+    /// Midpoints of grid edges, at least one end reachable, across which the Type I function
+    /// changes sign.
     pub type_i: Vec<(f64, f64)>,
     /// Midpoints of grid edges across which `det J_x` changes sign.
     pub type_ii: Vec<(f64, f64)>,
@@ -775,7 +778,8 @@ pub fn singularity_loci(
         let (xa, ya) = (grid.x(k % grid.nx), grid.y(k / grid.nx));
         let (xb, yb) = (grid.x(m % grid.nx), grid.y(m / grid.nx));
         let mid = (0.5 * (xa + xb), 0.5 * (ya + yb));
-        if nodes[k].1.signum() != nodes[m].1.signum() {
+        let touches_workspace = nodes[k].0.is_some() || nodes[m].0.is_some();
+        if touches_workspace && nodes[k].1.signum() != nodes[m].1.signum() {
             type_i.push(mid);
         }
         if let (Some(da), Some(db)) = (nodes[k].0, nodes[m].0)
