@@ -287,3 +287,38 @@ fn relative_elbow_psi_psi_psi_is_architecturally_singular_at_zero_orientation() 
             > 0.05
     );
 }
+
+#[test]
+fn isosceles_legs_make_seed_psi_scheme_equal_theta_scheme_in_the_other_mode() {
+    // With |O_iB_i| = |B_iC_i| the mirrored elbow (other working mode) swaps the directions of
+    // b_i and c_i, so the seed's ψψψ rows in mode σ are the θθθ rows in mode −σ (and the J_q
+    // diagonals agree): equal 1/κ pose by pose.
+    let design = RrrDesign::symmetric(5.0, 1.2, 3.0, 3.0).unwrap();
+    let psi = Scheme::from_number(2).unwrap();
+    let theta = Scheme::from_number(1).unwrap();
+    let plus = GciOptions::default();
+    let minus = GciOptions {
+        modes: [singdist::mechanism::rrr::ElbowMode::Negative; 3],
+        ..GciOptions::default()
+    };
+    let mut compared = 0;
+    for k in 0..40 {
+        let pose = RrrPose::new(
+            -2.0 + 0.1 * k as f64,
+            1.0 - 0.07 * k as f64,
+            0.3 - 0.02 * k as f64,
+        );
+        let a = local_inverse_condition(&design, &pose, psi, &plus);
+        let b = local_inverse_condition(&design, &pose, theta, &minus);
+        if let (Some(a), Some(b)) = (a, b) {
+            assert!((a - b).abs() < 1e-10, "pose {k}: {a} vs {b}");
+            compared += 1;
+        }
+    }
+    assert!(compared > 20);
+    // Not an identity of the θθθ scheme in the same mode.
+    let pose = RrrPose::new(0.5, -0.4, 0.3);
+    let a = local_inverse_condition(&design, &pose, psi, &plus).unwrap();
+    let b = local_inverse_condition(&design, &pose, theta, &plus).unwrap();
+    assert!((a - b).abs() > 1e-3);
+}

@@ -38,7 +38,10 @@
 //! symmetric design with symmetric limits and grid). (2) With the relative-elbow model, ψψψ
 //! is singular at *every* position when φ = 0: base and platform triangles are similar and
 //! equally oriented, so the lines `O_iC_i` all pass through `R·P/(R − a)` (the architecture
-//! singularity of the similar-triangle 3-RPR); its GCI at φ = 0 is 0.
+//! singularity of the similar-triangle 3-RPR); its GCI at φ = 0 is 0. (3) With isosceles legs
+//! (`b = c`) the seed-model ψψψ in working mode σ equals θθθ in mode −σ pose by pose (the
+//! mirrored elbow swaps the directions of `b_i` and `c_i`); at φ = 0 the mirror symmetry of
+//! the design then gives equal GCIs for θθθ and ψψψ in the same mode.
 //!
 //! # GCI (seed 003 Eq. 20)
 //! `GCI = ∫_W (1/κ) dw / ∫_W dw`, discretised as the mean of `1/κ(J)`, `J = J_q⁻¹ J_x`, over
