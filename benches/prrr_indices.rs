@@ -3,7 +3,7 @@
 //! inverse kinematics.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use singdist::index::prrr::{LciVariant, lci, nsir};
+use singdist::index::prrr::{LciVariant, lci, lci_reference, nsir};
 use singdist::mechanism::prrr::{Pose, PrrrDesign, Robot, WorkingMode};
 use std::hint::black_box;
 
@@ -35,6 +35,16 @@ fn indices(c: &mut Criterion) {
                 black_box(&configuration),
                 Robot::ThreePrrr,
                 LciVariant::DirectA,
+            )
+        })
+    });
+    c.bench_function("lci_inv_a_b_reference_svd", |b| {
+        b.iter(|| {
+            lci_reference(
+                &design,
+                black_box(&configuration),
+                Robot::ThreePrrr,
+                LciVariant::InverseAB,
             )
         })
     });

@@ -211,6 +211,12 @@ fn optimised_objective_beats_zero_and_random_inputs_and_is_reproducible() {
             TaskIndex::Nsir => r.nsir,
         };
         assert!((s.mean - r.objective).abs() < 1e-12);
+        // The profile reproduces the statistics and the δ bounds.
+        let profile = p.profile(&r.variables);
+        assert_eq!(profile.len(), 41);
+        let mean_nsir = profile.iter().map(|q| q.nsir.unwrap_or(0.0)).sum::<f64>() / 41.0;
+        assert!((mean_nsir - r.nsir.mean).abs() < 1e-12);
+        assert_eq!(profile[40].pose, trajectory.pose_at(1.0));
         // Reproducible.
         let again = resolve(&p, &small_ga(5), &local, 1).unwrap();
         assert_eq!(again.variables, r.variables);

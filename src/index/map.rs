@@ -12,9 +12,11 @@
 //! computes the 3·k leg solutions (rows of Ā and B̄), then assembles the k³ matrices.
 //! Nodes are evaluated in parallel with results in grid order (deterministic).
 
-use crate::index::prrr::{LciVariant, inverse_condition_3x3};
-use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
-use nalgebra::{Matrix3, SMatrix};
+use crate::index::prrr::{LciVariant, lci_from_parts};
+use crate::mechanism::prrr::{
+    Pose, PrrrDesign, PrrrError, Robot, WorkingMode, a_row, b_prismatic, b_revolute,
+};
+use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::io::Write;
@@ -44,6 +46,11 @@ pub enum MapError {
     },
 }
 
+/// Largest grid accepted by [`conditioning_map`] (nodes).
+pub const MAX_NODES: usize = 4_000_000;
+/// Largest number of δ levels k accepted (k³ combinations per node).
+pub const MAX_DELTA_LEVELS: usize = 200;
+
 /// Options of [`conditioning_map`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MapOptions {
@@ -68,15 +75,16 @@ pub struct MapOptions {
 }
 
 impl Default for MapOptions {
-    /// 3-PRRR, α = 0, [−0.25, 0.25]² with 101×101 nodes, k = 11, σ = (+,+,+), `1/κ(Ā)`.
+    /// 3-PRRR, α = 0, x ∈ [−0.4, 0.4], y ∈ [−0.25, 0.45] (the whole 3-PRRR workspace of
+    /// both presets) with 161×141 nodes (5 mm), k = 11, σ = (+,+,+), `1/κ(Ā)`.
     fn default() -> Self {
         Self {
             robot: Robot::ThreePrrr,
             alpha: 0.0,
-            x_range: (-0.25, 0.25),
-            y_range: (-0.25, 0.25),
-            nx: 101,
-            ny: 101,
+            x_range: (-0.4, 0.4),
+            y_range: (-0.25, 0.45),
+            nx: 161,
+            ny: 141,
             delta_levels: 11,
             modes: ModeSelection::Fixed([WorkingMode::Plus; 3]),
             variant: LciVariant::DirectA,
@@ -266,15 +274,15 @@ fn linspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// One leg's contribution: row of Ā and (b̄_kk, b̄_k,k+3).
+/// One leg's contribution: row of Ā and the homogenised entries of its row of B̄.
 #[derive(Clone, Copy)]
 struct LegRow {
     a_bar: [f64; 3],
-    b_revolute: f64,
-    b_prismatic: f64,
+    b_bar: [f64; 2],
 }
 
-/// Solve leg `leg` alone at `pose` with input δ (SPEC D.1 inverse kinematics).
+/// Solve leg `leg` alone at `pose` with input δ and form its rows with the same
+/// functions as [`crate::mechanism::prrr::PrrrConfiguration`] (bit-identical values).
 fn leg_row(
     design: &PrrrDesign,
     leg: usize,
@@ -282,61 +290,27 @@ fn leg_row(
     delta: f64,
     mode: WorkingMode,
 ) -> Option<LegRow> {
-    let a = design.base_joint(leg, delta);
-    let c = design.platform_joint(leg, pose);
-    let (mu, rho) = (c[0] - a[0], c[1] - a[1]);
-    let reach = mu.hypot(rho);
-    let argument =
-        (reach * reach + design.l1 * design.l1 - design.l2 * design.l2) / (2.0 * design.l1 * reach);
-    if !(argument.is_finite() && (-1.0..=1.0).contains(&argument)) {
-        return None;
-    }
-    let theta = rho.atan2(mu) + mode.sign() * argument.acos();
-    let b = [
-        a[0] + design.l1 * theta.cos(),
-        a[1] + design.l1 * theta.sin(),
-    ];
-    let beta = (c[1] - b[1]).atan2(c[0] - b[0]);
-    let (sb, cb) = beta.sin_cos();
+    let s = design.solve_leg(leg, pose, delta, mode).ok()?;
+    let mut a_bar = a_row(&s.elbow, &s.platform, pose);
+    a_bar[2] /= design.characteristic_length;
     Some(LegRow {
-        a_bar: [
-            design.l2 * cb,
-            design.l2 * sb,
-            design.l2 * design.h * (beta - pose.alpha - design.platform_angles[leg]).sin()
-                / design.characteristic_length,
+        a_bar,
+        b_bar: [
+            b_revolute(&s.base, &s.elbow, &s.platform),
+            design.pitch / (2.0 * PI) * b_prismatic(&s.elbow, &s.platform, design.gamma[leg]),
         ],
-        b_revolute: design.l1 * design.l2 * (beta - theta).sin(),
-        b_prismatic: design.l2 * (beta - design.gamma[leg]).cos() * design.pitch / (2.0 * PI),
     })
 }
 
 /// Index of three assembled leg rows.
 fn index_of_rows(rows: [&LegRow; 3], robot: Robot, variant: LciVariant) -> f64 {
     let a = Matrix3::from_fn(|i, j| rows[i].a_bar[j]);
-    match variant {
-        LciVariant::DirectA => inverse_condition_3x3(&a),
-        LciVariant::InverseAB => {
-            let Some(inv) = a.try_inverse() else {
-                return 0.0;
-            };
-            match robot {
-                Robot::ThreeRrr => {
-                    let b = Matrix3::from_fn(|i, j| if i == j { rows[i].b_revolute } else { 0.0 });
-                    inverse_condition_3x3(&(inv * b))
-                }
-                Robot::ThreePrrr => {
-                    let mut b = SMatrix::<f64, 3, 6>::zeros();
-                    for k in 0..3 {
-                        b[(k, k)] = rows[k].b_revolute;
-                        b[(k, k + 3)] = rows[k].b_prismatic;
-                    }
-                    let sv = (inv * b).singular_values();
-                    let r = sv.min() / sv.max();
-                    if r.is_finite() { r } else { 0.0 }
-                }
-            }
-        }
-    }
+    lci_from_parts(
+        &a,
+        &[rows[0].b_bar, rows[1].b_bar, rows[2].b_bar],
+        robot,
+        variant,
+    )
 }
 
 /// Compute a conditioning map (SPEC D.4).
@@ -360,10 +334,19 @@ pub fn conditioning_map(
     if !options.alpha.is_finite() {
         return bad("alpha", format!("{} must be finite", options.alpha));
     }
-    if options.delta_levels == 0 || options.delta_levels > 1000 {
+    if options.nx.saturating_mul(options.ny) > MAX_NODES {
+        return bad(
+            "nx/ny",
+            format!(
+                "{}×{} grid exceeds {MAX_NODES} nodes",
+                options.nx, options.ny
+            ),
+        );
+    }
+    if options.delta_levels == 0 || options.delta_levels > MAX_DELTA_LEVELS {
         return bad(
             "delta_levels",
-            format!("{} not in 1..=1000", options.delta_levels),
+            format!("{} not in 1..={MAX_DELTA_LEVELS}", options.delta_levels),
         );
     }
     let xs = linspace(options.x_range.0, options.x_range.1, options.nx);

@@ -271,6 +271,40 @@ impl PrrrDesign {
         [pose.x + self.h * c, pose.y + self.h * s]
     }
 
+    /// Inverse kinematics of leg `leg` (0..3) alone: it depends only on that leg's δ and σ
+    /// (formulas of [`PrrrDesign::inverse_kinematics`]). Unreachable (or non-finite input)
+    /// gives [`PrrrError::Unreachable`], never NaN.
+    pub fn solve_leg(
+        &self,
+        leg: usize,
+        pose: &Pose,
+        delta: f64,
+        mode: WorkingMode,
+    ) -> Result<LegSolution, PrrrError> {
+        let a = self.base_joint(leg, delta);
+        let c = self.platform_joint(leg, pose);
+        let (mu, rho) = (c[0] - a[0], c[1] - a[1]);
+        let reach = mu.hypot(rho);
+        let argument =
+            (reach * reach + self.l1 * self.l1 - self.l2 * self.l2) / (2.0 * self.l1 * reach);
+        if !(argument.is_finite() && (-1.0..=1.0).contains(&argument)) {
+            return Err(PrrrError::Unreachable {
+                leg: leg + 1,
+                argument,
+            });
+        }
+        let theta = rho.atan2(mu) + mode.sign() * argument.acos();
+        let (st, ct) = theta.sin_cos();
+        let b = [a[0] + self.l1 * ct, a[1] + self.l1 * st];
+        Ok(LegSolution {
+            base: a,
+            elbow: b,
+            platform: c,
+            theta,
+            beta: (c[1] - b[1]).atan2(c[0] - b[0]),
+        })
+    }
+
     /// Inverse kinematics with explicit working modes (SPEC D.1):
     /// `(μ_i, ρ_i) = C_i − A_i`, `θ_i = atan2(ρ_i, μ_i) + σ_i acos((μ_i²+ρ_i²+l_1²−l_2²)/(2 l_1 √(μ_i²+ρ_i²)))`,
     /// `B_i = A_i + l_1 e(θ_i)`, `β_i = atan2(C_i − B_i)`.
@@ -305,29 +339,55 @@ impl PrrrDesign {
             beta: [0.0; 3],
         };
         for leg in 0..3 {
-            let a = self.base_joint(leg, delta[leg]);
-            let c = self.platform_joint(leg, pose);
-            let (mu, rho) = (c[0] - a[0], c[1] - a[1]);
-            let reach = mu.hypot(rho);
-            let argument =
-                (reach * reach + self.l1 * self.l1 - self.l2 * self.l2) / (2.0 * self.l1 * reach);
-            if !(argument.is_finite() && (-1.0..=1.0).contains(&argument)) {
-                return Err(PrrrError::Unreachable {
-                    leg: leg + 1,
-                    argument,
-                });
-            }
-            let theta = rho.atan2(mu) + modes[leg].sign() * argument.acos();
-            let (st, ct) = theta.sin_cos();
-            let b = [a[0] + self.l1 * ct, a[1] + self.l1 * st];
-            configuration.base[leg] = a;
-            configuration.elbow[leg] = b;
-            configuration.platform[leg] = c;
-            configuration.theta[leg] = theta;
-            configuration.beta[leg] = (c[1] - b[1]).atan2(c[0] - b[0]);
+            let solution = self.solve_leg(leg, pose, delta[leg], modes[leg])?;
+            configuration.base[leg] = solution.base;
+            configuration.elbow[leg] = solution.elbow;
+            configuration.platform[leg] = solution.platform;
+            configuration.theta[leg] = solution.theta;
+            configuration.beta[leg] = solution.beta;
         }
         Ok(configuration)
     }
+}
+
+/// Inverse kinematics of one leg: joint points and angles.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LegSolution {
+    /// Base joint A_i.
+    pub base: [f64; 2],
+    /// Elbow B_i.
+    pub elbow: [f64; 2],
+    /// Platform joint C_i.
+    pub platform: [f64; 2],
+    /// θ_i (rad).
+    pub theta: f64,
+    /// β_i (rad).
+    pub beta: f64,
+}
+
+/// Row i of A from joint points, `[C_i − B_i, (C_i − D) × (C_i − B_i)]`
+/// (= `[l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`, trigonometry-free).
+pub fn a_row(elbow: &[f64; 2], platform: &[f64; 2], pose: &Pose) -> [f64; 3] {
+    let passive = [platform[0] - elbow[0], platform[1] - elbow[1]];
+    let arm = [platform[0] - pose.x, platform[1] - pose.y];
+    [
+        passive[0],
+        passive[1],
+        arm[0] * passive[1] - arm[1] * passive[0],
+    ]
+}
+
+/// `b_kk = l_1 l_2 sin(β_k − θ_k) = (B_k − A_k) × (C_k − B_k)`.
+pub fn b_revolute(base: &[f64; 2], elbow: &[f64; 2], platform: &[f64; 2]) -> f64 {
+    let active = [elbow[0] - base[0], elbow[1] - base[1]];
+    let passive = [platform[0] - elbow[0], platform[1] - elbow[1]];
+    active[0] * passive[1] - active[1] * passive[0]
+}
+
+/// `b_k,k+3 = l_2 cos(β_k − γ_k) = (C_k − B_k) · e(γ_k)` (unhomogenised).
+pub fn b_prismatic(elbow: &[f64; 2], platform: &[f64; 2], gamma: f64) -> f64 {
+    let (sg, cg) = gamma.sin_cos();
+    (platform[0] - elbow[0]) * cg + (platform[1] - elbow[1]) * sg
 }
 
 /// One assembly of the 3-PRRR: pose, redundant inputs δ, working modes, joint points and angles.
@@ -352,17 +412,26 @@ pub struct PrrrConfiguration {
 }
 
 impl PrrrConfiguration {
+    /// `b_kk = l_1 l_2 sin(β_k − θ_k)`, evaluated as `(B_k − A_k) × (C_k − B_k)`.
+    pub fn b_revolute(&self, k: usize) -> f64 {
+        b_revolute(&self.base[k], &self.elbow[k], &self.platform[k])
+    }
+
+    /// `b_k,k+3 = l_2 cos(β_k − γ_k) = (C_k − B_k) · e(γ_k)` (unhomogenised).
+    pub fn b_prismatic(&self, design: &PrrrDesign, k: usize) -> f64 {
+        b_prismatic(&self.elbow[k], &self.platform[k], design.gamma[k])
+    }
+
     /// Direct-kinematics matrix A (SPEC D.1; seed 001 Eq. 12):
-    /// row i `[l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`.
-    pub fn matrix_a(&self, design: &PrrrDesign) -> Matrix3<f64> {
+    /// row i `[l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`, evaluated from the joint
+    /// points as `[C_i − B_i, (C_i − D) × (C_i − B_i)]`.
+    pub fn matrix_a(&self, _design: &PrrrDesign) -> Matrix3<f64> {
         let mut a = Matrix3::zeros();
         for i in 0..3 {
-            let (sb, cb) = self.beta[i].sin_cos();
-            a[(i, 0)] = design.l2 * cb;
-            a[(i, 1)] = design.l2 * sb;
-            a[(i, 2)] = design.l2
-                * design.h
-                * (self.beta[i] - self.pose.alpha - design.platform_angles[i]).sin();
+            let row = a_row(&self.elbow[i], &self.platform[i], &self.pose);
+            for j in 0..3 {
+                a[(i, j)] = row[j];
+            }
         }
         a
     }
@@ -381,8 +450,8 @@ impl PrrrConfiguration {
     pub fn matrix_b(&self, design: &PrrrDesign) -> Matrix3x6 {
         let mut b = Matrix3x6::zeros();
         for k in 0..3 {
-            b[(k, k)] = design.l1 * design.l2 * (self.beta[k] - self.theta[k]).sin();
-            b[(k, k + 3)] = design.l2 * (self.beta[k] - design.gamma[k]).cos();
+            b[(k, k)] = self.b_revolute(k);
+            b[(k, k + 3)] = self.b_prismatic(design, k);
         }
         b
     }
@@ -398,10 +467,8 @@ impl PrrrConfiguration {
     }
 
     /// B of the 3RRR: the three revolute columns `diag(l_1 l_2 sin(β_k − θ_k))`.
-    pub fn matrix_b_rrr(&self, design: &PrrrDesign) -> Matrix3<f64> {
-        Matrix3::from_diagonal(&nalgebra::Vector3::from_fn(|k, _| {
-            design.l1 * design.l2 * (self.beta[k] - self.theta[k]).sin()
-        }))
+    pub fn matrix_b_rrr(&self, _design: &PrrrDesign) -> Matrix3<f64> {
+        Matrix3::from_diagonal(&nalgebra::Vector3::from_fn(|k, _| self.b_revolute(k)))
     }
 
     /// Dimensionless direct-singularity measure `det Ā / l_2³` (0 ⇔ `det A = 0`, lines
@@ -421,14 +488,14 @@ impl PrrrConfiguration {
                     design.l1 * design.l1 * design.l2 * design.l2 + design.l2 * design.l2 * s * s;
                 let mut product = 1.0;
                 for k in 0..3 {
-                    let bkk = design.l1 * design.l2 * (self.beta[k] - self.theta[k]).sin();
-                    let bkp = design.l2 * s * (self.beta[k] - design.gamma[k]).cos();
+                    let bkk = self.b_revolute(k);
+                    let bkp = s * self.b_prismatic(design, k);
                     product *= (bkk * bkk + bkp * bkp) / row_max;
                 }
                 product.sqrt()
             }
             Robot::ThreeRrr => (0..3)
-                .map(|k| (self.beta[k] - self.theta[k]).sin().abs())
+                .map(|k| (self.b_revolute(k) / (design.l1 * design.l2)).abs())
                 .product(),
         }
     }

@@ -63,8 +63,14 @@ impl GeneticOptions {
         let bad = |field: &'static str, reason: String| {
             Err(OptimizeError::InvalidOption { field, reason })
         };
-        if self.population < 2 {
-            return bad("population", format!("{} < 2", self.population));
+        if !(2..=1_000_000).contains(&self.population) {
+            return bad(
+                "population",
+                format!("{} not in 2..=1000000", self.population),
+            );
+        }
+        if self.generations > 1_000_000 {
+            return bad("generations", format!("{} > 1000000", self.generations));
         }
         if !(0.0..=1.0).contains(&self.crossover) {
             return bad("crossover", format!("{} not in [0, 1]", self.crossover));
@@ -156,7 +162,8 @@ where
             }
         }
     }
-    let mut fitness: Vec<f64> = evaluate(&objective, &genes, n);
+    let mut fitness = vec![f64::NEG_INFINITY; size];
+    evaluate(&objective, &genes, n, &mut fitness);
     let mut evaluations = size;
 
     let mut best_index = argmax(&fitness);
@@ -202,8 +209,12 @@ where
                 child[j] = value.clamp(lo, hi);
             }
         }
-        let evaluated = evaluate(&objective, &next[options.elite * n..], n);
-        next_fitness[options.elite..].copy_from_slice(&evaluated);
+        evaluate(
+            &objective,
+            &next[options.elite * n..],
+            n,
+            &mut next_fitness[options.elite..],
+        );
         evaluations += size - options.elite;
         std::mem::swap(&mut genes, &mut next);
         std::mem::swap(&mut fitness, &mut next_fitness);
@@ -223,15 +234,14 @@ where
     })
 }
 
-/// Evaluate every individual of a flat gene block in parallel, results in order.
-fn evaluate<F>(objective: &F, genes: &[f64], n: usize) -> Vec<f64>
+/// Evaluate every individual of a flat gene block in parallel into `out` (same order).
+fn evaluate<F>(objective: &F, genes: &[f64], n: usize, out: &mut [f64])
 where
     F: Fn(&[f64]) -> f64 + Sync,
 {
-    genes
-        .par_chunks_exact(n)
-        .map(|individual| sanitize(objective(individual)))
-        .collect()
+    out.par_iter_mut()
+        .zip(genes.par_chunks_exact(n))
+        .for_each(|(value, individual)| *value = sanitize(objective(individual)));
 }
 
 /// Index of the largest value (first one on ties).

@@ -227,6 +227,9 @@ impl std::str::FromStr for Aggregate {
     }
 }
 
+/// Largest number of samples along a task.
+pub const MAX_SAMPLES: usize = 1_000_000;
+
 /// Quintic blend `10s³ − 15s⁴ + 6s⁵` (zero velocity and acceleration at s = 0, 1).
 pub fn quintic(s: f64) -> f64 {
     s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
@@ -241,6 +244,21 @@ pub struct Stats {
     pub min: f64,
     /// Maximum.
     pub max: f64,
+}
+
+/// One sample of an optimised task (see [`RedundancyProblem::profile`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ProfileSample {
+    /// Task parameter s ∈ [0, 1].
+    pub s: f64,
+    /// End-effector pose.
+    pub pose: Pose,
+    /// Prismatic inputs δ(s).
+    pub delta: [f64; 3],
+    /// LCI `1/κ(Ā⁻¹B̄)`, `None` if unreachable.
+    pub lci: Option<f64>,
+    /// NSIR, `None` if unreachable.
+    pub nsir: Option<f64>,
 }
 
 /// One redundancy-resolution problem: design, task, scheme, index and aggregate.
@@ -274,10 +292,10 @@ impl RedundancyProblem {
         samples: usize,
     ) -> Result<Self, RedundancyError> {
         design.validate()?;
-        if samples < 2 {
+        if !(2..=MAX_SAMPLES).contains(&samples) {
             return Err(RedundancyError::InvalidOption {
                 field: "samples",
-                reason: format!("{samples} < 2"),
+                reason: format!("{samples} not in 2..={MAX_SAMPLES}"),
             });
         }
         let s: Vec<f64> = (0..samples)
@@ -366,6 +384,32 @@ impl RedundancyProblem {
             min,
             max,
         }
+    }
+
+    /// The joint trajectory along the task: pose, δ and both indices at every sample
+    /// (indices `None` when unreachable).
+    pub fn profile(&self, variables: &[f64]) -> Vec<ProfileSample> {
+        (0..self.poses.len())
+            .map(|k| {
+                let delta = self.delta_at(variables, k);
+                let configuration = self
+                    .design
+                    .inverse_kinematics(&self.poses[k], &delta, &self.modes)
+                    .ok();
+                ProfileSample {
+                    s: if self.poses.len() > 1 {
+                        k as f64 / (self.poses.len() - 1) as f64
+                    } else {
+                        0.0
+                    },
+                    pose: self.poses[k],
+                    delta,
+                    lci: configuration
+                        .map(|c| lci(&self.design, &c, Robot::ThreePrrr, LciVariant::InverseAB)),
+                    nsir: configuration.map(|c| nsir(&self.design, &c, Robot::ThreePrrr).nsir),
+                }
+            })
+            .collect()
     }
 
     /// Number of unreachable samples for these variables.
