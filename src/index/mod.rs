@@ -1,6 +1,6 @@
 //! Classic kinematic performance indices (SPEC Parts B and D), for comparison with metric singularity distances.
 
-pub mod rpr;
-
+pub mod actuation;
 pub mod map;
 pub mod prrr;
+pub mod rpr;

@@ -3,3 +3,4 @@
 pub mod rpr;
 
 pub mod prrr;
+pub mod rrr;
