@@ -2,14 +2,20 @@
 //!
 //! Method: exact symbolic derivatives (∂F/∂x, ∂F/∂p) are formed once with
 //! [`Expr::differentiate`]; then F and its derivatives are lowered together into one
-//! sequence of two-operand complex instructions (`+ − × neg`) in static single
-//! assignment form. Lowering merges common subexpressions twice: nodes shared in the
-//! expression DAG are lowered once (memoised by node identity), and structurally equal
+//! sequence of two-operand complex instructions (`+ − ×`) in static single assignment
+//! form. Lowering merges common subexpressions three ways: nodes shared in the
+//! expression DAG are lowered once (memoised by node identity); structurally equal
 //! instructions are emitted once (hash-consing on `(op, operand, operand)`, with the
-//! operands of `+` and `×` put in canonical order). Integer powers become
-//! square-and-multiply chains whose intermediate powers are shared through the same
-//! hash-consing. Because F, ∂F/∂x (and ∂F/∂p) share one tape, the products that appear
-//! in several partial derivatives are computed once.
+//! operands of `+` and `×` put in canonical order); and negations are carried as a
+//! sign of the lowered value instead of instructions, so `a − b` and `b − a`, `c·x` and
+//! `−c·x` share one instruction (a negated output is negated when copied out). Integer
+//! powers become square-and-multiply chains whose intermediate powers are shared
+//! through the same hash-consing. Because F, ∂F/∂x (and ∂F/∂p) share one tape, the
+//! products that appear in several partial derivatives are computed once.
+//!
+//! The finished tape is scheduled level by level (independent instructions together)
+//! and grouped into blocks of one operation, so the evaluation loop does not branch on
+//! the operation per instruction.
 //!
 //! Registers live in the caller's workspace: `[x | p | dp | constants | temporaries]`.
 //! An evaluation copies the inputs and constants in, runs the instructions, and copies
@@ -26,7 +32,6 @@ enum Op {
     Add,
     Sub,
     Mul,
-    Neg,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -34,6 +39,36 @@ enum Operand {
     Input(u32),
     Constant(u32),
     Temporary(u32),
+}
+
+/// An operand with a sign: the value is `−operand` when `negated`.
+#[derive(Clone, Copy, Debug)]
+struct Signed {
+    operand: Operand,
+    negated: bool,
+}
+
+impl Signed {
+    fn positive(operand: Operand) -> Signed {
+        Signed {
+            operand,
+            negated: false,
+        }
+    }
+
+    fn negative(operand: Operand) -> Signed {
+        Signed {
+            operand,
+            negated: true,
+        }
+    }
+
+    fn negate(self) -> Signed {
+        Signed {
+            negated: !self.negated,
+            ..self
+        }
+    }
 }
 
 /// One instruction `work[destination] ← work[a] op work[b]`, with the destination the
@@ -55,8 +90,9 @@ struct Tape {
     /// Runs `start..end` of consecutive instructions with the same operation, so the
     /// inner loops do not branch on the operation.
     blocks: Vec<Block>,
-    /// Register of each output value.
-    outputs: Vec<u32>,
+    /// Register of each output value, and the sign (±1) it is multiplied by (a
+    /// multiplication rather than a data-dependent branch, which mispredicts).
+    outputs: Vec<(u32, f64)>,
 }
 
 /// A run of instructions with the same operation.
@@ -105,16 +141,19 @@ impl Tape {
                 Op::Add => run_block!(block, |a, b| a + b),
                 Op::Sub => run_block!(block, |a, b| a - b),
                 Op::Mul => run_block!(block, |a, b| a * b),
-                Op::Neg => run_block!(block, |a, _b| -a),
             }
         }
     }
 
+    /// Copies outputs `first..first + out.len()` into `out`.
     #[inline]
-    fn write_outputs(&self, work: &[C64], out: &mut [C64]) {
-        debug_assert_eq!(out.len(), self.outputs.len(), "output buffer length");
-        for (target, &register) in out.iter_mut().zip(&self.outputs) {
-            *target = work[register as usize];
+    fn write_outputs(&self, work: &[C64], first: usize, out: &mut [C64]) {
+        debug_assert!(
+            first + out.len() <= self.outputs.len(),
+            "output buffer length"
+        );
+        for (target, &(register, sign)) in out.iter_mut().zip(&self.outputs[first..]) {
+            *target = work[register as usize] * sign;
         }
     }
 }
@@ -127,7 +166,7 @@ struct TapeBuilder<'a> {
     constant_index: HashMap<(u64, u64), u32>,
     instructions: Vec<(Op, Operand, Operand)>,
     instruction_index: HashMap<(Op, Operand, Operand), Operand>,
-    lowered: HashMap<usize, Operand>,
+    lowered: HashMap<usize, Signed>,
     /// Keeps lowered expressions alive so that node identities stay unique.
     keep_alive: Vec<Expr>,
 }
@@ -160,7 +199,6 @@ impl<'a> TapeBuilder<'a> {
     fn emit(&mut self, op: Op, a: Operand, b: Operand) -> Operand {
         let (a, b) = match op {
             Op::Add | Op::Mul if b < a => (b, a),
-            Op::Neg => (a, a),
             _ => (a, b),
         };
         let key = (op, a, b);
@@ -188,37 +226,77 @@ impl<'a> TapeBuilder<'a> {
         }
     }
 
+    /// A constant as a signed operand: `c` and `−c` share one register.
+    fn signed_constant(&mut self, value: C64) -> Signed {
+        let negative = value.re < 0.0 || (value.re == 0.0 && value.im < 0.0);
+        if negative {
+            Signed::negative(self.constant(-value))
+        } else {
+            // Also maps −0 to +0.
+            Signed::positive(self.constant(value + C64::new(0.0, 0.0)))
+        }
+    }
+
+    /// `u − v` with the operands in canonical order (`v − u = −(u − v)`).
+    fn difference(&mut self, u: Operand, v: Operand) -> Signed {
+        match u.cmp(&v) {
+            std::cmp::Ordering::Equal => Signed::positive(self.constant(C64::new(0.0, 0.0))),
+            std::cmp::Ordering::Less => Signed::positive(self.emit(Op::Sub, u, v)),
+            std::cmp::Ordering::Greater => Signed::negative(self.emit(Op::Sub, v, u)),
+        }
+    }
+
+    /// `x + y` for signed operands.
+    fn sum(&mut self, x: Signed, y: Signed) -> Signed {
+        match (x.negated, y.negated) {
+            (false, false) => Signed::positive(self.emit(Op::Add, x.operand, y.operand)),
+            (true, true) => Signed::negative(self.emit(Op::Add, x.operand, y.operand)),
+            (false, true) => self.difference(x.operand, y.operand),
+            (true, false) => self.difference(y.operand, x.operand),
+        }
+    }
+
+    /// `x · y` for signed operands.
+    fn product(&mut self, x: Signed, y: Signed) -> Signed {
+        Signed {
+            operand: self.emit(Op::Mul, x.operand, y.operand),
+            negated: x.negated != y.negated,
+        }
+    }
+
     /// Lowers `e` (symbols must all be inputs; checked when the system was built).
-    fn lower(&mut self, e: &Expr) -> Operand {
+    /// Negations are not instructions: they travel as the sign of the result, so that
+    /// `a − b` and `b − a`, `c·x` and `−c·x` share their instruction.
+    fn lower(&mut self, e: &Expr) -> Signed {
         if let Some(&done) = self.lowered.get(&e.node_id()) {
             return done;
         }
         let result = match e.kind() {
-            Kind::Constant(c) => self.constant(*c),
+            Kind::Constant(c) => self.signed_constant(*c),
             Kind::Symbol(name) => match self.inputs.get(&**name) {
-                Some(&index) => Operand::Input(index),
+                Some(&index) => Signed::positive(Operand::Input(index)),
                 // Unreachable for a validated system; lowering a NaN keeps it total.
-                None => self.constant(C64::new(f64::NAN, f64::NAN)),
+                None => Signed::positive(self.constant(C64::new(f64::NAN, f64::NAN))),
             },
             Kind::Add(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Add, a, b)
+                self.sum(a, b)
             }
             Kind::Sub(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Sub, a, b)
+                self.sum(a, b.negate())
             }
             Kind::Mul(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Mul, a, b)
+                self.product(a, b)
             }
-            Kind::Neg(a) => {
-                let a = self.lower(a);
-                self.emit(Op::Neg, a, a)
-            }
+            Kind::Neg(a) => self.lower(a).negate(),
             Kind::Pow(a, n) => {
                 let a = self.lower(a);
-                self.power(a, *n)
+                Signed {
+                    operand: self.power(a.operand, *n),
+                    negated: a.negated && n % 2 == 1,
+                }
             }
         };
         self.lowered.insert(e.node_id(), result);
@@ -229,7 +307,7 @@ impl<'a> TapeBuilder<'a> {
     /// Schedules the instructions level by level (an instruction's level is one more
     /// than its operands'), grouping equal operations within a level into blocks, and
     /// assigns registers `[inputs | constants | temporaries]`.
-    fn finish(self, outputs: &[Operand]) -> Tape {
+    fn finish(self, outputs: &[Signed]) -> Tape {
         let count = self.instructions.len();
         let mut level = vec![0u32; count];
         for (k, &(_, a, b)) in self.instructions.iter().enumerate() {
@@ -243,7 +321,6 @@ impl<'a> TapeBuilder<'a> {
             Op::Mul => 0u8,
             Op::Add => 1,
             Op::Sub => 2,
-            Op::Neg => 3,
         };
         let mut order: Vec<usize> = (0..count).collect();
         order.sort_by_key(|&k| (level[k], rank(self.instructions[k].0)));
@@ -296,7 +373,10 @@ impl<'a> TapeBuilder<'a> {
             num_inputs: self.num_inputs,
             instructions,
             blocks,
-            outputs: outputs.iter().map(|&o| register(o)).collect(),
+            outputs: outputs
+                .iter()
+                .map(|o| (register(o.operand), if o.negated { -1.0 } else { 1.0 }))
+                .collect(),
             constants: self.constants,
         }
     }
@@ -362,11 +442,11 @@ impl CompiledSystem {
         let jacobian_p = symbolic_jacobian(equations, &parameters);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = equations.iter().map(|f| builder.lower(f)).collect();
+        let outputs: Vec<Signed> = equations.iter().map(|f| builder.lower(f)).collect();
         let values = builder.finish(&outputs);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = equations
+        let outputs: Vec<Signed> = equations
             .iter()
             .chain(jacobian_x.iter())
             .map(|f| builder.lower(f))
@@ -374,27 +454,28 @@ impl CompiledSystem {
         let values_and_jacobian = builder.finish(&outputs);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
+        let outputs: Vec<Signed> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
         let parameter_jacobian = builder.finish(&outputs);
 
         // Σ_k ∂f_i/∂p_k · dp_k with dp_k in input registers n + m + k.
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
         let mut outputs = Vec::with_capacity(equations.len());
         for i in 0..equations.len() {
-            let mut sum: Option<Operand> = None;
+            let mut sum: Option<Signed> = None;
             for k in 0..m {
                 let entry = &jacobian_p[i * m + k];
                 if entry.is_zero() {
                     continue;
                 }
                 let derivative = builder.lower(entry);
-                let term = builder.emit(Op::Mul, derivative, Operand::Input((n + m + k) as u32));
+                let direction = Signed::positive(Operand::Input((n + m + k) as u32));
+                let term = builder.product(derivative, direction);
                 sum = Some(match sum {
                     None => term,
-                    Some(previous) => builder.emit(Op::Add, previous, term),
+                    Some(previous) => builder.sum(previous, term),
                 });
             }
-            let zero = builder.constant(C64::new(0.0, 0.0));
+            let zero = Signed::positive(builder.constant(C64::new(0.0, 0.0)));
             outputs.push(sum.unwrap_or(zero));
         }
         let parameter_derivative = builder.finish(&outputs);
@@ -442,6 +523,37 @@ impl CompiledSystem {
     /// Number of instructions of the F + ∂F/∂x tape (a size measure for reports).
     pub fn jacobian_instruction_count(&self) -> usize {
         self.parts.values_and_jacobian.instructions.len()
+    }
+
+    /// Human-readable listing of the F + ∂F/∂x tape (`r12 = r3 * r7`, outputs last),
+    /// for inspecting what the compiler produced.
+    pub fn jacobian_tape_listing(&self) -> String {
+        let tape = &self.parts.values_and_jacobian;
+        let start = tape.num_inputs + tape.constants.len();
+        let mut out = String::new();
+        for (i, c) in tape.constants.iter().enumerate() {
+            out.push_str(&format!("r{} = {c}\n", tape.num_inputs + i));
+        }
+        for (k, instruction) in tape.instructions.iter().enumerate() {
+            let symbol = match instruction.op {
+                Op::Add => "+",
+                Op::Sub => "-",
+                Op::Mul => "*",
+            };
+            out.push_str(&format!(
+                "r{} = r{} {symbol} r{}\n",
+                start + k,
+                instruction.a,
+                instruction.b
+            ));
+        }
+        let outputs: Vec<String> = tape
+            .outputs
+            .iter()
+            .map(|&(r, sign)| format!("{}r{r}", if sign < 0.0 { "-" } else { "" }))
+            .collect();
+        out.push_str(&format!("outputs: {}\n", outputs.join(" ")));
+        out
     }
 
     /// Sizes of the tapes: instructions of (F, F + ∂F/∂x, ∂F/∂p, (∂F/∂p)·dp) and
@@ -498,7 +610,7 @@ impl Evaluator for CompiledSystem {
         self.load(x, p, work);
         let tape = &self.parts.values;
         tape.run(work);
-        tape.write_outputs(work, f);
+        tape.write_outputs(work, 0, f);
     }
 
     fn evaluate_with_jacobian(
@@ -515,12 +627,8 @@ impl Evaluator for CompiledSystem {
         debug_assert_eq!(jac.len(), k * x.len());
         let tape = &self.parts.values_and_jacobian;
         tape.run(work);
-        for (target, &register) in f.iter_mut().zip(&tape.outputs[..k]) {
-            *target = work[register as usize];
-        }
-        for (target, &register) in jac.iter_mut().zip(&tape.outputs[k..]) {
-            *target = work[register as usize];
-        }
+        tape.write_outputs(work, 0, f);
+        tape.write_outputs(work, k, jac);
     }
 
     fn evaluate_parameter_derivative(
@@ -538,7 +646,7 @@ impl Evaluator for CompiledSystem {
         work[n + m..n + 2 * m].copy_from_slice(dp);
         let tape = &self.parts.parameter_derivative;
         tape.run(work);
-        tape.write_outputs(work, out);
+        tape.write_outputs(work, 0, out);
     }
 
     fn evaluate_parameter_jacobian(
@@ -551,6 +659,6 @@ impl Evaluator for CompiledSystem {
         self.load(x, p, work);
         let tape = &self.parts.parameter_jacobian;
         tape.run(work);
-        tape.write_outputs(work, jac_p);
+        tape.write_outputs(work, 0, jac_p);
     }
 }
