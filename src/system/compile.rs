@@ -13,9 +13,10 @@
 //! through the same hash-consing. Because F, ∂F/∂x (and ∂F/∂p) share one tape, the
 //! products that appear in several partial derivatives are computed once.
 //!
-//! The finished tape is scheduled level by level (independent instructions together)
-//! and grouped into blocks of one operation, so the evaluation loop does not branch on
-//! the operation per instruction.
+//! When the tape is finished, every product whose only use is a sum or difference is
+//! fused into it (`c + a·b`, `c − a·b`, `a·b − c`), and the instructions are scheduled
+//! level by level (independent instructions together) and grouped into blocks of one
+//! operation, so the evaluation loop does not branch on the operation per instruction.
 //!
 //! Registers live in the caller's workspace: `[x | p | dp | constants | temporaries]`.
 //! An evaluation copies the inputs and constants in, runs the instructions, and copies
@@ -75,9 +76,26 @@ impl Signed {
 /// next temporary register.
 #[derive(Clone, Copy, Debug)]
 struct Instruction {
-    op: Op,
+    op: TapeOp,
     a: u32,
     b: u32,
+    /// Third operand of the fused operations (equal to `a` otherwise).
+    c: u32,
+}
+
+/// Operations of a finished tape: the builder's `+ − ×`, and a product fused with the
+/// sum or difference that is its only use (saves a register round trip).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TapeOp {
+    Add,
+    Sub,
+    Mul,
+    /// `c + a·b`
+    MulAdd,
+    /// `c − a·b`
+    MulSubtractedFrom,
+    /// `a·b − c`
+    MulMinus,
 }
 
 /// A finished straight-line program.
@@ -98,7 +116,7 @@ struct Tape {
 /// A run of instructions with the same operation.
 #[derive(Clone, Copy, Debug)]
 struct Block {
-    op: Op,
+    op: TapeOp,
     start: u32,
     end: u32,
 }
@@ -125,12 +143,13 @@ impl Tape {
         // and the destination `temporaries_start + k < workspace_len() <= work.len()`
         // (asserted above). The pointer comes from a live `&mut [C64]`.
         macro_rules! run_block {
-            ($block:expr, |$a:ident, $b:ident| $value:expr) => {
+            ($block:expr, |$a:ident, $b:ident, $c:ident| $value:expr) => {
                 for k in $block.start as usize..$block.end as usize {
                     let instruction = &instructions[k];
                     unsafe {
                         let $a = *registers.add(instruction.a as usize);
                         let $b = *registers.add(instruction.b as usize);
+                        let $c = *registers.add(instruction.c as usize);
                         *registers.add(temporaries_start + k) = $value;
                     }
                 }
@@ -138,9 +157,12 @@ impl Tape {
         }
         for block in &self.blocks {
             match block.op {
-                Op::Add => run_block!(block, |a, b| a + b),
-                Op::Sub => run_block!(block, |a, b| a - b),
-                Op::Mul => run_block!(block, |a, b| a * b),
+                TapeOp::Add => run_block!(block, |a, b, _c| a + b),
+                TapeOp::Sub => run_block!(block, |a, b, _c| a - b),
+                TapeOp::Mul => run_block!(block, |a, b, _c| a * b),
+                TapeOp::MulAdd => run_block!(block, |a, b, c| c + a * b),
+                TapeOp::MulSubtractedFrom => run_block!(block, |a, b, c| c - a * b),
+                TapeOp::MulMinus => run_block!(block, |a, b, c| a * b - c),
             }
         }
     }
@@ -309,22 +331,64 @@ impl<'a> TapeBuilder<'a> {
     /// assigns registers `[inputs | constants | temporaries]`.
     fn finish(self, outputs: &[Signed]) -> Tape {
         let count = self.instructions.len();
+        // Fuse each product whose only use is a sum or difference into it.
+        let mut uses = vec![0u32; count];
+        let mut count_use = |operand: Operand| {
+            if let Operand::Temporary(t) = operand {
+                uses[t as usize] += 1;
+            }
+        };
+        for &(_, a, b) in &self.instructions {
+            count_use(a);
+            count_use(b);
+        }
+        for output in outputs {
+            count_use(output.operand);
+        }
+        let single_product = |operand: Operand| match operand {
+            Operand::Temporary(t)
+                if self.instructions[t as usize].0 == Op::Mul && uses[t as usize] == 1 =>
+            {
+                Some(t as usize)
+            }
+            _ => None,
+        };
+        let mut fused: Vec<(TapeOp, Operand, Operand, Operand)> = Vec::with_capacity(count);
+        let mut deleted = vec![false; count];
+        for &(op, a, b) in &self.instructions {
+            let mut fuse = |product: usize, op: TapeOp, other: Operand| {
+                deleted[product] = true;
+                let (_, x, y) = self.instructions[product];
+                (op, x, y, other)
+            };
+            let instruction = match op {
+                Op::Mul => (TapeOp::Mul, a, b, a),
+                Op::Add => match (single_product(b), single_product(a)) {
+                    (Some(t), _) => fuse(t, TapeOp::MulAdd, a),
+                    (None, Some(t)) => fuse(t, TapeOp::MulAdd, b),
+                    (None, None) => (TapeOp::Add, a, b, a),
+                },
+                Op::Sub => match (single_product(b), single_product(a)) {
+                    (Some(t), _) => fuse(t, TapeOp::MulSubtractedFrom, a),
+                    (None, Some(t)) => fuse(t, TapeOp::MulMinus, b),
+                    (None, None) => (TapeOp::Sub, a, b, a),
+                },
+            };
+            fused.push(instruction);
+        }
+
         let mut level = vec![0u32; count];
-        for (k, &(_, a, b)) in self.instructions.iter().enumerate() {
+        for (k, &(_, a, b, c)) in fused.iter().enumerate() {
             let of = |operand: Operand| match operand {
                 Operand::Temporary(i) => level[i as usize] + 1,
                 _ => 0,
             };
-            level[k] = of(a).max(of(b));
+            level[k] = of(a).max(of(b)).max(of(c));
         }
-        let rank = |op: Op| match op {
-            Op::Mul => 0u8,
-            Op::Add => 1,
-            Op::Sub => 2,
-        };
-        let mut order: Vec<usize> = (0..count).collect();
-        order.sort_by_key(|&k| (level[k], rank(self.instructions[k].0)));
-        let mut position = vec![0u32; count];
+        let rank = |op: TapeOp| op as u8;
+        let mut order: Vec<usize> = (0..count).filter(|&k| !deleted[k]).collect();
+        order.sort_by_key(|&k| (level[k], rank(fused[k].0)));
+        let mut position = vec![u32::MAX; count];
         for (new, &old) in order.iter().enumerate() {
             position[old] = new as u32;
         }
@@ -334,16 +398,17 @@ impl<'a> TapeBuilder<'a> {
         let register = |operand: Operand| match operand {
             Operand::Input(i) => i,
             Operand::Constant(i) => constants_start + i,
-            Operand::Temporary(i) => temporaries_start + position[i as usize],
+            Operand::Temporary(i) => temporaries_start.saturating_add(position[i as usize]),
         };
         let instructions: Vec<Instruction> = order
             .iter()
             .map(|&old| {
-                let (op, a, b) = self.instructions[old];
+                let (op, a, b, c) = fused[old];
                 Instruction {
                     op,
                     a: register(a),
                     b: register(b),
+                    c: register(c),
                 }
             })
             .collect();
@@ -362,21 +427,30 @@ impl<'a> TapeBuilder<'a> {
         // the blocks cover the instructions in order.
         for (k, instruction) in instructions.iter().enumerate() {
             let limit = temporaries_start as usize + k;
-            assert!((instruction.a as usize) < limit && (instruction.b as usize) < limit);
+            assert!(
+                (instruction.a as usize) < limit
+                    && (instruction.b as usize) < limit
+                    && (instruction.c as usize) < limit
+            );
         }
         assert!(
             blocks.first().is_none_or(|b| b.start == 0)
                 && blocks.windows(2).all(|w| w[0].end == w[1].start)
                 && blocks.last().map_or(0, |b| b.end as usize) == instructions.len()
         );
+        let outputs = outputs
+            .iter()
+            .map(|o| {
+                let target = register(o.operand);
+                assert!((target as usize) < temporaries_start as usize + instructions.len());
+                (target, if o.negated { -1.0 } else { 1.0 })
+            })
+            .collect();
         Tape {
             num_inputs: self.num_inputs,
             instructions,
             blocks,
-            outputs: outputs
-                .iter()
-                .map(|o| (register(o.operand), if o.negated { -1.0 } else { 1.0 }))
-                .collect(),
+            outputs,
             constants: self.constants,
         }
     }
@@ -535,17 +609,16 @@ impl CompiledSystem {
             out.push_str(&format!("r{} = {c}\n", tape.num_inputs + i));
         }
         for (k, instruction) in tape.instructions.iter().enumerate() {
-            let symbol = match instruction.op {
-                Op::Add => "+",
-                Op::Sub => "-",
-                Op::Mul => "*",
+            let (a, b, c) = (instruction.a, instruction.b, instruction.c);
+            let text = match instruction.op {
+                TapeOp::Add => format!("r{a} + r{b}"),
+                TapeOp::Sub => format!("r{a} - r{b}"),
+                TapeOp::Mul => format!("r{a} * r{b}"),
+                TapeOp::MulAdd => format!("r{c} + r{a} * r{b}"),
+                TapeOp::MulSubtractedFrom => format!("r{c} - r{a} * r{b}"),
+                TapeOp::MulMinus => format!("r{a} * r{b} - r{c}"),
             };
-            out.push_str(&format!(
-                "r{} = r{} {symbol} r{}\n",
-                start + k,
-                instruction.a,
-                instruction.b
-            ));
+            out.push_str(&format!("r{} = {text}\n", start + k));
         }
         let outputs: Vec<String> = tape
             .outputs
@@ -564,7 +637,12 @@ impl CompiledSystem {
             .values_and_jacobian
             .instructions
             .iter()
-            .filter(|i| i.op == Op::Mul)
+            .filter(|i| {
+                matches!(
+                    i.op,
+                    TapeOp::Mul | TapeOp::MulAdd | TapeOp::MulSubtractedFrom | TapeOp::MulMinus
+                )
+            })
             .count();
         (
             [
