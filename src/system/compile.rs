@@ -96,6 +96,8 @@ enum TapeOp {
     MulSubtractedFrom,
     /// `a·b − c`
     MulMinus,
+    /// `a · Re(b)` for a real constant `b` (two real products instead of four).
+    Scale,
 }
 
 /// A finished straight-line program.
@@ -163,6 +165,7 @@ impl Tape {
                 TapeOp::MulAdd => run_block!(block, |a, b, c| c + a * b),
                 TapeOp::MulSubtractedFrom => run_block!(block, |a, b, c| c - a * b),
                 TapeOp::MulMinus => run_block!(block, |a, b, c| a * b - c),
+                TapeOp::Scale => run_block!(block, |a, b, _c| a * b.re),
             }
         }
     }
@@ -353,6 +356,10 @@ impl<'a> TapeBuilder<'a> {
             }
             _ => None,
         };
+        let real_constant = |operand: Operand| match operand {
+            Operand::Constant(i) => self.constants[i as usize].im == 0.0,
+            _ => false,
+        };
         let mut fused: Vec<(TapeOp, Operand, Operand, Operand)> = Vec::with_capacity(count);
         let mut deleted = vec![false; count];
         for &(op, a, b) in &self.instructions {
@@ -362,7 +369,11 @@ impl<'a> TapeBuilder<'a> {
                 (op, x, y, other)
             };
             let instruction = match op {
-                Op::Mul => (TapeOp::Mul, a, b, a),
+                Op::Mul => match (real_constant(a), real_constant(b)) {
+                    (_, true) => (TapeOp::Scale, a, b, a),
+                    (true, false) => (TapeOp::Scale, b, a, b),
+                    (false, false) => (TapeOp::Mul, a, b, a),
+                },
                 Op::Add => match (single_product(b), single_product(a)) {
                     (Some(t), _) => fuse(t, TapeOp::MulAdd, a),
                     (None, Some(t)) => fuse(t, TapeOp::MulAdd, b),
@@ -617,6 +628,7 @@ impl CompiledSystem {
                 TapeOp::MulAdd => format!("r{c} + r{a} * r{b}"),
                 TapeOp::MulSubtractedFrom => format!("r{c} - r{a} * r{b}"),
                 TapeOp::MulMinus => format!("r{a} * r{b} - r{c}"),
+                TapeOp::Scale => format!("r{a} * re(r{b})"),
             };
             out.push_str(&format!("r{} = {text}\n", start + k));
         }
@@ -640,7 +652,11 @@ impl CompiledSystem {
             .filter(|i| {
                 matches!(
                     i.op,
-                    TapeOp::Mul | TapeOp::MulAdd | TapeOp::MulSubtractedFrom | TapeOp::MulMinus
+                    TapeOp::Mul
+                        | TapeOp::MulAdd
+                        | TapeOp::MulSubtractedFrom
+                        | TapeOp::MulMinus
+                        | TapeOp::Scale
                 )
             })
             .count();
