@@ -756,3 +756,64 @@ impl Evaluator for CompiledSystem {
         tape.write_outputs(work, 0, jac_p);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_tape_operation_is_used_and_evaluates_like_the_expressions() {
+        let (x, y, z) = (
+            Expr::variable("x"),
+            Expr::variable("y"),
+            Expr::variable("z"),
+        );
+        let i = C64::new(0.0, 1.0);
+        // Each product below has a single use in F, so it is fused where possible.
+        let equations = vec![
+            &z + &x * &y,                         // MulAdd
+            &y - &x * &z,                         // MulSubtractedFrom
+            &y * &z - (&x + 1.0),                 // MulMinus
+            3.0 * (&x + &y) * (&y - &z),          // Scale, Add, Sub, Mul
+            (&y - &x) * (&x - &y) * i + x.pow(5), // shared sign-flipped difference
+            -(y.pow(2) * &z),                     // negated output
+        ];
+        let system = System::new(["x", "y", "z"], [""; 0], equations).unwrap();
+        let compiled = system.compile();
+        let ops: std::collections::HashSet<String> = compiled
+            .parts
+            .values
+            .instructions
+            .iter()
+            .map(|instruction| format!("{:?}", instruction.op))
+            .collect();
+        for op in [
+            "Add",
+            "Sub",
+            "Mul",
+            "MulAdd",
+            "MulSubtractedFrom",
+            "MulMinus",
+            "Scale",
+        ] {
+            assert!(ops.contains(op), "{op} missing from {ops:?}");
+        }
+        let point = [C64::new(0.3, -1.1), C64::new(-0.7, 0.4), C64::new(1.3, 0.2)];
+        let mut work = compiled.new_workspace();
+        let mut f = [C64::new(0.0, 0.0); 6];
+        let mut jac = [C64::new(0.0, 0.0); 18];
+        compiled.evaluate_with_jacobian(&point, &[], &mut work, &mut f, &mut jac);
+        let expected_f = system.evaluate_naive(&point, &[]);
+        let expected_jac = system.jacobian_naive(&point, &[]);
+        for (got, want) in f
+            .iter()
+            .zip(&expected_f)
+            .chain(jac.iter().zip(&expected_jac))
+        {
+            assert!(
+                (got - want).norm() <= 1e-14 * want.norm().max(1.0),
+                "{got} vs {want}"
+            );
+        }
+    }
+}
