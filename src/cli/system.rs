@@ -1,12 +1,118 @@
-//! `singdist system`.
+//! `singdist system`: inspect and convert polynomial system files.
 
-use clap::Subcommand;
+use anyhow::Context;
+use clap::{Subcommand, ValueEnum};
+use singdist::system::{System, bertini, phc};
+use std::path::{Path, PathBuf};
+
+/// File formats of polynomial systems.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Bertini input file (INPUT … END; section).
+    Bertini,
+    /// PHCpack input file (expanded polynomials).
+    Phc,
+}
 
 /// Sub-commands of `singdist system`.
 #[derive(Subcommand, Debug)]
-pub enum SystemCommand {}
+pub enum SystemCommand {
+    /// Print the variables, parameters, number of equations, degrees and Bézout number.
+    Show {
+        /// The system file.
+        file: PathBuf,
+        /// Format of the file.
+        #[arg(long, value_enum, default_value = "bertini")]
+        from: Format,
+    },
+    /// Convert a system file to Bertini or PHCpack input.
+    Export {
+        /// The system file.
+        file: PathBuf,
+        /// Output format.
+        #[arg(long, value_enum)]
+        to: Format,
+        /// Format of the input file.
+        #[arg(long, value_enum, default_value = "bertini")]
+        from: Format,
+        /// Output file (standard output if absent).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Value of a parameter, `NAME=VALUE` (VALUE like `1.5` or `0.5+2*I`); PHCpack
+        /// output needs one per parameter.
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+    },
+}
+
+fn read_system(file: &Path, format: Format) -> anyhow::Result<System> {
+    let text =
+        std::fs::read_to_string(file).with_context(|| format!("cannot read {}", file.display()))?;
+    let system = match format {
+        Format::Bertini => bertini::read(&text),
+        Format::Phc => phc::read(&text),
+    };
+    system.with_context(|| format!("{}", file.display()))
+}
+
+/// The summary printed by `singdist system show`.
+pub fn summary(system: &System) -> String {
+    let degrees = system.degrees();
+    let degree_list: Vec<String> = degrees.iter().map(|d| d.to_string()).collect();
+    format!(
+        "variables ({}): {}\nparameters ({}): {}\nequations: {}\ndegrees: {}\nBézout number: {}\n",
+        system.variables().len(),
+        system.variables().join(", "),
+        system.parameters().len(),
+        system.parameters().join(", "),
+        system.num_equations(),
+        degree_list.join(", "),
+        system.bezout_number()
+    )
+}
 
 /// Runs `singdist system`.
 pub fn run(command: SystemCommand) -> anyhow::Result<()> {
-    match command {}
+    match command {
+        SystemCommand::Show { file, from } => {
+            let system = read_system(&file, from)?;
+            print!("{}", summary(&system));
+            Ok(())
+        }
+        SystemCommand::Export {
+            file,
+            to,
+            from,
+            out,
+            set,
+        } => {
+            let system = read_system(&file, from)?;
+            let mut values = Vec::new();
+            for assignment in &set {
+                let (name, value) = assignment
+                    .split_once('=')
+                    .with_context(|| format!("--set `{assignment}`: expected NAME=VALUE"))?;
+                let value = bertini::read_constant(value)
+                    .with_context(|| format!("--set `{assignment}`: invalid value"))?;
+                values.push((name.trim().to_string(), value));
+            }
+            let text = match to {
+                Format::Bertini => {
+                    let system = if values.is_empty() {
+                        system
+                    } else {
+                        system.with_parameter_values(&values)?
+                    };
+                    bertini::write(&system)?
+                }
+                Format::Phc => phc::write(&system, &values)?,
+            };
+            match out {
+                Some(path) => std::fs::write(&path, text)
+                    .with_context(|| format!("cannot write {}", path.display()))?,
+                None => print!("{text}"),
+            }
+            Ok(())
+        }
+    }
 }

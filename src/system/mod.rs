@@ -9,6 +9,20 @@
 
 use crate::C64;
 
+pub mod bertini;
+pub mod builder;
+pub mod compile;
+pub mod expr;
+pub mod parse;
+pub mod phc;
+pub mod sparse;
+
+pub use builder::{System, SystemError};
+pub use compile::CompiledSystem;
+pub use expr::Expr;
+pub use parse::{ParseError, ParseErrorKind};
+pub use sparse::SparsePolynomial;
+
 /// A compiled parametric polynomial system `F: C^n × C^m → C^k`.
 ///
 /// Buffer conventions (checked by implementations with `debug_assert!` only; sizes are
