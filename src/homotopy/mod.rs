@@ -10,6 +10,7 @@
 
 pub mod homotopies;
 pub mod linalg;
+pub mod monodromy;
 pub mod solve;
 pub mod start;
 pub mod tracker;
@@ -18,6 +19,10 @@ pub use homotopies::{
     Homotopy, ParameterHomotopy, PolylineParameterHomotopy, StraightLineHomotopy,
 };
 pub use linalg::LuWorkspace;
+pub use monodromy::{
+    IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate, monodromy_solve,
+    trace_test,
+};
 pub use solve::{
     HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,
     solve_total_degree, solve_with_homotopy,

@@ -44,6 +44,12 @@ pub enum HomotopyError {
         /// Name of the offending argument.
         field: &'static str,
     },
+    /// The start pair of a monodromy run is not a solution.
+    #[error("the start pair is not a solution: residual ‖F(x₀; p₀)‖∞ = {residual:.3e}")]
+    InvalidStartPair {
+        /// The residual.
+        residual: f64,
+    },
     /// A degree is zero (a constant equation) or the Bézout number overflows.
     #[error("invalid degrees for a total-degree start system: {0}")]
     InvalidDegrees(String),
