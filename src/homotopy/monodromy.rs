@@ -234,14 +234,17 @@ pub fn monodromy_solve<F: Evaluator + ?Sized>(
         certified: false,
         failed_paths: 0,
     };
-    if options.trace_test && m > 0 {
-        if let Some(trace) = trace_test(
+    if options.trace_test
+        && m > 0
+        && let Some(trace) = trace_test(
             system,
             &result.parameters,
             &result.solutions,
             options,
             &mut rng,
-        ) {
+        )
+    {
+        {
             failed += trace.failed_paths;
             result.trace_residual = Some(trace.residual);
             result.certified = trace.residual < options.trace_tolerance;

@@ -311,3 +311,29 @@ pub fn set_distance(a: &[Vec<C64>], b: &[Vec<C64>]) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+
+/// katsura-n built with the symbolic builder (`crate::system`), compiled.
+pub fn katsura_compiled(n: usize) -> (singdist::system::CompiledSystem, Vec<u32>) {
+    use singdist::system::{Expr, System};
+    let names: Vec<String> = (0..=n).map(|i| format!("x{i}")).collect();
+    let x: Vec<Expr> = names.iter().map(Expr::variable).collect();
+    let at = |l: i64| -> Option<&Expr> { x.get(l.unsigned_abs() as usize) };
+    let mut equations = Vec::new();
+    let mut linear = Expr::from(-1.0);
+    for l in -(n as i64)..=(n as i64) {
+        linear = linear + at(l).unwrap();
+    }
+    equations.push(linear);
+    for m in 0..n as i64 {
+        let mut eq = -&x[m as usize];
+        for l in -(n as i64)..=(n as i64) {
+            if let (Some(a), Some(b)) = (at(l), at(m - l)) {
+                eq = eq + a * b;
+            }
+        }
+        equations.push(eq);
+    }
+    let system = System::new(&names, Vec::<String>::new(), equations).unwrap();
+    let degrees = system.degrees().iter().map(|&d| d as u32).collect();
+    (system.compile(), degrees)
+}
