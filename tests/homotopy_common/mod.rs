@@ -321,14 +321,14 @@ pub fn katsura_compiled(n: usize) -> (singdist::system::CompiledSystem, Vec<u32>
     let mut equations = Vec::new();
     let mut linear = Expr::from(-1.0);
     for l in -(n as i64)..=(n as i64) {
-        linear = linear + at(l).unwrap();
+        linear += at(l).unwrap();
     }
     equations.push(linear);
     for m in 0..n as i64 {
         let mut eq = -&x[m as usize];
         for l in -(n as i64)..=(n as i64) {
             if let (Some(a), Some(b)) = (at(l), at(m - l)) {
-                eq = eq + a * b;
+                eq += a * b;
             }
         }
         equations.push(eq);
