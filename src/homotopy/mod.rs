@@ -20,8 +20,8 @@ pub use homotopies::{
 };
 pub use linalg::LuWorkspace;
 pub use monodromy::{
-    IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate, monodromy_solve,
-    trace_test,
+    ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
+    monodromy_solve, solve_by_monodromy, trace_test,
 };
 pub use solve::{
     HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,

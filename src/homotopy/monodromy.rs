@@ -501,3 +501,122 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
         jac_p[n * width + n] = C64::new(-1.0, 0.0);
     }
 }
+
+/// `F(x) − p`: a plain square system made a parametric family by its constant terms
+/// (the family [`solve_by_monodromy`] works in). Parameters: n, one per equation.
+pub struct ConstantShift<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    fixed_parameters: Vec<C64>,
+}
+
+impl<'a, F: Evaluator + ?Sized> ConstantShift<'a, F> {
+    /// Family `F(x; fixed_parameters) − p`.
+    pub fn new(system: &'a F, fixed_parameters: Vec<C64>) -> Self {
+        ConstantShift {
+            system,
+            fixed_parameters,
+        }
+    }
+}
+
+impl<F: Evaluator + ?Sized> Evaluator for ConstantShift<'_, F> {
+    fn num_variables(&self) -> usize {
+        self.system.num_variables()
+    }
+    fn num_equations(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn num_parameters(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn workspace_len(&self) -> usize {
+        self.system.workspace_len()
+    }
+    fn evaluate(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate(x, &self.fixed_parameters, work, f);
+        for (fi, pi) in f.iter_mut().zip(p) {
+            *fi -= pi;
+        }
+    }
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        self.system
+            .evaluate_with_jacobian(x, &self.fixed_parameters, work, f, jac);
+        for (fi, pi) in f.iter_mut().zip(p) {
+            *fi -= pi;
+        }
+    }
+    fn evaluate_parameter_derivative(
+        &self,
+        _x: &[C64],
+        _p: &[C64],
+        dp: &[C64],
+        _work: &mut [C64],
+        out: &mut [C64],
+    ) {
+        for (o, d) in out.iter_mut().zip(dp) {
+            *o = -d;
+        }
+    }
+    fn evaluate_parameter_jacobian(
+        &self,
+        _x: &[C64],
+        _p: &[C64],
+        _work: &mut [C64],
+        jac_p: &mut [C64],
+    ) {
+        let k = self.system.num_equations();
+        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        for i in 0..k {
+            jac_p[i * k + i] = C64::new(-1.0, 0.0);
+        }
+    }
+}
+
+/// Solves the plain square system `F(x; fixed_parameters) = 0` without a start system:
+/// monodromy (with trace test) on the family `F(x) − p` from the trivial start pair
+/// `(x₀, F(x₀))` for a random `x₀`, then a parameter homotopy with endgame from that
+/// generic fiber to `p = 0`, which reaches every isolated solution of `F = 0`.
+pub fn solve_by_monodromy<F: Evaluator + ?Sized>(
+    system: &F,
+    fixed_parameters: &[C64],
+    monodromy_options: &MonodromyOptions,
+    solve_options: &super::solve::SolveOptions,
+) -> Result<(MonodromyResult, super::solve::SolveResult), HomotopyError> {
+    let n = system.num_variables();
+    if system.num_equations() != n {
+        return Err(HomotopyError::NotSquare {
+            equations: system.num_equations(),
+            variables: n,
+        });
+    }
+    if fixed_parameters.len() != system.num_parameters() {
+        return Err(HomotopyError::WrongLength {
+            field: "fixed_parameters",
+            expected: system.num_parameters(),
+            found: fixed_parameters.len(),
+        });
+    }
+    let family = ConstantShift::new(system, fixed_parameters.to_vec());
+    let mut rng = crate::random::stream(solve_options.seed, u64::MAX);
+    let x0 = random_point(&mut rng, n, 1.0);
+    let mut p0 = vec![C64::new(0.0, 0.0); n];
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    system.evaluate(&x0, fixed_parameters, &mut work, &mut p0);
+    let monodromy = monodromy_solve(&family, &x0, &p0, monodromy_options, solve_options.seed)?;
+    let target = vec![C64::new(0.0, 0.0); n];
+    let solved = super::solve::solve_parameter_homotopy(
+        &family,
+        &monodromy.solutions,
+        &p0,
+        &target,
+        solve_options,
+    )?;
+    Ok((monodromy, solved))
+}
