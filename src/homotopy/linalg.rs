@@ -62,15 +62,7 @@ impl LuWorkspace {
         debug_assert_eq!(a.len(), n * n);
         self.matrix.copy_from_slice(a);
         self.factors.copy_from_slice(a);
-        let mut norm1: f64 = 0.0;
-        for j in 0..n {
-            let mut column = 0.0;
-            for i in 0..n {
-                column += a[i * n + j].norm();
-            }
-            norm1 = norm1.max(column);
-        }
-        self.matrix_norm1 = norm1;
+        self.matrix_norm1 = f64::NAN;
         for (i, p) in self.permutation.iter_mut().enumerate() {
             *p = i;
         }
@@ -119,8 +111,18 @@ impl LuWorkspace {
         self.singular
     }
 
-    /// `‖A‖₁` of the last factored matrix.
-    pub fn matrix_norm1(&self) -> f64 {
+    /// `‖A‖₁` (maximal column sum of moduli) of the last factored matrix, computed on
+    /// first use after each factorisation (the hot loop never needs it).
+    pub fn matrix_norm1(&mut self) -> f64 {
+        if self.matrix_norm1.is_nan() {
+            let n = self.n;
+            let mut norm1: f64 = 0.0;
+            for j in 0..n {
+                let column: f64 = (0..n).map(|i| self.matrix[i * n + j].norm()).sum();
+                norm1 = norm1.max(column);
+            }
+            self.matrix_norm1 = norm1;
+        }
         self.matrix_norm1
     }
 
@@ -141,11 +143,12 @@ impl LuWorkspace {
             y[i] = sum;
         }
         for i in (0..n).rev() {
+            let row = &lu[i * n..i * n + n];
             let mut sum = y[i];
-            for j in i + 1..n {
-                sum -= lu[i * n + j] * y[j];
+            for (u, yj) in row[i + 1..].iter().zip(&y[i + 1..]) {
+                sum -= u * yj;
             }
-            y[i] = sum / lu[i * n + i];
+            y[i] = sum / row[i];
         }
         b.copy_from_slice(y);
     }
@@ -231,7 +234,7 @@ impl LuWorkspace {
 
     /// Estimate of the 1-norm condition number `κ₁(A) = ‖A‖₁ ‖A⁻¹‖₁`.
     pub fn condition_estimate(&mut self) -> f64 {
-        self.matrix_norm1 * self.inverse_norm1_estimate()
+        self.matrix_norm1() * self.inverse_norm1_estimate()
     }
 
     /// One step of mixed-precision iterative refinement of a solution `x` of `A x = b`:
