@@ -48,6 +48,8 @@ struct SolutionOutput {
     winding_number: usize,
     multiplicity: usize,
     real: bool,
+    steps: usize,
+    rejected_steps: usize,
 }
 
 #[derive(Serialize)]
@@ -147,6 +149,8 @@ pub fn run(args: SolveArgs) -> anyhow::Result<()> {
                 winding_number: p.winding_number,
                 multiplicity: p.multiplicity,
                 real: p.is_real(options.real_tolerance),
+                steps: p.steps,
+                rejected_steps: p.rejected_steps,
             })
             .collect();
         let output = JsonOutput {

@@ -39,6 +39,21 @@ pub trait Homotopy: Send + Sync {
     );
     /// `dh ← ∂H/∂t (x, t)`.
     fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]);
+    /// `h ← H`, `jac ← ∂H/∂x`, `dh ← ∂H/∂t` in one call (the predictor's need).
+    /// The default calls [`Homotopy::evaluate_with_jacobian`] and
+    /// [`Homotopy::evaluate_time_derivative`]; implementations override it to share work.
+    fn evaluate_with_jacobian_and_time_derivative(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+        dh: &mut [C64],
+    ) {
+        self.evaluate_with_jacobian(x, t, work, h, jac);
+        self.evaluate_time_derivative(x, t, work, dh);
+    }
     /// Values of `t` in `(0, 1)` where `H` is only piecewise smooth (the tracker stops
     /// there so no predictor step straddles a kink). Empty by default.
     fn breakpoints(&self) -> &[f64] {
@@ -119,6 +134,31 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
             .evaluate_with_jacobian(x, &self.target_parameters, rest, h, jac);
         let a = (C64::new(1.0, 0.0) - t) * self.gamma;
         for (hi, gi) in h.iter_mut().zip(g.iter()) {
+            *hi = t * *hi + a * gi;
+        }
+        for (ji, gi) in jac.iter_mut().zip(g_jac.iter()) {
+            *ji = t * *ji + a * gi;
+        }
+    }
+
+    fn evaluate_with_jacobian_and_time_derivative(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+        dh: &mut [C64],
+    ) {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let (g_jac, rest) = rest.split_at_mut(n * n);
+        self.start.evaluate_with_jacobian(x, &[], rest, g, g_jac);
+        self.target
+            .evaluate_with_jacobian(x, &self.target_parameters, rest, h, jac);
+        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
+        for ((hi, di), gi) in h.iter_mut().zip(dh.iter_mut()).zip(g.iter()) {
+            *di = *hi - self.gamma * gi;
             *hi = t * *hi + a * gi;
         }
         for (ji, gi) in jac.iter_mut().zip(g_jac.iter()) {

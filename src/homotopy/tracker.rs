@@ -259,11 +259,22 @@ impl Evaluation {
         extended: bool,
         out: &mut [C64],
     ) -> bool {
-        homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
-        homotopy.evaluate_time_derivative(x, t, &mut self.work, &mut self.dh);
+        homotopy.evaluate_with_jacobian_and_time_derivative(
+            x,
+            t,
+            &mut self.work,
+            &mut self.h,
+            &mut self.jac,
+            &mut self.dh,
+        );
         if !self.lu.factor(&self.jac) {
             return false;
         }
+        self.solve_velocity(dt, extended, out)
+    }
+
+    /// `out ← −J⁻¹ dh · dt` with the current factorisation and `self.dh`.
+    fn solve_velocity(&mut self, dt: C64, extended: bool, out: &mut [C64]) -> bool {
         for (o, d) in out.iter_mut().zip(&self.dh) {
             *o = -d * dt;
         }
@@ -349,6 +360,8 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     extended: bool,
     used_extended: bool,
     winding: usize,
+    /// `eval.lu` holds J at (≈ x, t) of the current point (set after an accepted step).
+    factorization_current: bool,
 }
 
 impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
@@ -386,6 +399,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             extended: false,
             used_extended: false,
             winding: 1,
+            factorization_current: false,
         }
     }
 
@@ -549,6 +563,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             return Ok(());
         }
         let mut u = 0.0f64;
+        self.factorization_current = false;
         while u < 1.0 {
             if self.steps >= self.options.max_steps {
                 return Err(SegmentError::Failure(FailureReason::TooManySteps));
@@ -569,6 +584,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             match accepted {
                 Some(first_update) => {
                     self.x.copy_from_slice(&self.x_predicted);
+                    self.factorization_current = true;
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
                     let scale = 1.0 + max_norm(&self.x);
                     if scale > self.options.at_infinity_norm {
@@ -864,9 +880,17 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let hom = self.homotopy;
         let ext = self.extended;
         let e = &mut self.eval;
-        if !e.velocity(hom, &self.x, t, dt, ext, &mut self.k1) {
+        if self.factorization_current {
+            // The corrector's last factorisation is of J at a point within the corrector
+            // tolerance of (x, t): reuse it, only ∂H/∂t is new.
+            hom.evaluate_time_derivative(&self.x, t, &mut e.work, &mut e.dh);
+            if !e.solve_velocity(dt, ext, &mut self.k1) {
+                return None;
+            }
+        } else if !e.velocity(hom, &self.x, t, dt, ext, &mut self.k1) {
             return None;
         }
+        self.factorization_current = false;
         for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k1) {
             *s = x + k * (0.5 * h);
         }
