@@ -2,7 +2,8 @@
 //!
 //! Results come back in path order and depend only on the seed (γ is drawn from
 //! `crate::random::seeded(seed)`; every path is a deterministic function of its start
-//! point), so they are bit-identical for any thread count. After the first pass, paths
+//! point and the tracker's state is reset per path, so no per-path random stream is
+//! needed), so they are bit-identical for any thread count. After the first pass, paths
 //! that failed, and nonsingular endpoints reached by more than one path (the signature
 //! of path jumping), are re-tracked with [`TrackerOptions::conservative`] — never
 //! dropped silently. Finite endpoints are then clustered to give multiplicities.

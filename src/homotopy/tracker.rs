@@ -4,7 +4,10 @@
 //! `∂H/∂x · ẋ = −∂H/∂t`. One step from `t` to `t + h`:
 //!
 //! 1. **Predictor**: classical fourth-order Runge–Kutta on the Davidenko equation
-//!    (local error `O(h⁵)`), every stage one LU solve.
+//!    (local error `O(h⁵)`), every stage one LU solve. The first stage reuses the
+//!    factorisation of the corrector's last Newton iteration (a point within the
+//!    corrector tolerance of the accepted one), so a step costs three fresh Jacobians
+//!    for the predictor and one or two for the corrector.
 //! 2. **Corrector**: Newton's method at `t + h`, accepted only if it *contracts*:
 //!    the second update must be at most `max_contraction` times the first
 //!    (`‖Δ₁‖ ≤ κ‖Δ₀‖`). By Smale's α-theory an approximate zero has `‖Δ₁‖ ≤ ½‖Δ₀‖`,
