@@ -262,3 +262,29 @@ proptest! {
         let _ = singdist::system::phc::read(&body);
     }
 }
+
+#[test]
+fn long_sums_and_products_are_read_without_deep_recursion() {
+    // 30 000 terms: a left-deep tree would overflow the stack of the recursive walkers.
+    let terms: Vec<String> = (0..30_000).map(|i| format!("{}*x", i % 7)).collect();
+    let factors = vec!["x"; 2000].join("*");
+    let text = format!(
+        "variable_group x;\nfunction f, g;\nf = {} - 1;\ng = {factors};\n",
+        terms.join(" + ")
+    );
+    let system = bertini::read(&text).unwrap();
+    let coefficient: f64 = (0..30_000).map(|i| (i % 7) as f64).sum();
+    let x = C64::from_polar(1.0, 0.3);
+    let f = system.evaluate_naive(&[x], &[]);
+    assert!((f[0] - (coefficient * x - 1.0)).norm() < 1e-9 * coefficient);
+    assert!((f[1] - x.powu(2000)).norm() < 1e-12);
+    assert_eq!(system.degrees(), vec![1, 2000]);
+    let compiled = system.compile();
+    let mut work = compiled.new_workspace();
+    let mut out = vec![C64::new(0.0, 0.0); 2];
+    let mut jac = vec![C64::new(0.0, 0.0); 2];
+    use singdist::system::Evaluator;
+    compiled.evaluate_with_jacobian(&[x], &[], &mut work, &mut out, &mut jac);
+    assert!((jac[0] - coefficient).norm() < 1e-9 * coefficient);
+    assert!((jac[1] - 2000.0 * x.powu(1999)).norm() < 1e-9 * jac[1].norm());
+}

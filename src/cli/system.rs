@@ -59,12 +59,19 @@ fn read_system(file: &Path, format: Format) -> anyhow::Result<System> {
 pub fn summary(system: &System) -> String {
     let degrees = system.degrees();
     let degree_list: Vec<String> = degrees.iter().map(|d| d.to_string()).collect();
+    let list = |names: &[String]| {
+        if names.is_empty() {
+            "none".to_string()
+        } else {
+            names.join(", ")
+        }
+    };
     format!(
         "variables ({}): {}\nparameters ({}): {}\nequations: {}\ndegrees: {}\nBézout number: {}\n",
         system.variables().len(),
-        system.variables().join(", "),
+        list(system.variables()),
         system.parameters().len(),
-        system.parameters().join(", "),
+        list(system.parameters()),
         system.num_equations(),
         degree_list.join(", "),
         system.bezout_number()

@@ -9,6 +9,11 @@
 //! numeric constants, `I` (imaginary unit), `Pi`, numbers like `1.5e-3`, `%` comments.
 //! Names must be defined before they are used. Equations are the functions in the
 //! order of their declaration.
+//!
+//! Files written here declare parameters with `parameter` and no definition: Bertini
+//! itself runs such a file in its parameter-homotopy mode (`ParameterHomotopy: 1` or
+//! `2` in CONFIG, with the parameter values in its parameter files); substitute values
+//! first ([`System::with_parameter_values`]) for a plain Bertini run.
 
 use crate::C64;
 use crate::system::expr::{Expr, Kind, format_constant, write_expr};

@@ -2,14 +2,21 @@
 //!
 //! Method: exact symbolic derivatives (∂F/∂x, ∂F/∂p) are formed once with
 //! [`Expr::differentiate`]; then F and its derivatives are lowered together into one
-//! sequence of two-operand complex instructions (`+ − × neg`) in static single
-//! assignment form. Lowering merges common subexpressions twice: nodes shared in the
-//! expression DAG are lowered once (memoised by node identity), and structurally equal
+//! sequence of two-operand complex instructions (`+ − ×`) in static single assignment
+//! form. Lowering merges common subexpressions three ways: nodes shared in the
+//! expression DAG are lowered once (memoised by node identity); structurally equal
 //! instructions are emitted once (hash-consing on `(op, operand, operand)`, with the
-//! operands of `+` and `×` put in canonical order). Integer powers become
-//! square-and-multiply chains whose intermediate powers are shared through the same
-//! hash-consing. Because F, ∂F/∂x (and ∂F/∂p) share one tape, the products that appear
-//! in several partial derivatives are computed once.
+//! operands of `+` and `×` put in canonical order); and negations are carried as a
+//! sign of the lowered value instead of instructions, so `a − b` and `b − a`, `c·x` and
+//! `−c·x` share one instruction (a negated output is negated when copied out). Integer
+//! powers become square-and-multiply chains whose intermediate powers are shared
+//! through the same hash-consing. Because F, ∂F/∂x (and ∂F/∂p) share one tape, the
+//! products that appear in several partial derivatives are computed once.
+//!
+//! When the tape is finished, every product whose only use is a sum or difference is
+//! fused into it (`c + a·b`, `c − a·b`, `a·b − c`), and the instructions are scheduled
+//! level by level (independent instructions together) and grouped into blocks of one
+//! operation, so the evaluation loop does not branch on the operation per instruction.
 //!
 //! Registers live in the caller's workspace: `[x | p | dp | constants | temporaries]`.
 //! An evaluation copies the inputs and constants in, runs the instructions, and copies
@@ -26,7 +33,6 @@ enum Op {
     Add,
     Sub,
     Mul,
-    Neg,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -36,13 +42,62 @@ enum Operand {
     Temporary(u32),
 }
 
+/// An operand with a sign: the value is `−operand` when `negated`.
+#[derive(Clone, Copy, Debug)]
+struct Signed {
+    operand: Operand,
+    negated: bool,
+}
+
+impl Signed {
+    fn positive(operand: Operand) -> Signed {
+        Signed {
+            operand,
+            negated: false,
+        }
+    }
+
+    fn negative(operand: Operand) -> Signed {
+        Signed {
+            operand,
+            negated: true,
+        }
+    }
+
+    fn negate(self) -> Signed {
+        Signed {
+            negated: !self.negated,
+            ..self
+        }
+    }
+}
+
 /// One instruction `work[destination] ← work[a] op work[b]`, with the destination the
 /// next temporary register.
 #[derive(Clone, Copy, Debug)]
 struct Instruction {
-    op: Op,
+    op: TapeOp,
     a: u32,
     b: u32,
+    /// Third operand of the fused operations (equal to `a` otherwise).
+    c: u32,
+}
+
+/// Operations of a finished tape: the builder's `+ − ×`, and a product fused with the
+/// sum or difference that is its only use (saves a register round trip).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TapeOp {
+    Add,
+    Sub,
+    Mul,
+    /// `c + a·b`
+    MulAdd,
+    /// `c − a·b`
+    MulSubtractedFrom,
+    /// `a·b − c`
+    MulMinus,
+    /// `a · Re(b)` for a real constant `b` (two real products instead of four).
+    Scale,
 }
 
 /// A finished straight-line program.
@@ -52,8 +107,20 @@ struct Tape {
     num_inputs: usize,
     constants: Vec<C64>,
     instructions: Vec<Instruction>,
-    /// Register of each output value.
-    outputs: Vec<u32>,
+    /// Runs `start..end` of consecutive instructions with the same operation, so the
+    /// inner loops do not branch on the operation.
+    blocks: Vec<Block>,
+    /// Register of each output value, and the sign (±1) it is multiplied by (a
+    /// multiplication rather than a data-dependent branch, which mispredicts).
+    outputs: Vec<(u32, f64)>,
+}
+
+/// A run of instructions with the same operation.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    op: TapeOp,
+    start: u32,
+    end: u32,
 }
 
 impl Tape {
@@ -71,29 +138,47 @@ impl Tape {
         );
         work[constants_start..temporaries_start].copy_from_slice(&self.constants);
         let registers = work.as_mut_ptr();
-        for (k, instruction) in self.instructions.iter().enumerate() {
-            // SAFETY: `TapeBuilder::finish` only emits operands that are inputs,
-            // constants or earlier temporaries, so `a, b < temporaries_start + k`, and
-            // the destination `temporaries_start + k < workspace_len() <= work.len()`
-            // (asserted above). The pointer comes from a live `&mut [C64]`.
-            unsafe {
-                let a = *registers.add(instruction.a as usize);
-                let b = *registers.add(instruction.b as usize);
-                let value = match instruction.op {
-                    Op::Add => a + b,
-                    Op::Sub => a - b,
-                    Op::Mul => a * b,
-                    Op::Neg => -a,
-                };
-                *registers.add(temporaries_start + k) = value;
+        let instructions = self.instructions.as_slice();
+        // SAFETY (all blocks): `TapeBuilder::finish` checks that every operand of
+        // instruction k is an input, a constant or a temporary computed before k, so
+        // `a, b < temporaries_start + k`, that the blocks cover `0..instructions.len()`,
+        // and the destination `temporaries_start + k < workspace_len() <= work.len()`
+        // (asserted above). The pointer comes from a live `&mut [C64]`.
+        macro_rules! run_block {
+            ($block:expr, |$a:ident, $b:ident, $c:ident| $value:expr) => {
+                for k in $block.start as usize..$block.end as usize {
+                    let instruction = &instructions[k];
+                    unsafe {
+                        let $a = *registers.add(instruction.a as usize);
+                        let $b = *registers.add(instruction.b as usize);
+                        let $c = *registers.add(instruction.c as usize);
+                        *registers.add(temporaries_start + k) = $value;
+                    }
+                }
+            };
+        }
+        for block in &self.blocks {
+            match block.op {
+                TapeOp::Add => run_block!(block, |a, b, _c| a + b),
+                TapeOp::Sub => run_block!(block, |a, b, _c| a - b),
+                TapeOp::Mul => run_block!(block, |a, b, _c| a * b),
+                TapeOp::MulAdd => run_block!(block, |a, b, c| c + a * b),
+                TapeOp::MulSubtractedFrom => run_block!(block, |a, b, c| c - a * b),
+                TapeOp::MulMinus => run_block!(block, |a, b, c| a * b - c),
+                TapeOp::Scale => run_block!(block, |a, b, _c| a * b.re),
             }
         }
     }
 
+    /// Copies outputs `first..first + out.len()` into `out`.
     #[inline]
-    fn write_outputs(&self, work: &[C64], out: &mut [C64]) {
-        for (target, &register) in out.iter_mut().zip(&self.outputs) {
-            *target = work[register as usize];
+    fn write_outputs(&self, work: &[C64], first: usize, out: &mut [C64]) {
+        debug_assert!(
+            first + out.len() <= self.outputs.len(),
+            "output buffer length"
+        );
+        for (target, &(register, sign)) in out.iter_mut().zip(&self.outputs[first..]) {
+            *target = work[register as usize] * sign;
         }
     }
 }
@@ -106,7 +191,7 @@ struct TapeBuilder<'a> {
     constant_index: HashMap<(u64, u64), u32>,
     instructions: Vec<(Op, Operand, Operand)>,
     instruction_index: HashMap<(Op, Operand, Operand), Operand>,
-    lowered: HashMap<usize, Operand>,
+    lowered: HashMap<usize, Signed>,
     /// Keeps lowered expressions alive so that node identities stay unique.
     keep_alive: Vec<Expr>,
 }
@@ -139,7 +224,6 @@ impl<'a> TapeBuilder<'a> {
     fn emit(&mut self, op: Op, a: Operand, b: Operand) -> Operand {
         let (a, b) = match op {
             Op::Add | Op::Mul if b < a => (b, a),
-            Op::Neg => (a, a),
             _ => (a, b),
         };
         let key = (op, a, b);
@@ -167,37 +251,77 @@ impl<'a> TapeBuilder<'a> {
         }
     }
 
+    /// A constant as a signed operand: `c` and `−c` share one register.
+    fn signed_constant(&mut self, value: C64) -> Signed {
+        let negative = value.re < 0.0 || (value.re == 0.0 && value.im < 0.0);
+        if negative {
+            Signed::negative(self.constant(-value))
+        } else {
+            // Also maps −0 to +0.
+            Signed::positive(self.constant(value + C64::new(0.0, 0.0)))
+        }
+    }
+
+    /// `u − v` with the operands in canonical order (`v − u = −(u − v)`).
+    fn difference(&mut self, u: Operand, v: Operand) -> Signed {
+        match u.cmp(&v) {
+            std::cmp::Ordering::Equal => Signed::positive(self.constant(C64::new(0.0, 0.0))),
+            std::cmp::Ordering::Less => Signed::positive(self.emit(Op::Sub, u, v)),
+            std::cmp::Ordering::Greater => Signed::negative(self.emit(Op::Sub, v, u)),
+        }
+    }
+
+    /// `x + y` for signed operands.
+    fn sum(&mut self, x: Signed, y: Signed) -> Signed {
+        match (x.negated, y.negated) {
+            (false, false) => Signed::positive(self.emit(Op::Add, x.operand, y.operand)),
+            (true, true) => Signed::negative(self.emit(Op::Add, x.operand, y.operand)),
+            (false, true) => self.difference(x.operand, y.operand),
+            (true, false) => self.difference(y.operand, x.operand),
+        }
+    }
+
+    /// `x · y` for signed operands.
+    fn product(&mut self, x: Signed, y: Signed) -> Signed {
+        Signed {
+            operand: self.emit(Op::Mul, x.operand, y.operand),
+            negated: x.negated != y.negated,
+        }
+    }
+
     /// Lowers `e` (symbols must all be inputs; checked when the system was built).
-    fn lower(&mut self, e: &Expr) -> Operand {
+    /// Negations are not instructions: they travel as the sign of the result, so that
+    /// `a − b` and `b − a`, `c·x` and `−c·x` share their instruction.
+    fn lower(&mut self, e: &Expr) -> Signed {
         if let Some(&done) = self.lowered.get(&e.node_id()) {
             return done;
         }
         let result = match e.kind() {
-            Kind::Constant(c) => self.constant(*c),
+            Kind::Constant(c) => self.signed_constant(*c),
             Kind::Symbol(name) => match self.inputs.get(&**name) {
-                Some(&index) => Operand::Input(index),
+                Some(&index) => Signed::positive(Operand::Input(index)),
                 // Unreachable for a validated system; lowering a NaN keeps it total.
-                None => self.constant(C64::new(f64::NAN, f64::NAN)),
+                None => Signed::positive(self.constant(C64::new(f64::NAN, f64::NAN))),
             },
             Kind::Add(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Add, a, b)
+                self.sum(a, b)
             }
             Kind::Sub(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Sub, a, b)
+                self.sum(a, b.negate())
             }
             Kind::Mul(a, b) => {
                 let (a, b) = (self.lower(a), self.lower(b));
-                self.emit(Op::Mul, a, b)
+                self.product(a, b)
             }
-            Kind::Neg(a) => {
-                let a = self.lower(a);
-                self.emit(Op::Neg, a, a)
-            }
+            Kind::Neg(a) => self.lower(a).negate(),
             Kind::Pow(a, n) => {
                 let a = self.lower(a);
-                self.power(a, *n)
+                Signed {
+                    operand: self.power(a.operand, *n),
+                    negated: a.negated && n % 2 == 1,
+                }
             }
         };
         self.lowered.insert(e.node_id(), result);
@@ -205,32 +329,139 @@ impl<'a> TapeBuilder<'a> {
         result
     }
 
-    fn finish(self, outputs: &[Operand]) -> Tape {
+    /// Schedules the instructions level by level (an instruction's level is one more
+    /// than its operands'), grouping equal operations within a level into blocks, and
+    /// assigns registers `[inputs | constants | temporaries]`.
+    fn finish(self, outputs: &[Signed]) -> Tape {
+        let count = self.instructions.len();
+        // Fuse each product whose only use is a sum or difference into it.
+        let mut uses = vec![0u32; count];
+        let mut count_use = |operand: Operand| {
+            if let Operand::Temporary(t) = operand {
+                uses[t as usize] += 1;
+            }
+        };
+        for &(_, a, b) in &self.instructions {
+            count_use(a);
+            count_use(b);
+        }
+        for output in outputs {
+            count_use(output.operand);
+        }
+        let single_product = |operand: Operand| match operand {
+            Operand::Temporary(t)
+                if self.instructions[t as usize].0 == Op::Mul && uses[t as usize] == 1 =>
+            {
+                Some(t as usize)
+            }
+            _ => None,
+        };
+        let real_constant = |operand: Operand| match operand {
+            Operand::Constant(i) => self.constants[i as usize].im == 0.0,
+            _ => false,
+        };
+        let mut fused: Vec<(TapeOp, Operand, Operand, Operand)> = Vec::with_capacity(count);
+        let mut deleted = vec![false; count];
+        for &(op, a, b) in &self.instructions {
+            let mut fuse = |product: usize, op: TapeOp, other: Operand| {
+                deleted[product] = true;
+                let (_, x, y) = self.instructions[product];
+                (op, x, y, other)
+            };
+            let instruction = match op {
+                Op::Mul => match (real_constant(a), real_constant(b)) {
+                    (_, true) => (TapeOp::Scale, a, b, a),
+                    (true, false) => (TapeOp::Scale, b, a, b),
+                    (false, false) => (TapeOp::Mul, a, b, a),
+                },
+                Op::Add => match (single_product(b), single_product(a)) {
+                    (Some(t), _) => fuse(t, TapeOp::MulAdd, a),
+                    (None, Some(t)) => fuse(t, TapeOp::MulAdd, b),
+                    (None, None) => (TapeOp::Add, a, b, a),
+                },
+                Op::Sub => match (single_product(b), single_product(a)) {
+                    (Some(t), _) => fuse(t, TapeOp::MulSubtractedFrom, a),
+                    (None, Some(t)) => fuse(t, TapeOp::MulMinus, b),
+                    (None, None) => (TapeOp::Sub, a, b, a),
+                },
+            };
+            fused.push(instruction);
+        }
+
+        let mut level = vec![0u32; count];
+        for (k, &(_, a, b, c)) in fused.iter().enumerate() {
+            let of = |operand: Operand| match operand {
+                Operand::Temporary(i) => level[i as usize] + 1,
+                _ => 0,
+            };
+            level[k] = of(a).max(of(b)).max(of(c));
+        }
+        let rank = |op: TapeOp| op as u8;
+        let mut order: Vec<usize> = (0..count).filter(|&k| !deleted[k]).collect();
+        order.sort_by_key(|&k| (level[k], rank(fused[k].0)));
+        let mut position = vec![u32::MAX; count];
+        for (new, &old) in order.iter().enumerate() {
+            position[old] = new as u32;
+        }
+
         let constants_start = self.num_inputs as u32;
         let temporaries_start = constants_start + self.constants.len() as u32;
         let register = |operand: Operand| match operand {
             Operand::Input(i) => i,
             Operand::Constant(i) => constants_start + i,
-            Operand::Temporary(i) => temporaries_start + i,
+            Operand::Temporary(i) => temporaries_start.saturating_add(position[i as usize]),
         };
-        let instructions: Vec<Instruction> = self
-            .instructions
+        let instructions: Vec<Instruction> = order
             .iter()
-            .map(|&(op, a, b)| Instruction {
-                op,
-                a: register(a),
-                b: register(b),
+            .map(|&old| {
+                let (op, a, b, c) = fused[old];
+                Instruction {
+                    op,
+                    a: register(a),
+                    b: register(b),
+                    c: register(c),
+                }
             })
             .collect();
-        // The invariant `Tape::run` relies on: every operand is already computed.
+        let mut blocks: Vec<Block> = Vec::new();
+        for (k, instruction) in instructions.iter().enumerate() {
+            match blocks.last_mut() {
+                Some(block) if block.op == instruction.op => block.end = k as u32 + 1,
+                _ => blocks.push(Block {
+                    op: instruction.op,
+                    start: k as u32,
+                    end: k as u32 + 1,
+                }),
+            }
+        }
+        // The invariants `Tape::run` relies on: every operand is already computed and
+        // the blocks cover the instructions in order.
         for (k, instruction) in instructions.iter().enumerate() {
             let limit = temporaries_start as usize + k;
-            assert!((instruction.a as usize) < limit && (instruction.b as usize) < limit);
+            assert!(
+                (instruction.a as usize) < limit
+                    && (instruction.b as usize) < limit
+                    && (instruction.c as usize) < limit
+            );
         }
+        assert!(
+            blocks.first().is_none_or(|b| b.start == 0)
+                && blocks.windows(2).all(|w| w[0].end == w[1].start)
+                && blocks.last().map_or(0, |b| b.end as usize) == instructions.len()
+        );
+        let outputs = outputs
+            .iter()
+            .map(|o| {
+                let target = register(o.operand);
+                assert!((target as usize) < temporaries_start as usize + instructions.len());
+                (target, if o.negated { -1.0 } else { 1.0 })
+            })
+            .collect();
         Tape {
             num_inputs: self.num_inputs,
             instructions,
-            outputs: outputs.iter().map(|&o| register(o)).collect(),
+            blocks,
+            outputs,
             constants: self.constants,
         }
     }
@@ -296,11 +527,11 @@ impl CompiledSystem {
         let jacobian_p = symbolic_jacobian(equations, &parameters);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = equations.iter().map(|f| builder.lower(f)).collect();
+        let outputs: Vec<Signed> = equations.iter().map(|f| builder.lower(f)).collect();
         let values = builder.finish(&outputs);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = equations
+        let outputs: Vec<Signed> = equations
             .iter()
             .chain(jacobian_x.iter())
             .map(|f| builder.lower(f))
@@ -308,27 +539,28 @@ impl CompiledSystem {
         let values_and_jacobian = builder.finish(&outputs);
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Operand> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
+        let outputs: Vec<Signed> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
         let parameter_jacobian = builder.finish(&outputs);
 
         // Σ_k ∂f_i/∂p_k · dp_k with dp_k in input registers n + m + k.
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
         let mut outputs = Vec::with_capacity(equations.len());
         for i in 0..equations.len() {
-            let mut sum: Option<Operand> = None;
+            let mut sum: Option<Signed> = None;
             for k in 0..m {
                 let entry = &jacobian_p[i * m + k];
                 if entry.is_zero() {
                     continue;
                 }
                 let derivative = builder.lower(entry);
-                let term = builder.emit(Op::Mul, derivative, Operand::Input((n + m + k) as u32));
+                let direction = Signed::positive(Operand::Input((n + m + k) as u32));
+                let term = builder.product(derivative, direction);
                 sum = Some(match sum {
                     None => term,
-                    Some(previous) => builder.emit(Op::Add, previous, term),
+                    Some(previous) => builder.sum(previous, term),
                 });
             }
-            let zero = builder.constant(C64::new(0.0, 0.0));
+            let zero = Signed::positive(builder.constant(C64::new(0.0, 0.0)));
             outputs.push(sum.unwrap_or(zero));
         }
         let parameter_derivative = builder.finish(&outputs);
@@ -378,6 +610,37 @@ impl CompiledSystem {
         self.parts.values_and_jacobian.instructions.len()
     }
 
+    /// Human-readable listing of the F + ∂F/∂x tape (`r12 = r3 * r7`, outputs last),
+    /// for inspecting what the compiler produced.
+    pub fn jacobian_tape_listing(&self) -> String {
+        let tape = &self.parts.values_and_jacobian;
+        let start = tape.num_inputs + tape.constants.len();
+        let mut out = String::new();
+        for (i, c) in tape.constants.iter().enumerate() {
+            out.push_str(&format!("r{} = {c}\n", tape.num_inputs + i));
+        }
+        for (k, instruction) in tape.instructions.iter().enumerate() {
+            let (a, b, c) = (instruction.a, instruction.b, instruction.c);
+            let text = match instruction.op {
+                TapeOp::Add => format!("r{a} + r{b}"),
+                TapeOp::Sub => format!("r{a} - r{b}"),
+                TapeOp::Mul => format!("r{a} * r{b}"),
+                TapeOp::MulAdd => format!("r{c} + r{a} * r{b}"),
+                TapeOp::MulSubtractedFrom => format!("r{c} - r{a} * r{b}"),
+                TapeOp::MulMinus => format!("r{a} * r{b} - r{c}"),
+                TapeOp::Scale => format!("r{a} * re(r{b})"),
+            };
+            out.push_str(&format!("r{} = {text}\n", start + k));
+        }
+        let outputs: Vec<String> = tape
+            .outputs
+            .iter()
+            .map(|&(r, sign)| format!("{}r{r}", if sign < 0.0 { "-" } else { "" }))
+            .collect();
+        out.push_str(&format!("outputs: {}\n", outputs.join(" ")));
+        out
+    }
+
     /// Sizes of the tapes: instructions of (F, F + ∂F/∂x, ∂F/∂p, (∂F/∂p)·dp) and
     /// the number of multiplications of the F + ∂F/∂x tape.
     pub fn tape_statistics(&self) -> ([usize; 4], usize) {
@@ -386,7 +649,16 @@ impl CompiledSystem {
             .values_and_jacobian
             .instructions
             .iter()
-            .filter(|i| i.op == Op::Mul)
+            .filter(|i| {
+                matches!(
+                    i.op,
+                    TapeOp::Mul
+                        | TapeOp::MulAdd
+                        | TapeOp::MulSubtractedFrom
+                        | TapeOp::MulMinus
+                        | TapeOp::Scale
+                )
+            })
             .count();
         (
             [
@@ -432,7 +704,7 @@ impl Evaluator for CompiledSystem {
         self.load(x, p, work);
         let tape = &self.parts.values;
         tape.run(work);
-        tape.write_outputs(work, f);
+        tape.write_outputs(work, 0, f);
     }
 
     fn evaluate_with_jacobian(
@@ -444,15 +716,13 @@ impl Evaluator for CompiledSystem {
         jac: &mut [C64],
     ) {
         self.load(x, p, work);
+        let k = self.parts.num_equations;
+        debug_assert_eq!(f.len(), k);
+        debug_assert_eq!(jac.len(), k * x.len());
         let tape = &self.parts.values_and_jacobian;
         tape.run(work);
-        let k = self.parts.num_equations;
-        for (target, &register) in f.iter_mut().zip(&tape.outputs[..k]) {
-            *target = work[register as usize];
-        }
-        for (target, &register) in jac.iter_mut().zip(&tape.outputs[k..]) {
-            *target = work[register as usize];
-        }
+        tape.write_outputs(work, 0, f);
+        tape.write_outputs(work, k, jac);
     }
 
     fn evaluate_parameter_derivative(
@@ -470,7 +740,7 @@ impl Evaluator for CompiledSystem {
         work[n + m..n + 2 * m].copy_from_slice(dp);
         let tape = &self.parts.parameter_derivative;
         tape.run(work);
-        tape.write_outputs(work, out);
+        tape.write_outputs(work, 0, out);
     }
 
     fn evaluate_parameter_jacobian(
@@ -483,6 +753,67 @@ impl Evaluator for CompiledSystem {
         self.load(x, p, work);
         let tape = &self.parts.parameter_jacobian;
         tape.run(work);
-        tape.write_outputs(work, jac_p);
+        tape.write_outputs(work, 0, jac_p);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_tape_operation_is_used_and_evaluates_like_the_expressions() {
+        let (x, y, z) = (
+            Expr::variable("x"),
+            Expr::variable("y"),
+            Expr::variable("z"),
+        );
+        let i = C64::new(0.0, 1.0);
+        // Each product below has a single use in F, so it is fused where possible.
+        let equations = vec![
+            &z + &x * &y,                         // MulAdd
+            &y - &x * &z,                         // MulSubtractedFrom
+            &y * &z - (&x + 1.0),                 // MulMinus
+            3.0 * (&x + &y) * (&y - &z),          // Scale, Add, Sub, Mul
+            (&y - &x) * (&x - &y) * i + x.pow(5), // shared sign-flipped difference
+            -(y.pow(2) * &z),                     // negated output
+        ];
+        let system = System::new(["x", "y", "z"], [""; 0], equations).unwrap();
+        let compiled = system.compile();
+        let ops: std::collections::HashSet<String> = compiled
+            .parts
+            .values
+            .instructions
+            .iter()
+            .map(|instruction| format!("{:?}", instruction.op))
+            .collect();
+        for op in [
+            "Add",
+            "Sub",
+            "Mul",
+            "MulAdd",
+            "MulSubtractedFrom",
+            "MulMinus",
+            "Scale",
+        ] {
+            assert!(ops.contains(op), "{op} missing from {ops:?}");
+        }
+        let point = [C64::new(0.3, -1.1), C64::new(-0.7, 0.4), C64::new(1.3, 0.2)];
+        let mut work = compiled.new_workspace();
+        let mut f = [C64::new(0.0, 0.0); 6];
+        let mut jac = [C64::new(0.0, 0.0); 18];
+        compiled.evaluate_with_jacobian(&point, &[], &mut work, &mut f, &mut jac);
+        let expected_f = system.evaluate_naive(&point, &[]);
+        let expected_jac = system.jacobian_naive(&point, &[]);
+        for (got, want) in f
+            .iter()
+            .zip(&expected_f)
+            .chain(jac.iter().zip(&expected_jac))
+        {
+            assert!(
+                (got - want).norm() <= 1e-14 * want.norm().max(1.0),
+                "{got} vs {want}"
+            );
+        }
     }
 }

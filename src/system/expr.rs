@@ -305,6 +305,17 @@ impl Expr {
         result
     }
 
+    /// `Σ terms`, combined as a balanced binary tree (depth `⌈log₂ len⌉`, so that
+    /// long sums do not make deep recursions). The empty sum is 0.
+    pub fn balanced_sum(terms: Vec<Expr>) -> Expr {
+        balanced(terms, &add).unwrap_or_else(Expr::zero)
+    }
+
+    /// `Π factors`, combined as a balanced binary tree. The empty product is 1.
+    pub fn balanced_product(factors: Vec<Expr>) -> Expr {
+        balanced(factors, &mul).unwrap_or_else(Expr::one)
+    }
+
     /// Number of distinct nodes of the DAG.
     pub fn node_count(&self) -> usize {
         let mut seen = std::collections::HashSet::new();
@@ -324,6 +335,19 @@ impl Expr {
         }
         seen.len()
     }
+}
+
+fn balanced(mut items: Vec<Expr>, combine: &dyn Fn(&Expr, &Expr) -> Expr) -> Option<Expr> {
+    while items.len() > 1 {
+        let mut next = Vec::with_capacity(items.len().div_ceil(2));
+        let mut iter = items.chunks_exact(2);
+        for pair in &mut iter {
+            next.push(combine(&pair[0], &pair[1]));
+        }
+        next.extend(iter.remainder().iter().cloned());
+        items = next;
+    }
+    items.pop()
 }
 
 fn add(a: &Expr, b: &Expr) -> Expr {
@@ -355,6 +379,13 @@ fn mul(a: &Expr, b: &Expr) -> Expr {
         _ if b.is_one() => a.clone(),
         (Kind::Constant(x), _) if *x == -ONE => neg(b),
         (_, Kind::Constant(y)) if *y == -ONE => neg(a),
+        // c₁·(c₂·e) = (c₁c₂)·e
+        (Kind::Constant(x), Kind::Mul(c, e)) if c.as_constant().is_some() => {
+            mul(&Expr::constant(x * c.as_constant().unwrap_or(ONE)), e)
+        }
+        (Kind::Mul(c, e), Kind::Constant(y)) if c.as_constant().is_some() => {
+            mul(&Expr::constant(y * c.as_constant().unwrap_or(ONE)), e)
+        }
         (Kind::Neg(x), Kind::Neg(y)) => mul(x, y),
         (Kind::Neg(x), _) => neg(&mul(x, b)),
         (_, Kind::Neg(y)) => neg(&mul(a, y)),
@@ -524,20 +555,30 @@ impl<T: Into<Expr>> MulAssign<T> for Expr {
 }
 
 impl std::iter::Sum for Expr {
+    /// Balanced sum (see [`Expr::balanced_sum`]).
     fn sum<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::zero(), |acc, e| acc + e)
+        Expr::balanced_sum(iter.collect())
     }
 }
 
 impl<'a> std::iter::Sum<&'a Expr> for Expr {
+    /// Balanced sum (see [`Expr::balanced_sum`]).
     fn sum<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::zero(), |acc, e| acc + e)
+        Expr::balanced_sum(iter.cloned().collect())
     }
 }
 
 impl std::iter::Product for Expr {
+    /// Balanced product (see [`Expr::balanced_product`]).
     fn product<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        iter.fold(Expr::one(), |acc, e| acc * e)
+        Expr::balanced_product(iter.collect())
+    }
+}
+
+impl<'a> std::iter::Product<&'a Expr> for Expr {
+    /// Balanced product (see [`Expr::balanced_product`]).
+    fn product<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
+        Expr::balanced_product(iter.cloned().collect())
     }
 }
 
@@ -648,5 +689,74 @@ impl fmt::Display for Expr {
 impl fmt::Debug for Expr {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         fmt::Display::fmt(self, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn x() -> Expr {
+        Expr::variable("x")
+    }
+
+    #[test]
+    fn constructors_simplify_locally() {
+        assert_eq!(x() + 0.0, x());
+        assert_eq!(0.0 + x(), x());
+        assert!((x() * 0.0).is_zero());
+        assert_eq!(1.0 * x(), x());
+        assert_eq!(-(-x()), x());
+        assert_eq!(x() * x(), x().pow(2));
+        assert_eq!(x().pow(2).pow(3), x().pow(6));
+        assert_eq!(x().pow(1), x());
+        assert!(x().pow(0).is_one());
+        assert_eq!(
+            (Expr::from(2.0) * 3.0).as_constant(),
+            Some(C64::new(6.0, 0.0))
+        );
+        // c₁·(c₂·x) folds the constants; x·c puts the constant first.
+        assert_eq!(2.0 * (3.0 * x()), 6.0 * x());
+        assert_eq!(x() * 2.0, 2.0 * x());
+        // a + (−b) is a − b, −(a − b) is b − a.
+        let y = Expr::variable("y");
+        assert_eq!(x() + (-&y), x() - &y);
+        assert_eq!(-(x() - &y), &y - x());
+        assert_ne!(x() - &y, &y - x());
+    }
+
+    #[test]
+    fn display_parenthesises_by_precedence() {
+        let y = Expr::variable("y");
+        assert_eq!((x() + &y).pow(2).to_string(), "(x + y)^2");
+        assert_eq!((x() - (&y - 1.0)).to_string(), "x - (y - 1.0)");
+        assert_eq!((x() * -(&y)).to_string(), "-(x*y)");
+        assert_eq!((x() * (&y + 1.0)).to_string(), "x*(y + 1.0)");
+        assert_eq!(
+            Expr::constant(C64::new(-1.5, 0.0)).pow(3).to_string(),
+            "(-3.375)"
+        );
+        assert_eq!((x() + C64::new(0.5, -2.0)).to_string(), "x + (0.5-2.0*I)");
+        assert_eq!((x() * -2.0).to_string(), "(-2.0)*x");
+    }
+
+    #[test]
+    fn shared_subexpressions_are_evaluated_once_and_counted_once() {
+        let s = (x() + 1.0).pow(3);
+        let e = &s * &s + &s;
+        // s·s becomes s², whose node shares s: nodes {e, s², s, x + 1, x, 1}.
+        assert_eq!(e.node_count(), 6);
+        let value = e.evaluate(|_| Some(C64::new(1.0, 0.0))).unwrap();
+        assert_eq!(value, C64::new(64.0 + 8.0, 0.0));
+        assert_eq!(e.evaluate(|_| None), Err("x".to_string()));
+        assert_eq!(e.symbols(), vec!["x".to_string()]);
+    }
+
+    #[test]
+    fn substitution_rebuilds_with_simplification() {
+        let y = Expr::variable("y");
+        let e = x() * &y + &y;
+        let replaced = e.substitute(&|name| (name == "y").then(Expr::zero));
+        assert!(replaced.is_zero());
     }
 }

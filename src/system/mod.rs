@@ -6,6 +6,31 @@
 //! [`Evaluator`] trait: evaluation into caller-provided buffers with a caller-provided
 //! scratch workspace, so the hot loop of the tracker allocates nothing and one
 //! compiled system is shared by all threads (`Send + Sync`, workspaces per thread).
+//!
+//! Files, in the order the data flows:
+//! - [`expr`]: [`Expr`], the expression DAG with operator overloading, the
+//!   [`crate::algebra::Ring`] instance, exact differentiation and naive evaluation;
+//! - [`builder`]: [`System`] (validation, Lagrange systems `∇Λ = 0`, degrees, Bézout
+//!   number, reference evaluation);
+//! - [`compile`]: [`CompiledSystem`], straight-line programs for F, ∂F/∂x, ∂F/∂p and
+//!   (∂F/∂p)·dp, the [`Evaluator`] used by the homotopy engine;
+//! - [`sparse`]: expansion into monomials (exact degrees, PHCpack export);
+//! - [`parse`], [`bertini`], [`phc`]: the text formats.
+//!
+//! ```
+//! use singdist::C64;
+//! use singdist::system::{Evaluator, Expr, System};
+//!
+//! let (x, y, p) = (Expr::variable("x"), Expr::variable("y"), Expr::parameter("p"));
+//! let system = System::new(["x", "y"], ["p"], vec![&x * &x + &y * &y - &p, &x - &y]).unwrap();
+//! let compiled = system.compile();
+//! let mut work = compiled.new_workspace();
+//! let (mut f, mut jac) = ([C64::new(0.0, 0.0); 2], [C64::new(0.0, 0.0); 4]);
+//! let point = [C64::new(1.0, 0.0), C64::new(2.0, 0.0)];
+//! compiled.evaluate_with_jacobian(&point, &[C64::new(5.0, 0.0)], &mut work, &mut f, &mut jac);
+//! assert_eq!(f[0], C64::new(0.0, 0.0));
+//! assert_eq!(jac[1], C64::new(4.0, 0.0)); // ∂f₀/∂y = 2y
+//! ```
 
 use crate::C64;
 

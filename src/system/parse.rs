@@ -150,9 +150,9 @@ pub(crate) struct Spanned {
     pub end_column: usize,
 }
 
-/// Splits `text` into tokens; `%` (and, if `hash_comments`, also `#`) start a comment
-/// to the end of the line. Unknown characters become [`Token::Other`] so that
-/// free-form sections (Bertini's CONFIG) can be skipped.
+/// Splits `text` into tokens; `%` starts a comment to the end of the line. Unknown
+/// characters become [`Token::Other`] so that free-form sections (Bertini's CONFIG)
+/// can be skipped.
 pub(crate) fn tokenize(text: &str) -> Result<Vec<Spanned>, ParseError> {
     let chars: Vec<char> = text.chars().collect();
     let mut tokens = Vec::new();
@@ -342,18 +342,19 @@ impl TokenCursor {
         resolve: &dyn Fn(&str) -> Resolved,
         depth: usize,
     ) -> Result<Expr, ParseError> {
-        let mut value = self.product(resolve, depth)?;
+        // Terms are combined as a balanced tree so that long sums stay shallow.
+        let mut terms = vec![self.product(resolve, depth)?];
         loop {
             match self.peek().token {
                 Token::Plus => {
                     self.advance();
-                    value += self.product(resolve, depth)?;
+                    terms.push(self.product(resolve, depth)?);
                 }
                 Token::Minus => {
                     self.advance();
-                    value -= self.product(resolve, depth)?;
+                    terms.push(-self.product(resolve, depth)?);
                 }
-                _ => return Ok(value),
+                _ => return Ok(Expr::balanced_sum(terms)),
             }
         }
     }
@@ -363,19 +364,19 @@ impl TokenCursor {
         resolve: &dyn Fn(&str) -> Resolved,
         depth: usize,
     ) -> Result<Expr, ParseError> {
-        let mut value = self.unary(resolve, depth)?;
+        let mut factors = vec![self.unary(resolve, depth)?];
         loop {
             match self.peek().token {
                 Token::Star => {
                     self.advance();
-                    value *= self.unary(resolve, depth)?;
+                    factors.push(self.unary(resolve, depth)?);
                 }
                 Token::Slash => {
                     let at = self.advance();
                     let divisor = self.unary(resolve, depth)?;
                     match divisor.as_constant() {
                         Some(c) if c != C64::new(0.0, 0.0) => {
-                            value *= Expr::constant(C64::new(1.0, 0.0) / c);
+                            factors.push(Expr::constant(C64::new(1.0, 0.0) / c));
                         }
                         _ => {
                             return Err(ParseError {
@@ -386,7 +387,7 @@ impl TokenCursor {
                         }
                     }
                 }
-                _ => return Ok(value),
+                _ => return Ok(Expr::balanced_product(factors)),
             }
         }
     }
@@ -433,10 +434,9 @@ impl TokenCursor {
         }
         let at = self.peek().clone();
         let value = match &at.token {
-            Token::Number(value, text)
+            Token::Number(value, _)
                 if value.fract() == 0.0 && *value >= 0.0 && *value <= u32::MAX as f64 =>
             {
-                let _ = text;
                 *value as u32
             }
             other => {
