@@ -160,3 +160,33 @@ fn bad_input_is_an_error_not_a_panic() {
         .is_err()
     );
 }
+
+/// Paths that fail in the first pass (here: a step budget of 5) are re-tracked with the
+/// conservative preset, never dropped.
+#[test]
+fn failed_paths_are_retracked_with_conservative_options() {
+    use singdist::homotopy::TrackerOptions;
+    let system = katsura(4);
+    let tracker = TrackerOptions {
+        max_steps: 5,
+        ..TrackerOptions::default()
+    };
+    let options = SolveOptions {
+        tracker,
+        ..SolveOptions::default()
+    };
+    let result = solve_total_degree(&system, &system.degrees(), &[], &options).unwrap();
+    assert_eq!(result.summary.retracked, 16);
+    assert_eq!(result.summary.nonsingular, 16, "{:?}", result.summary);
+    let without = SolveOptions {
+        retry_failed: false,
+        ..options
+    };
+    let result = solve_total_degree(&system, &system.degrees(), &[], &without).unwrap();
+    assert_eq!(result.summary.failed, 16);
+    assert!(
+        result.paths.iter().all(
+            |p| p.status == PathStatus::Failed(singdist::homotopy::FailureReason::TooManySteps)
+        )
+    );
+}
