@@ -78,3 +78,106 @@ fn random_quadrics_in_11_unknowns() {
     let _ = C64::new(0.0, 0.0);
     assert_eq!(r.summary.nonsingular, 2048);
 }
+
+/// Monodromy + trace test timings on all-coefficient families.
+#[test]
+#[ignore]
+fn monodromy_timings() {
+    use singdist::homotopy::{MonodromyOptions, monodromy_solve};
+    for degrees in [vec![2u32, 2, 2, 2], vec![2, 2, 2, 2, 2], vec![3, 3, 3]] {
+        let (system, _) = parametric_dense(&degrees, 3);
+        // start pair: random x0, p; solve for the constant-term parameters
+        let mut p: Vec<singdist::C64> = {
+            let mut rng = singdist::random::seeded(9);
+            (0..system.m)
+                .map(|_| singdist::random::complex_normal(&mut rng))
+                .collect()
+        };
+        let x0: Vec<singdist::C64> = {
+            let mut rng = singdist::random::seeded(10);
+            (0..system.n)
+                .map(|_| singdist::random::complex_normal(&mut rng))
+                .collect()
+        };
+        for eq in &system.equations {
+            let k = eq
+                .iter()
+                .find(|t| t.exponents.iter().all(|&e| e == 0))
+                .unwrap()
+                .parameter
+                .unwrap();
+            p[k] = singdist::C64::new(0.0, 0.0);
+            let one = TermSystem {
+                n: system.n,
+                m: system.m,
+                equations: vec![eq.clone()],
+            };
+            let mut f = vec![singdist::C64::new(0.0, 0.0)];
+            singdist::system::Evaluator::evaluate(&one, &x0, &p, &mut [], &mut f);
+            p[k] = -f[0];
+        }
+        let start = std::time::Instant::now();
+        let r = monodromy_solve(&system, &x0, &p, &MonodromyOptions::default(), 1).unwrap();
+        eprintln!(
+            "{degrees:?}: {} solutions, loops {}, witness {} ({} loops), trace {:?}, added {}, {:.2}s",
+            r.solutions.len(),
+            r.loops,
+            r.witness_points,
+            r.witness_loops,
+            r.trace_residual,
+            r.added_by_trace_test,
+            start.elapsed().as_secs_f64()
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn quadric_cubic_debug() {
+    use singdist::homotopy::{MonodromyOptions, trace_test};
+    let (system, _) = parametric_dense(&[2, 3], 11);
+    let mut rng = singdist::random::seeded(111);
+    let x0: Vec<singdist::C64> = (0..2)
+        .map(|_| singdist::random::complex_normal(&mut rng))
+        .collect();
+    let mut p: Vec<singdist::C64> = (0..system.m)
+        .map(|_| singdist::random::complex_normal(&mut rng))
+        .collect();
+    for eq in &system.equations {
+        let k = eq
+            .iter()
+            .find(|t| t.exponents.iter().all(|&e| e == 0))
+            .unwrap()
+            .parameter
+            .unwrap();
+        p[k] = singdist::C64::new(0.0, 0.0);
+        let one = TermSystem {
+            n: system.n,
+            m: system.m,
+            equations: vec![eq.clone()],
+        };
+        let mut f = vec![singdist::C64::new(0.0, 0.0)];
+        singdist::system::Evaluator::evaluate(&one, &x0, &p, &mut [], &mut f);
+        p[k] = -f[0];
+    }
+    let r = singdist::homotopy::monodromy_solve(&system, &x0, &p, &MonodromyOptions::default(), 11)
+        .unwrap();
+    for seed in 0..4 {
+        let o = MonodromyOptions {
+            max_stagnant_loops: 30,
+            ..MonodromyOptions::default()
+        };
+        let c = trace_test(
+            &system,
+            &p,
+            &r.solutions,
+            &o,
+            &mut singdist::random::seeded(seed),
+        )
+        .unwrap();
+        eprintln!(
+            "seed {seed}: witness {} residual {:e}",
+            c.witness_points, c.residual
+        );
+    }
+}

@@ -50,6 +50,8 @@ pub struct MonodromyOptions {
     pub trace_test: bool,
     /// Trace residual below which the solution set counts as certified complete.
     pub trace_tolerance: f64,
+    /// Rounds of witness-set monodromy + trace evaluation while the trace fails.
+    pub trace_rounds: usize,
 }
 
 impl Default for MonodromyOptions {
@@ -62,6 +64,7 @@ impl Default for MonodromyOptions {
             duplicate_tolerance: 1e-8,
             trace_test: true,
             trace_tolerance: 1e-8,
+            trace_rounds: 4,
         }
     }
 }
@@ -335,45 +338,33 @@ pub fn trace_test<F: Evaluator + ?Sized>(
     if witness.is_empty() {
         return None;
     }
-    let (witness_loops, witness_failed) =
-        populate(&curve, &generic, &mut witness, options, None, rng);
-    failed += witness_failed;
-    // Traces on three parallel slices c, c ± δ.
+    // Populate, test; if the trace is not linear yet, keep looping (up to
+    // `trace_rounds` rounds): a failing trace means witness points are missing.
     let delta = complex_normal(rng) * 0.5;
-    let mut sums = [
-        vec![C64::new(0.0, 0.0); n + 1],
-        vec![C64::new(0.0, 0.0); n + 1],
-    ];
-    for (k, sign) in [1.0, -1.0].into_iter().enumerate() {
-        let mut moved = generic.clone();
-        moved[n] += delta * sign;
-        for r in track(&generic, &moved, &witness, false) {
-            if r.status != PathStatus::Nonsingular {
-                return Some(TraceCertificate {
-                    residual: f64::INFINITY,
-                    witness_points: witness.len(),
-                    witness_loops,
-                    added_solutions: Vec::new(),
-                    failed_paths: failed + 1,
-                });
-            }
-            for (s, v) in sums[k].iter_mut().zip(&r.solution) {
-                *s += v;
+    let mut witness_loops = 0;
+    let mut residual = f64::INFINITY;
+    for round in 0..options.trace_rounds.max(1) {
+        // A failing trace proves points are missing: each further round allows twice
+        // as many fruitless loops before it gives up.
+        let round_options = MonodromyOptions {
+            max_stagnant_loops: options.max_stagnant_loops << round.min(8),
+            ..options.clone()
+        };
+        let (loops, witness_failed) =
+            populate(&curve, &generic, &mut witness, &round_options, None, rng);
+        witness_loops += loops;
+        failed += witness_failed;
+        match trace_residual(&witness, &generic, delta, &track) {
+            Some(r) => residual = r,
+            None => {
+                failed += 1;
+                residual = f64::INFINITY;
             }
         }
-    }
-    let mut magnitude = 1.0;
-    let mut center = vec![C64::new(0.0, 0.0); n + 1];
-    for w in &witness {
-        magnitude += w.iter().fold(0.0f64, |a, v| a.max(v.norm()));
-        for (s, v) in center.iter_mut().zip(w) {
-            *s += v;
+        if residual < options.trace_tolerance || options.max_stagnant_loops == 0 {
+            break;
         }
     }
-    let second_difference = (0..=n)
-        .map(|i| (sums[0][i] - 2.0 * center[i] + sums[1][i]).norm())
-        .fold(0.0f64, f64::max);
-    let residual = second_difference / magnitude;
     // Witness points not coming from the known fiber: back to μ = 0 with endgame.
     let mut added_solutions: Vec<Vec<C64>> = Vec::new();
     if witness.len() > solutions.len() {
@@ -393,6 +384,43 @@ pub fn trace_test<F: Evaluator + ?Sized>(
         added_solutions,
         failed_paths: failed,
     })
+}
+
+/// `‖s(c+δ) − 2 s(c) + s(c−δ)‖∞ / (1 + Σ‖w‖∞)` for the witness set on the slice
+/// `generic` (last coordinate c); `None` if a path fails.
+fn trace_residual<T>(witness: &[Vec<C64>], generic: &[C64], delta: C64, track: &T) -> Option<f64>
+where
+    T: Fn(&[C64], &[C64], &[Vec<C64>], bool) -> Vec<super::tracker::PathResult>,
+{
+    let last = generic.len() - 1;
+    let mut sums = [
+        vec![C64::new(0.0, 0.0); generic.len()],
+        vec![C64::new(0.0, 0.0); generic.len()],
+    ];
+    for (k, sign) in [1.0, -1.0].into_iter().enumerate() {
+        let mut moved = generic.to_vec();
+        moved[last] += delta * sign;
+        for r in track(generic, &moved, witness, false) {
+            if r.status != PathStatus::Nonsingular {
+                return None;
+            }
+            for (s, v) in sums[k].iter_mut().zip(&r.solution) {
+                *s += v;
+            }
+        }
+    }
+    let mut magnitude = 1.0;
+    let mut center = vec![C64::new(0.0, 0.0); generic.len()];
+    for w in witness {
+        magnitude += w.iter().fold(0.0f64, |a, v| a.max(v.norm()));
+        for (s, v) in center.iter_mut().zip(w) {
+            *s += v;
+        }
+    }
+    let second_difference = (0..generic.len())
+        .map(|i| (sums[0][i] - 2.0 * center[i] + sums[1][i]).norm())
+        .fold(0.0f64, f64::max);
+    Some(second_difference / magnitude)
 }
 
 /// The incidence curve of `F` over the line `p₀ + μ v`, cut by the hyperplane
