@@ -181,3 +181,41 @@ fn quadric_cubic_debug() {
         );
     }
 }
+
+#[test]
+#[ignore]
+fn cyclic_6_failures() {
+    use singdist::homotopy::PathStatus;
+    let text = std::fs::read_to_string("/tmp/engine/cyclic6.input").unwrap();
+    let system = singdist::system::bertini::read(&text).unwrap();
+    let degrees: Vec<u32> = system.degrees().iter().map(|&d| d as u32).collect();
+    let compiled = system.compile();
+    let options = SolveOptions {
+        retry_failed: false,
+        ..SolveOptions::default()
+    };
+    let r = solve_total_degree(&compiled, &degrees, &[], &options).unwrap();
+    eprintln!("{:?}", r.summary);
+    let mut inf_steps = 0;
+    for p in &r.paths {
+        if let PathStatus::Failed(_) = p.status {
+            let nrm = p.solution.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            eprintln!(
+                "{} {:?} norm {nrm:.2e} steps {} rej {} w {} ext {}",
+                p.path_index,
+                p.status,
+                p.steps,
+                p.rejected_steps,
+                p.winding_number,
+                p.used_extended_precision
+            );
+        }
+        if p.status == PathStatus::AtInfinity {
+            inf_steps += p.steps;
+        }
+    }
+    eprintln!(
+        "mean steps at infinity {}",
+        inf_steps as f64 / r.summary.at_infinity as f64
+    );
+}
