@@ -190,7 +190,21 @@ fn cyclic_6_failures() {
     let system = singdist::system::bertini::read(&text).unwrap();
     let degrees: Vec<u32> = system.degrees().iter().map(|&d| d as u32).collect();
     let compiled = system.compile();
+    let winding: usize = std::env::var("WINDING")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(16);
+    let ratio: f64 = std::env::var("RATIO")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.25);
+    let tracker = singdist::homotopy::TrackerOptions {
+        max_winding_number: winding,
+        endgame_ratio: ratio,
+        ..Default::default()
+    };
     let options = SolveOptions {
+        tracker,
         retry_failed: false,
         ..SolveOptions::default()
     };
@@ -218,4 +232,28 @@ fn cyclic_6_failures() {
         "mean steps at infinity {}",
         inf_steps as f64 / r.summary.at_infinity as f64
     );
+}
+
+#[test]
+#[ignore]
+fn cyclic_6_path_197() {
+    use singdist::homotopy::*;
+    let text = std::fs::read_to_string("/tmp/engine/cyclic6.input").unwrap();
+    let system = singdist::system::bertini::read(&text).unwrap();
+    let degrees: Vec<u32> = system.degrees().iter().map(|&d| d as u32).collect();
+    let compiled = system.compile();
+    let start = TotalDegreeStartSystem::new(degrees);
+    let gamma = singdist::random::unit_complex(&mut singdist::random::seeded(0x5eed));
+    let h = StraightLineHomotopy::new(&start, &compiled, vec![], gamma);
+    let mut tr = Tracker::new(&h, TrackerOptions::default());
+    let mut x = vec![singdist::C64::new(0.0, 0.0); 6];
+    start.start_solution(197, &mut x);
+    for t1 in [0.5, 0.9, 0.99, 0.999, 0.99999, 0.9999999] {
+        let r = tr.track_between(&x, 0.0, t1, 0);
+        let nrm = r.solution.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        eprintln!(
+            "t={t1} {:?} steps {} norm {nrm:.3e} cond {:.2e}",
+            r.status, r.steps, r.condition
+        );
+    }
 }
