@@ -1,0 +1,98 @@
+//! `singdist solve` end to end: text summary, JSON schema, monodromy, bad input.
+
+use std::process::Command;
+
+fn write(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("singdist_homotopy_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn singdist(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_singdist"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+const CIRCLE_HYPERBOLA: &str =
+    "INPUT\nvariable_group x, y;\nfunction f, g;\nf = x^2 + y^2 - 1;\ng = x*y - 0.25;\nEND;\n";
+
+#[test]
+fn text_summary_counts_the_four_real_intersections() {
+    let file = write("ch.input", CIRCLE_HYPERBOLA);
+    let out = singdist(&["solve", file.to_str().unwrap(), "--threads", "1"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    for line in [
+        "paths         4",
+        "nonsingular   4",
+        "at infinity   0",
+        "failed        0",
+        "real          4",
+    ] {
+        assert!(text.contains(line), "missing `{line}` in\n{text}");
+    }
+}
+
+#[test]
+fn json_output_has_summary_and_solutions_as_re_im_pairs() {
+    let file = write("ch2.input", CIRCLE_HYPERBOLA);
+    let out = singdist(&["solve", file.to_str().unwrap(), "--json", "--seed", "3"]);
+    assert!(out.status.success());
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["summary"]["nonsingular"], 4);
+    let solutions = value["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 4);
+    for s in solutions {
+        let c = s["coordinates"].as_array().unwrap();
+        let x = c[0][0].as_f64().unwrap();
+        let y = c[1][0].as_f64().unwrap();
+        assert!((x * x + y * y - 1.0).abs() < 1e-12 && (x * y - 0.25).abs() < 1e-12);
+        assert!(c[0][1].as_f64().unwrap().abs() < 1e-12);
+        assert_eq!(s["status"], "nonsingular");
+        assert!(s["residual"].as_f64().unwrap() < 1e-14);
+        assert!(s["condition"].as_f64().unwrap() >= 1.0);
+    }
+}
+
+#[test]
+fn monodromy_mode_agrees_and_reports_a_small_trace_residual() {
+    let file = write("ch3.input", CIRCLE_HYPERBOLA);
+    let out = singdist(&["solve", file.to_str().unwrap(), "--monodromy", "--json"]);
+    assert!(out.status.success());
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["summary"]["nonsingular"], 4);
+    assert!(value["trace_residual"].as_f64().unwrap() < 1e-8);
+}
+
+#[test]
+fn bad_files_and_unset_parameters_are_errors() {
+    let missing = singdist(&["solve", "/definitely/not/here.input"]);
+    assert_eq!(missing.status.code(), Some(1));
+    let bad = write("bad.input", "variable_group x;\nfunction f;\nf = x^2 - ;\n");
+    let out = singdist(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("line"));
+    let param = write(
+        "p.input",
+        "variable_group x;\nparameter a;\nfunction f;\nf = x^2 - a;\n",
+    );
+    let out = singdist(&["solve", param.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--set"));
+    let out = singdist(&["solve", param.to_str().unwrap(), "--set", "a=4", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["summary"]["nonsingular"], 2);
+}
