@@ -76,7 +76,7 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
             };
             let check = ab_initio::verify(&problem, &file)?;
             println!(
-                "{:<40} {} solutions (expected {}), max residual {:.1e}, min separation {:.1e}, trace {:.1e}: {}",
+                "{:<40} {} solutions (expected {}), max residual {:.1e}, min separation {:.1e}, trace {}: {}",
                 check.problem,
                 check.count,
                 check
@@ -84,7 +84,9 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
                     .map_or("unknown".to_string(), |e| e.to_string()),
                 check.max_residual,
                 check.min_separation,
-                check.trace_residual.unwrap_or(f64::NAN),
+                check
+                    .trace_residual
+                    .map_or("not run".to_string(), |t| format!("{t:.1e}")),
                 if check.passed { "ok" } else { "FAILED" }
             );
             failures += usize::from(!check.passed);
@@ -99,13 +101,17 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
         let expected = ab_initio::expected_count(id);
         let ok = file.certificate.passed && expected.is_none_or(|e| e == file.solutions.len());
         println!(
-            "{:<40} {} solutions (expected {}), max residual {:.1e}, trace {:.1e}, {} loops, {:.2} s{}",
+            "{:<40} {} solutions (expected {}), max residual {:.1e}, certificate {} (trace {}), {} loops, {} failed paths, {:.2} s{}",
             id.name(),
             file.solutions.len(),
             expected.map_or("unknown".to_string(), |e| e.to_string()),
             file.max_residual,
-            file.certificate.trace_residual,
+            file.certificate.kind,
+            file.certificate
+                .trace_residual
+                .map_or("not run".to_string(), |t| format!("{t:.1e}")),
             file.certificate.loops,
+            file.certificate.failed_paths,
             clock.elapsed().as_secs_f64(),
             if ok { "" } else { "  FAILED" }
         );
