@@ -16,13 +16,6 @@ fn root_counts_are_the_same_for_a_second_source_seed() {
             Err(ProblemError::NotApplicable { .. }) => continue,
             other => other.unwrap(),
         };
-        if id.subproblem == singdist::problem::SubProblem::Singularity
-            && (id.metric.platform == singdist::metric::Part::Rigid
-                || id.metric.base == singdist::metric::Part::Rigid)
-        {
-            // Known incomplete (monodromy stalls below 80/88); checked in problem_theorems.
-            continue;
-        }
         let file = compute_start_solutions(&problem, &options).unwrap();
         assert!(
             file.certificate.passed,
