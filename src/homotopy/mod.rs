@@ -1,1 +1,31 @@
-//! Homotopy continuation: homotopies, predictor–corrector path tracking, endgame and path classification, start systems, monodromy with trace test, and the parallel `solve`.
+//! Homotopy continuation: homotopies, predictor–corrector path tracking, endgame and
+//! path classification, start systems, monodromy with trace test, and the parallel
+//! `solve`.
+//!
+//! Read in this order: [`linalg`] (the LU of the hot loop), [`homotopies`] (what is
+//! tracked), [`start`] (total-degree start systems), [`tracker`] (predictor, corrector,
+//! step control, endgame, classification), [`solve`] (many paths in parallel, with
+//! re-runs of failed paths), [`monodromy`] (solutions of parametric families from one
+//! start pair, certified by a trace test).
+
+pub mod homotopies;
+pub mod linalg;
+pub mod monodromy;
+pub mod solve;
+pub mod start;
+pub mod tracker;
+
+pub use homotopies::{
+    Homotopy, ParameterHomotopy, PolylineParameterHomotopy, StraightLineHomotopy,
+};
+pub use linalg::LuWorkspace;
+pub use monodromy::{
+    ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
+    monodromy_solve, solve_by_monodromy, trace_test,
+};
+pub use solve::{
+    HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,
+    solve_total_degree, solve_with_homotopy,
+};
+pub use start::TotalDegreeStartSystem;
+pub use tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};

@@ -1,0 +1,303 @@
+//! Homotopies `H(x, t)`: families of square systems joining a start system at `t = 0`
+//! to the target at `t = 1`.
+//!
+//! - [`StraightLineHomotopy`]: `H = (1 − t)·γ·G(x) + t·F(x; p)` with a random unit
+//!   complex γ (the "γ-trick": for all but finitely many γ on the unit circle the paths
+//!   are smooth for `t ∈ [0, 1)`, Sommese & Wampler, *The Numerical Solution of Systems
+//!   of Polynomials*, Lemma 7.1.3).
+//! - [`ParameterHomotopy`]: `H = F(x; p(t))` with `p(t) = (1 − t) p₀ + t p₁` (the
+//!   coefficient-parameter homotopy, Morgan & Sommese 1989); for generic complex `p₀, p₁`
+//!   the segment avoids the discriminant.
+//! - [`PolylineParameterHomotopy`]: `p(t)` piecewise linear through `p₀, …, p_K`
+//!   (complex detours; the monodromy loops of [`crate::homotopy::monodromy`]).
+//!
+//! The tracker sees only the [`Homotopy`] trait; callers may implement it themselves.
+
+use crate::C64;
+use crate::system::Evaluator;
+
+/// A square homotopy `H: Cⁿ × C → Cⁿ`, evaluated into caller buffers with a per-thread
+/// scratch workspace of [`Homotopy::workspace_len`] entries (no allocation).
+///
+/// `t` is complex: the tracker walks real segments of `[0, 1]` and the Cauchy endgame
+/// walks small circles around `t = 1`. Jacobians are row-major n × n.
+pub trait Homotopy: Send + Sync {
+    /// Number of unknowns (= number of equations) n.
+    fn dimension(&self) -> usize;
+    /// Scratch length the evaluation calls need.
+    fn workspace_len(&self) -> usize;
+    /// `h ← H(x, t)`.
+    fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]);
+    /// `h ← H(x, t)`, `jac ← ∂H/∂x (x, t)`.
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+    );
+    /// `dh ← ∂H/∂t (x, t)`.
+    fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]);
+    /// Values of `t` in `(0, 1)` where `H` is only piecewise smooth (the tracker stops
+    /// there so no predictor step straddles a kink). Empty by default.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
+    }
+}
+
+/// `H(x, t) = (1 − t)·γ·G(x) + t·F(x; p)` with fixed target parameters `p`.
+pub struct StraightLineHomotopy<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> {
+    start: &'a G,
+    target: &'a F,
+    target_parameters: Vec<C64>,
+    gamma: C64,
+    n: usize,
+}
+
+impl<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> StraightLineHomotopy<'a, G, F> {
+    /// Homotopy from `start` (no parameters) to `target` at `target_parameters`.
+    /// Both systems must be square with the same number of unknowns (checked by
+    /// [`crate::homotopy::solve`]; here a mismatch is a programming error).
+    pub fn new(start: &'a G, target: &'a F, target_parameters: Vec<C64>, gamma: C64) -> Self {
+        let n = target.num_variables();
+        assert_eq!(
+            start.num_variables(),
+            n,
+            "start and target dimensions differ"
+        );
+        assert_eq!(target_parameters.len(), target.num_parameters());
+        StraightLineHomotopy {
+            start,
+            target,
+            target_parameters,
+            gamma,
+            n,
+        }
+    }
+
+    /// The γ of the homotopy.
+    pub fn gamma(&self) -> C64 {
+        self.gamma
+    }
+}
+
+impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomotopy<'_, G, F> {
+    fn dimension(&self) -> usize {
+        self.n
+    }
+
+    fn workspace_len(&self) -> usize {
+        self.n + self.n * self.n + self.start.workspace_len().max(self.target.workspace_len())
+    }
+
+    fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let rest = &mut rest[n * n..];
+        self.start.evaluate(x, &[], rest, g);
+        self.target.evaluate(x, &self.target_parameters, rest, h);
+        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
+        for (hi, gi) in h.iter_mut().zip(g.iter()) {
+            *hi = t * *hi + a * gi;
+        }
+    }
+
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let (g_jac, rest) = rest.split_at_mut(n * n);
+        self.start.evaluate_with_jacobian(x, &[], rest, g, g_jac);
+        self.target
+            .evaluate_with_jacobian(x, &self.target_parameters, rest, h, jac);
+        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
+        for (hi, gi) in h.iter_mut().zip(g.iter()) {
+            *hi = t * *hi + a * gi;
+        }
+        for (ji, gi) in jac.iter_mut().zip(g_jac.iter()) {
+            *ji = t * *ji + a * gi;
+        }
+    }
+
+    fn evaluate_time_derivative(&self, x: &[C64], _t: C64, work: &mut [C64], dh: &mut [C64]) {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let rest = &mut rest[n * n..];
+        self.start.evaluate(x, &[], rest, g);
+        self.target.evaluate(x, &self.target_parameters, rest, dh);
+        for (di, gi) in dh.iter_mut().zip(g.iter()) {
+            *di -= self.gamma * gi;
+        }
+    }
+}
+
+/// `H(x, t) = F(x; (1 − t) p₀ + t p₁)`, so `∂H/∂t = (∂F/∂p)(p₁ − p₀)`.
+pub struct ParameterHomotopy<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    start_parameters: Vec<C64>,
+    direction: Vec<C64>,
+    n: usize,
+}
+
+impl<'a, F: Evaluator + ?Sized> ParameterHomotopy<'a, F> {
+    /// Segment from `start_parameters` (t = 0) to `target_parameters` (t = 1).
+    pub fn new(system: &'a F, start_parameters: &[C64], target_parameters: &[C64]) -> Self {
+        let m = system.num_parameters();
+        assert_eq!(start_parameters.len(), m);
+        assert_eq!(target_parameters.len(), m);
+        ParameterHomotopy {
+            system,
+            start_parameters: start_parameters.to_vec(),
+            direction: target_parameters
+                .iter()
+                .zip(start_parameters)
+                .map(|(b, a)| b - a)
+                .collect(),
+            n: system.num_variables(),
+        }
+    }
+
+    fn parameters_at(&self, t: C64, p: &mut [C64]) {
+        for ((pi, a), d) in p
+            .iter_mut()
+            .zip(&self.start_parameters)
+            .zip(&self.direction)
+        {
+            *pi = a + t * d;
+        }
+    }
+}
+
+impl<F: Evaluator + ?Sized> Homotopy for ParameterHomotopy<'_, F> {
+    fn dimension(&self) -> usize {
+        self.n
+    }
+
+    fn workspace_len(&self) -> usize {
+        self.start_parameters.len() + self.system.workspace_len()
+    }
+
+    fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
+        let (p, rest) = work.split_at_mut(self.start_parameters.len());
+        self.parameters_at(t, p);
+        self.system.evaluate(x, p, rest, h);
+    }
+
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        let (p, rest) = work.split_at_mut(self.start_parameters.len());
+        self.parameters_at(t, p);
+        self.system.evaluate_with_jacobian(x, p, rest, h, jac);
+    }
+
+    fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
+        let (p, rest) = work.split_at_mut(self.start_parameters.len());
+        self.parameters_at(t, p);
+        self.system
+            .evaluate_parameter_derivative(x, p, &self.direction, rest, dh);
+    }
+}
+
+/// `H(x, t) = F(x; p(t))` with `p` piecewise linear through `p₀, …, p_K` at
+/// `t = 0, 1/K, …, 1` (a closed loop when `p_K = p₀`).
+pub struct PolylineParameterHomotopy<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    points: Vec<Vec<C64>>,
+    breakpoints: Vec<f64>,
+    n: usize,
+}
+
+impl<'a, F: Evaluator + ?Sized> PolylineParameterHomotopy<'a, F> {
+    /// Polyline through `points` (at least two, each of length `num_parameters()`).
+    pub fn new(system: &'a F, points: Vec<Vec<C64>>) -> Self {
+        assert!(points.len() >= 2, "a polyline needs two points");
+        for p in &points {
+            assert_eq!(p.len(), system.num_parameters());
+        }
+        let segments = points.len() - 1;
+        PolylineParameterHomotopy {
+            system,
+            breakpoints: (1..segments).map(|k| k as f64 / segments as f64).collect(),
+            points,
+            n: system.num_variables(),
+        }
+    }
+
+    /// Segment index and local coordinate of `t` (segment chosen by `Re t`).
+    fn locate(&self, t: C64) -> (usize, C64) {
+        let segments = self.points.len() - 1;
+        let scaled = t * segments as f64;
+        let k = (scaled.re.floor().max(0.0) as usize).min(segments - 1);
+        (k, scaled - k as f64)
+    }
+
+    fn parameters_at(&self, t: C64, p: &mut [C64]) -> usize {
+        let (k, s) = self.locate(t);
+        for ((pi, a), b) in p.iter_mut().zip(&self.points[k]).zip(&self.points[k + 1]) {
+            *pi = a + s * (b - a);
+        }
+        k
+    }
+}
+
+impl<F: Evaluator + ?Sized> Homotopy for PolylineParameterHomotopy<'_, F> {
+    fn dimension(&self) -> usize {
+        self.n
+    }
+
+    fn workspace_len(&self) -> usize {
+        2 * self.system.num_parameters() + self.system.workspace_len()
+    }
+
+    fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
+        let m = self.system.num_parameters();
+        let (p, rest) = work.split_at_mut(m);
+        self.parameters_at(t, p);
+        self.system.evaluate(x, p, &mut rest[m..], h);
+    }
+
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        let m = self.system.num_parameters();
+        let (p, rest) = work.split_at_mut(m);
+        self.parameters_at(t, p);
+        self.system
+            .evaluate_with_jacobian(x, p, &mut rest[m..], h, jac);
+    }
+
+    fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
+        let m = self.system.num_parameters();
+        let segments = (self.points.len() - 1) as f64;
+        let (p, rest) = work.split_at_mut(m);
+        let k = self.parameters_at(t, p);
+        let (dp, rest) = rest.split_at_mut(m);
+        for ((d, a), b) in dp.iter_mut().zip(&self.points[k]).zip(&self.points[k + 1]) {
+            *d = (b - a) * segments;
+        }
+        self.system
+            .evaluate_parameter_derivative(x, p, dp, rest, dh);
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
+    }
+}

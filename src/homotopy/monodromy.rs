@@ -1,0 +1,622 @@
+//! Monodromy solving of parametric systems, certified by a trace test.
+//!
+//! **Monodromy** (Duff, Hill, Jensen, Lee, Leykin & Sommerhalder 2019): the solutions of
+//! `F(x; p₀) = 0` over a generic parameter point form one fiber of a branched cover of
+//! parameter space. Tracking known solutions around a loop `p₀ → p₁ → p₂ → p₀` through
+//! random complex points permutes the fiber, so new solutions appear; repeating with
+//! fresh loops until `max_stagnant_loops` loops in a row add nothing populates the fiber
+//! from a single start pair `(x₀, p₀)`.
+//!
+//! **Trace test** (Sommese, Verschelde & Wampler 2001; Leykin, Rodriguez & Sottile
+//! 2018): stagnation is no proof. Restrict the family to a random line
+//! `p(μ) = p₀ + μ v`; the incidence curve `C = {(x, μ) : F(x; p₀ + μ v) = 0}` meets a
+//! generic hyperplane `L_c = {μ = a·x + c}` in `deg C` points (a witness set), and for
+//! the *parallel* pencil `c ↦ L_c` the sum of those points is an affine-linear function
+//! of `c` — but only if no point is missing. We move the known fiber onto `L_c`
+//! (a parameter homotopy from the special slice `μ = 0`), populate the witness set by
+//! monodromy in the slice coefficients `(a, c)`, evaluate the sums `s(c), s(c ± δ)`, and
+//! report `‖s(c+δ) − 2 s(c) + s(c−δ)‖ / Σ‖w‖` as `trace_residual` (≈ 1e-14 when
+//! complete, O(1) when a point is missing). Witness points beyond the fiber's count
+//! (branches of `C` escaping to infinity as `μ → 0`) are tracked back to `μ = 0`; any
+//! finite endpoint not yet known is added, so a passing trace test certifies the fiber.
+//! Trace linearity on a pencil that is generic for `C` is the standard criterion; the
+//! slice through `μ` and `x` is what makes the pencil generic even when solutions of
+//! the family escape to infinity at special parameters (the plain pencil `p₀ + c v`
+//! would have a rational, not linear, trace there).
+
+use super::homotopies::{ParameterHomotopy, PolylineParameterHomotopy};
+use super::solve::HomotopyError;
+use super::tracker::{PathStatus, Tracker, TrackerOptions};
+use crate::C64;
+use crate::random::{SeededRng, complex_normal, seeded};
+use crate::system::Evaluator;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Options of [`monodromy_solve`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MonodromyOptions {
+    /// Tracker options for the loops.
+    pub tracker: TrackerOptions,
+    /// Stop as soon as this many solutions are known (if given; the trace test still runs).
+    pub target_solution_count: Option<usize>,
+    /// Stop after this many consecutive loops without a new solution.
+    pub max_stagnant_loops: usize,
+    /// Hard limit on the number of loops.
+    pub max_loops: usize,
+    /// Two solutions are equal if closer than `duplicate_tolerance · (1 + ‖x‖∞)`.
+    pub duplicate_tolerance: f64,
+    /// Run the trace test.
+    pub trace_test: bool,
+    /// Trace residual below which the solution set counts as certified complete.
+    pub trace_tolerance: f64,
+}
+
+impl Default for MonodromyOptions {
+    fn default() -> Self {
+        MonodromyOptions {
+            tracker: TrackerOptions::default(),
+            target_solution_count: None,
+            max_stagnant_loops: 5,
+            max_loops: 500,
+            duplicate_tolerance: 1e-8,
+            trace_test: true,
+            trace_tolerance: 1e-8,
+        }
+    }
+}
+
+/// Result of [`monodromy_solve`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MonodromyResult {
+    /// All solutions found of `F(x; parameters) = 0`.
+    pub solutions: Vec<Vec<C64>>,
+    /// The parameter point (the start parameters).
+    pub parameters: Vec<C64>,
+    /// Monodromy loops tracked over the fiber.
+    pub loops: usize,
+    /// Loops tracked over the witness set of the trace test.
+    pub witness_loops: usize,
+    /// Number of points of the trace test's witness set (`deg C ≥` fiber count).
+    pub witness_points: usize,
+    /// Fiber solutions the trace test's back-tracking added after monodromy stagnated.
+    pub added_by_trace_test: usize,
+    /// Trace residual (`None` if the test was not run or could not be carried out).
+    pub trace_residual: Option<f64>,
+    /// `trace_residual < trace_tolerance`.
+    pub certified: bool,
+    /// Paths that failed during the loops (they never add solutions).
+    pub failed_paths: usize,
+}
+
+/// Whether `x` is within `tolerance · (1 + ‖x‖∞)` of a point of `set`.
+fn contains(set: &[Vec<C64>], x: &[C64], tolerance: f64) -> bool {
+    let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    set.iter().any(|y| {
+        y.iter()
+            .zip(x)
+            .all(|(a, b)| (a - b).norm() <= tolerance * scale)
+    })
+}
+
+fn random_point(rng: &mut SeededRng, m: usize, scale: f64) -> Vec<C64> {
+    (0..m).map(|_| complex_normal(rng) * scale).collect()
+}
+
+fn parameter_scale(p: &[C64]) -> f64 {
+    if p.is_empty() {
+        1.0
+    } else {
+        (p.iter().map(|v| v.norm_sqr()).sum::<f64>() / p.len() as f64)
+            .sqrt()
+            .max(1.0)
+    }
+}
+
+/// Tracks every point of `solutions` over `system` around random triangles based at
+/// `base`, adding new endpoints, until stagnation. Returns (loops, failed paths).
+fn populate<F: Evaluator + ?Sized>(
+    system: &F,
+    base: &[C64],
+    solutions: &mut Vec<Vec<C64>>,
+    options: &MonodromyOptions,
+    target: Option<usize>,
+    rng: &mut SeededRng,
+) -> (usize, usize) {
+    let m = base.len();
+    let scale = parameter_scale(base);
+    let mut loops = 0;
+    let mut stagnant = 0;
+    let mut failed = 0;
+    while stagnant < options.max_stagnant_loops
+        && loops < options.max_loops
+        && target.is_none_or(|t| solutions.len() < t)
+    {
+        let p1 = random_point(rng, m, scale);
+        let p2 = random_point(rng, m, scale);
+        let homotopy =
+            PolylineParameterHomotopy::new(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
+        let results: Vec<_> = solutions
+            .par_iter()
+            .enumerate()
+            .map_init(
+                || Tracker::new(&homotopy, options.tracker.clone()),
+                |tracker, (i, x)| tracker.track_between(x, 0.0, 1.0, i),
+            )
+            .collect();
+        loops += 1;
+        let mut new = 0;
+        for r in results {
+            if r.status == PathStatus::Nonsingular {
+                if !contains(solutions, &r.solution, options.duplicate_tolerance) {
+                    solutions.push(r.solution);
+                    new += 1;
+                }
+            } else {
+                failed += 1;
+            }
+        }
+        if new == 0 {
+            stagnant += 1;
+        } else {
+            stagnant = 0;
+        }
+    }
+    (loops, failed)
+}
+
+/// Populates all solutions of `F(x; start_parameters) = 0` from one start solution by
+/// monodromy, then certifies the set with the trace test (module documentation).
+/// Deterministic for a `seed` (loops drawn sequentially; paths tracked in parallel).
+pub fn monodromy_solve<F: Evaluator + ?Sized>(
+    system: &F,
+    start_solution: &[C64],
+    start_parameters: &[C64],
+    options: &MonodromyOptions,
+    seed: u64,
+) -> Result<MonodromyResult, HomotopyError> {
+    let n = system.num_variables();
+    let m = system.num_parameters();
+    if system.num_equations() != n {
+        return Err(HomotopyError::NotSquare {
+            equations: system.num_equations(),
+            variables: n,
+        });
+    }
+    if start_solution.len() != n {
+        return Err(HomotopyError::WrongLength {
+            field: "start_solution",
+            expected: n,
+            found: start_solution.len(),
+        });
+    }
+    if start_parameters.len() != m {
+        return Err(HomotopyError::WrongLength {
+            field: "start_parameters",
+            expected: m,
+            found: start_parameters.len(),
+        });
+    }
+    for (field, values) in [
+        ("start_solution", start_solution),
+        ("start_parameters", start_parameters),
+    ] {
+        if !values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
+            return Err(HomotopyError::NonFinite { field });
+        }
+    }
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    let mut f = vec![C64::new(0.0, 0.0); n];
+    system.evaluate(start_solution, start_parameters, &mut work, &mut f);
+    let scale = 1.0 + start_solution.iter().fold(0.0f64, |a, v| a.max(v.norm()));
+    let residual = f.iter().fold(0.0f64, |a, v| a.max(v.norm()));
+    if residual > 1e-6 * scale * scale {
+        return Err(HomotopyError::InvalidStartPair { residual });
+    }
+    let mut rng = seeded(seed);
+    let mut solutions = vec![start_solution.to_vec()];
+    let (loops, mut failed) = populate(
+        system,
+        start_parameters,
+        &mut solutions,
+        options,
+        options.target_solution_count,
+        &mut rng,
+    );
+    let mut result = MonodromyResult {
+        solutions,
+        parameters: start_parameters.to_vec(),
+        loops,
+        witness_loops: 0,
+        witness_points: 0,
+        added_by_trace_test: 0,
+        trace_residual: None,
+        certified: false,
+        failed_paths: 0,
+    };
+    if options.trace_test
+        && m > 0
+        && let Some(trace) = trace_test(
+            system,
+            &result.parameters,
+            &result.solutions,
+            options,
+            &mut rng,
+        )
+    {
+        {
+            failed += trace.failed_paths;
+            result.trace_residual = Some(trace.residual);
+            result.certified = trace.residual < options.trace_tolerance;
+            result.witness_loops = trace.witness_loops;
+            result.witness_points = trace.witness_points;
+            result.added_by_trace_test = trace.added_solutions.len();
+            result.solutions.extend(trace.added_solutions);
+        }
+    }
+    result.failed_paths = failed;
+    Ok(result)
+}
+
+/// Outcome of [`trace_test`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TraceCertificate {
+    /// `‖s(c+δ) − 2 s(c) + s(c−δ)‖∞ / (1 + Σ‖w‖∞)` over the witness set.
+    pub residual: f64,
+    /// Size of the witness set on the generic slice.
+    pub witness_points: usize,
+    /// Monodromy loops run on the witness set.
+    pub witness_loops: usize,
+    /// Fiber solutions reached by tracking surplus witness points back to `μ = 0` that
+    /// were not in the given set.
+    pub added_solutions: Vec<Vec<C64>>,
+    /// Paths that failed.
+    pub failed_paths: usize,
+}
+
+/// The trace test of the module documentation for the fiber `solutions` of
+/// `F(x; parameters) = 0`. The witness set is populated by monodromy with
+/// `options.max_stagnant_loops` (0: the moved fiber only, which tests the fiber itself
+/// when `deg C` equals the fiber count). `None` if no witness point could be formed.
+pub fn trace_test<F: Evaluator + ?Sized>(
+    system: &F,
+    parameters: &[C64],
+    solutions: &[Vec<C64>],
+    options: &MonodromyOptions,
+    rng: &mut SeededRng,
+) -> Option<TraceCertificate> {
+    let n = system.num_variables();
+    let m = system.num_parameters();
+    let direction = random_point(rng, m, parameter_scale(parameters));
+    let curve = IncidenceSlice {
+        system,
+        base: parameters.to_vec(),
+        direction,
+    };
+    let special = vec![C64::new(0.0, 0.0); n + 1];
+    let generic = random_point(rng, n + 1, 1.0);
+    let track = |from: &[C64], to: &[C64], starts: &[Vec<C64>], endgame: bool| {
+        let homotopy = ParameterHomotopy::new(&curve, from, to);
+        starts
+            .par_iter()
+            .enumerate()
+            .map_init(
+                || Tracker::new(&homotopy, options.tracker.clone()),
+                |tracker, (i, x)| {
+                    if endgame {
+                        tracker.track(x, i)
+                    } else {
+                        tracker.track_between(x, 0.0, 1.0, i)
+                    }
+                },
+            )
+            .collect::<Vec<_>>()
+    };
+    // Fiber → witness points on the generic slice.
+    let lifted: Vec<Vec<C64>> = solutions
+        .iter()
+        .map(|x| {
+            let mut y = x.clone();
+            y.push(C64::new(0.0, 0.0));
+            y
+        })
+        .collect();
+    let mut failed = 0;
+    let mut witness: Vec<Vec<C64>> = Vec::new();
+    for r in track(&special, &generic, &lifted, false) {
+        if r.status == PathStatus::Nonsingular
+            && !contains(&witness, &r.solution, options.duplicate_tolerance)
+        {
+            witness.push(r.solution);
+        } else {
+            failed += 1;
+        }
+    }
+    if witness.is_empty() {
+        return None;
+    }
+    let (witness_loops, witness_failed) =
+        populate(&curve, &generic, &mut witness, options, None, rng);
+    failed += witness_failed;
+    // Traces on three parallel slices c, c ± δ.
+    let delta = complex_normal(rng) * 0.5;
+    let mut sums = [
+        vec![C64::new(0.0, 0.0); n + 1],
+        vec![C64::new(0.0, 0.0); n + 1],
+    ];
+    for (k, sign) in [1.0, -1.0].into_iter().enumerate() {
+        let mut moved = generic.clone();
+        moved[n] += delta * sign;
+        for r in track(&generic, &moved, &witness, false) {
+            if r.status != PathStatus::Nonsingular {
+                return Some(TraceCertificate {
+                    residual: f64::INFINITY,
+                    witness_points: witness.len(),
+                    witness_loops,
+                    added_solutions: Vec::new(),
+                    failed_paths: failed + 1,
+                });
+            }
+            for (s, v) in sums[k].iter_mut().zip(&r.solution) {
+                *s += v;
+            }
+        }
+    }
+    let mut magnitude = 1.0;
+    let mut center = vec![C64::new(0.0, 0.0); n + 1];
+    for w in &witness {
+        magnitude += w.iter().fold(0.0f64, |a, v| a.max(v.norm()));
+        for (s, v) in center.iter_mut().zip(w) {
+            *s += v;
+        }
+    }
+    let second_difference = (0..=n)
+        .map(|i| (sums[0][i] - 2.0 * center[i] + sums[1][i]).norm())
+        .fold(0.0f64, f64::max);
+    let residual = second_difference / magnitude;
+    // Witness points not coming from the known fiber: back to μ = 0 with endgame.
+    let mut added_solutions: Vec<Vec<C64>> = Vec::new();
+    if witness.len() > solutions.len() {
+        for r in track(&generic, &special, &witness, true) {
+            if r.status.is_finite() {
+                let x = &r.solution[..n];
+                if !contains(solutions, x, 1e-6) && !contains(&added_solutions, x, 1e-6) {
+                    added_solutions.push(x.to_vec());
+                }
+            }
+        }
+    }
+    Some(TraceCertificate {
+        residual,
+        witness_points: witness.len(),
+        witness_loops,
+        added_solutions,
+        failed_paths: failed,
+    })
+}
+
+/// The incidence curve of `F` over the line `p₀ + μ v`, cut by the hyperplane
+/// `μ = a·x + c`: unknowns `(x, μ)`, parameters `(a, c)`, equations
+/// `F(x; p₀ + μ v) = 0` and `μ − a·x − c = 0`.
+pub struct IncidenceSlice<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    base: Vec<C64>,
+    direction: Vec<C64>,
+}
+
+impl<F: Evaluator + ?Sized> IncidenceSlice<'_, F> {
+    fn layout(&self) -> (usize, usize) {
+        (self.system.num_variables(), self.system.num_parameters())
+    }
+}
+
+impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
+    fn num_variables(&self) -> usize {
+        self.system.num_variables() + 1
+    }
+    fn num_equations(&self) -> usize {
+        self.system.num_variables() + 1
+    }
+    fn num_parameters(&self) -> usize {
+        self.system.num_variables() + 1
+    }
+    fn workspace_len(&self) -> usize {
+        let (n, m) = self.layout();
+        m + n * n + n + self.system.workspace_len()
+    }
+
+    fn evaluate(&self, x: &[C64], q: &[C64], work: &mut [C64], f: &mut [C64]) {
+        let (n, m) = self.layout();
+        let mu = x[n];
+        let (p, rest) = work.split_at_mut(m);
+        for ((pi, b), d) in p.iter_mut().zip(&self.base).zip(&self.direction) {
+            *pi = b + mu * d;
+        }
+        let rest = &mut rest[n * n + n..];
+        self.system.evaluate(&x[..n], p, rest, &mut f[..n]);
+        let slice: C64 = q[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
+        f[n] = mu - slice - q[n];
+    }
+
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        q: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        let (n, m) = self.layout();
+        let mu = x[n];
+        let (p, rest) = work.split_at_mut(m);
+        for ((pi, b), d) in p.iter_mut().zip(&self.base).zip(&self.direction) {
+            *pi = b + mu * d;
+        }
+        let (inner_jac, rest) = rest.split_at_mut(n * n);
+        let (column, rest) = rest.split_at_mut(n);
+        self.system
+            .evaluate_with_jacobian(&x[..n], p, rest, &mut f[..n], inner_jac);
+        self.system
+            .evaluate_parameter_derivative(&x[..n], p, &self.direction, rest, column);
+        let width = n + 1;
+        for i in 0..n {
+            jac[i * width..i * width + n].copy_from_slice(&inner_jac[i * n..i * n + n]);
+            jac[i * width + n] = column[i];
+        }
+        for j in 0..n {
+            jac[n * width + j] = -q[j];
+        }
+        jac[n * width + n] = C64::new(1.0, 0.0);
+        let slice: C64 = q[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
+        f[n] = mu - slice - q[n];
+    }
+
+    fn evaluate_parameter_derivative(
+        &self,
+        x: &[C64],
+        _q: &[C64],
+        dq: &[C64],
+        _work: &mut [C64],
+        out: &mut [C64],
+    ) {
+        let (n, _) = self.layout();
+        out[..n].iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        let slice: C64 = dq[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
+        out[n] = -slice - dq[n];
+    }
+
+    fn evaluate_parameter_jacobian(
+        &self,
+        x: &[C64],
+        _q: &[C64],
+        _work: &mut [C64],
+        jac_p: &mut [C64],
+    ) {
+        let (n, _) = self.layout();
+        let width = n + 1;
+        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        for j in 0..n {
+            jac_p[n * width + j] = -x[j];
+        }
+        jac_p[n * width + n] = C64::new(-1.0, 0.0);
+    }
+}
+
+/// `F(x) − p`: a plain square system made a parametric family by its constant terms
+/// (the family [`solve_by_monodromy`] works in). Parameters: n, one per equation.
+pub struct ConstantShift<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    fixed_parameters: Vec<C64>,
+}
+
+impl<'a, F: Evaluator + ?Sized> ConstantShift<'a, F> {
+    /// Family `F(x; fixed_parameters) − p`.
+    pub fn new(system: &'a F, fixed_parameters: Vec<C64>) -> Self {
+        ConstantShift {
+            system,
+            fixed_parameters,
+        }
+    }
+}
+
+impl<F: Evaluator + ?Sized> Evaluator for ConstantShift<'_, F> {
+    fn num_variables(&self) -> usize {
+        self.system.num_variables()
+    }
+    fn num_equations(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn num_parameters(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn workspace_len(&self) -> usize {
+        self.system.workspace_len()
+    }
+    fn evaluate(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate(x, &self.fixed_parameters, work, f);
+        for (fi, pi) in f.iter_mut().zip(p) {
+            *fi -= pi;
+        }
+    }
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        self.system
+            .evaluate_with_jacobian(x, &self.fixed_parameters, work, f, jac);
+        for (fi, pi) in f.iter_mut().zip(p) {
+            *fi -= pi;
+        }
+    }
+    fn evaluate_parameter_derivative(
+        &self,
+        _x: &[C64],
+        _p: &[C64],
+        dp: &[C64],
+        _work: &mut [C64],
+        out: &mut [C64],
+    ) {
+        for (o, d) in out.iter_mut().zip(dp) {
+            *o = -d;
+        }
+    }
+    fn evaluate_parameter_jacobian(
+        &self,
+        _x: &[C64],
+        _p: &[C64],
+        _work: &mut [C64],
+        jac_p: &mut [C64],
+    ) {
+        let k = self.system.num_equations();
+        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        for i in 0..k {
+            jac_p[i * k + i] = C64::new(-1.0, 0.0);
+        }
+    }
+}
+
+/// Solves the plain square system `F(x; fixed_parameters) = 0` without a start system:
+/// monodromy (with trace test) on the family `F(x) − p` from the trivial start pair
+/// `(x₀, F(x₀))` for a random `x₀`, then a parameter homotopy with endgame from that
+/// generic fiber to `p = 0`, which reaches every isolated solution of `F = 0`.
+pub fn solve_by_monodromy<F: Evaluator + ?Sized>(
+    system: &F,
+    fixed_parameters: &[C64],
+    monodromy_options: &MonodromyOptions,
+    solve_options: &super::solve::SolveOptions,
+) -> Result<(MonodromyResult, super::solve::SolveResult), HomotopyError> {
+    let n = system.num_variables();
+    if system.num_equations() != n {
+        return Err(HomotopyError::NotSquare {
+            equations: system.num_equations(),
+            variables: n,
+        });
+    }
+    if fixed_parameters.len() != system.num_parameters() {
+        return Err(HomotopyError::WrongLength {
+            field: "fixed_parameters",
+            expected: system.num_parameters(),
+            found: fixed_parameters.len(),
+        });
+    }
+    let family = ConstantShift::new(system, fixed_parameters.to_vec());
+    let mut rng = crate::random::stream(solve_options.seed, u64::MAX);
+    let x0 = random_point(&mut rng, n, 1.0);
+    let mut p0 = vec![C64::new(0.0, 0.0); n];
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    system.evaluate(&x0, fixed_parameters, &mut work, &mut p0);
+    let monodromy = monodromy_solve(&family, &x0, &p0, monodromy_options, solve_options.seed)?;
+    let target = vec![C64::new(0.0, 0.0); n];
+    let solved = super::solve::solve_parameter_homotopy(
+        &family,
+        &monodromy.solutions,
+        &p0,
+        &target,
+        solve_options,
+    )?;
+    Ok((monodromy, solved))
+}

@@ -1,0 +1,363 @@
+//! Parallel solving: many paths of one homotopy, tracked independently with rayon.
+//!
+//! Results come back in path order and depend only on the seed (γ is drawn from
+//! `crate::random::seeded(seed)`; every path is a deterministic function of its start
+//! point), so they are bit-identical for any thread count. After the first pass, paths
+//! that failed, and nonsingular endpoints reached by more than one path (the signature
+//! of path jumping), are re-tracked with [`TrackerOptions::conservative`] — never
+//! dropped silently. Finite endpoints are then clustered to give multiplicities.
+
+use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
+use super::start::TotalDegreeStartSystem;
+use super::tracker::{PathResult, PathStatus, Tracker, TrackerOptions};
+use crate::C64;
+use crate::system::Evaluator;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Errors of the solve entry points (bad input, never a panic).
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum HomotopyError {
+    /// The system is not square.
+    #[error(
+        "the system has {equations} equations in {variables} unknowns; homotopy solving needs a square system"
+    )]
+    NotSquare {
+        /// Number of equations.
+        equations: usize,
+        /// Number of unknowns.
+        variables: usize,
+    },
+    /// A vector has the wrong length.
+    #[error("`{field}` has length {found}, expected {expected}")]
+    WrongLength {
+        /// Name of the offending argument.
+        field: &'static str,
+        /// Required length.
+        expected: usize,
+        /// Given length.
+        found: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("`{field}` contains a NaN or infinite value")]
+    NonFinite {
+        /// Name of the offending argument.
+        field: &'static str,
+    },
+    /// The start pair of a monodromy run is not a solution.
+    #[error("the start pair is not a solution: residual ‖F(x₀; p₀)‖∞ = {residual:.3e}")]
+    InvalidStartPair {
+        /// The residual.
+        residual: f64,
+    },
+    /// A degree is zero (a constant equation) or the Bézout number overflows.
+    #[error("invalid degrees for a total-degree start system: {0}")]
+    InvalidDegrees(String),
+}
+
+/// Options of [`solve_total_degree`] and [`solve_parameter_homotopy`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveOptions {
+    /// Tracker options of the first pass.
+    pub tracker: TrackerOptions,
+    /// Seed of every random choice (γ).
+    pub seed: u64,
+    /// Re-track failed paths and duplicated nonsingular endpoints with
+    /// [`TrackerOptions::conservative`].
+    pub retry_failed: bool,
+    /// A finite solution is real if `|Im x_i| ≤ real_tolerance · (1 + ‖x‖∞)`.
+    pub real_tolerance: f64,
+    /// Two finite endpoints coincide if their distance is below
+    /// `cluster_tolerance · (1 + ‖x‖∞)`.
+    pub cluster_tolerance: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            tracker: TrackerOptions::default(),
+            seed: 0x5eed,
+            retry_failed: true,
+            real_tolerance: 1e-8,
+            cluster_tolerance: 1e-6,
+        }
+    }
+}
+
+/// Counts of a solve run.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub struct SolveSummary {
+    /// Paths tracked.
+    pub paths: usize,
+    /// Nonsingular finite solutions (one path each).
+    pub nonsingular: usize,
+    /// Distinct singular finite solutions.
+    pub singular: usize,
+    /// Paths ending at singular solutions (Σ multiplicities).
+    pub singular_paths: usize,
+    /// Paths diverging to infinity.
+    pub at_infinity: usize,
+    /// Failed paths (after re-runs).
+    pub failed: usize,
+    /// Distinct real finite solutions.
+    pub real: usize,
+    /// Paths re-tracked with conservative options.
+    pub retracked: usize,
+}
+
+/// Result of a solve run: every path in path order, and the summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveResult {
+    /// Per-path results, `paths[i].path_index == i`.
+    pub paths: Vec<PathResult>,
+    /// Counts.
+    pub summary: SolveSummary,
+    /// The γ of a straight-line homotopy (1 for parameter homotopies).
+    pub gamma: C64,
+}
+
+impl SolveResult {
+    /// Nonsingular solutions, in path order.
+    pub fn nonsingular_solutions(&self) -> Vec<Vec<C64>> {
+        self.paths
+            .iter()
+            .filter(|p| p.status == PathStatus::Nonsingular)
+            .map(|p| p.solution.clone())
+            .collect()
+    }
+
+    /// Distinct finite solutions (one representative per cluster), in path order.
+    pub fn finite_solutions(&self) -> Vec<&PathResult> {
+        distinct_finite(&self.paths)
+    }
+}
+
+fn distinct_finite(paths: &[PathResult]) -> Vec<&PathResult> {
+    let mut representatives: Vec<&PathResult> = Vec::new();
+    for p in paths.iter().filter(|p| p.status.is_finite()) {
+        if p.status == PathStatus::Nonsingular
+            || !representatives.iter().any(|r| {
+                r.status == PathStatus::Singular && same_point(&r.solution, &p.solution, 1e-6)
+            })
+        {
+            representatives.push(p);
+        }
+    }
+    representatives
+}
+
+fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    a.iter()
+        .zip(b)
+        .all(|(u, v)| (u - v).norm() <= tolerance * scale)
+}
+
+fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
+    if values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
+        Ok(())
+    } else {
+        Err(HomotopyError::NonFinite { field })
+    }
+}
+
+fn check_length(field: &'static str, expected: usize, found: usize) -> Result<(), HomotopyError> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(HomotopyError::WrongLength {
+            field,
+            expected,
+            found,
+        })
+    }
+}
+
+fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
+    if system.num_equations() != system.num_variables() {
+        return Err(HomotopyError::NotSquare {
+            equations: system.num_equations(),
+            variables: system.num_variables(),
+        });
+    }
+    Ok(())
+}
+
+/// Solves `F(x; p) = 0` (parameters fixed at `target_parameters`) with the total-degree
+/// homotopy `(1 − t)·γ·(x_i^{d_i} − 1) + t·F`, γ random from `options.seed`. Tracks
+/// `Π d_i` paths in parallel. `degrees[i]` must be the total degree of equation i.
+pub fn solve_total_degree<F: Evaluator + ?Sized>(
+    system: &F,
+    degrees: &[u32],
+    target_parameters: &[C64],
+    options: &SolveOptions,
+) -> Result<SolveResult, HomotopyError> {
+    check_square(system)?;
+    check_length("degrees", system.num_variables(), degrees.len())?;
+    check_length(
+        "target_parameters",
+        system.num_parameters(),
+        target_parameters.len(),
+    )?;
+    check_finite("target_parameters", target_parameters)?;
+    if let Some(i) = degrees.iter().position(|&d| d == 0) {
+        return Err(HomotopyError::InvalidDegrees(format!(
+            "equation {i} has degree 0"
+        )));
+    }
+    let start = TotalDegreeStartSystem::new(degrees.to_vec());
+    let count = start
+        .path_count()
+        .filter(|&c| c <= 1 << 32)
+        .ok_or_else(|| HomotopyError::InvalidDegrees("Bézout number too large".into()))?
+        as usize;
+    let gamma = crate::random::unit_complex(&mut crate::random::seeded(options.seed));
+    let homotopy = StraightLineHomotopy::new(&start, system, target_parameters.to_vec(), gamma);
+    let mut result = solve_with_homotopy(
+        &homotopy,
+        count,
+        |index, x| start.start_solution(index as u64, x),
+        options,
+    );
+    result.gamma = gamma;
+    Ok(result)
+}
+
+/// Tracks `start_solutions` of `F(x; start_parameters) = 0` to
+/// `F(x; target_parameters) = 0` along the segment between the parameter points.
+pub fn solve_parameter_homotopy<F: Evaluator + ?Sized>(
+    system: &F,
+    start_solutions: &[Vec<C64>],
+    start_parameters: &[C64],
+    target_parameters: &[C64],
+    options: &SolveOptions,
+) -> Result<SolveResult, HomotopyError> {
+    check_square(system)?;
+    let m = system.num_parameters();
+    check_length("start_parameters", m, start_parameters.len())?;
+    check_length("target_parameters", m, target_parameters.len())?;
+    check_finite("start_parameters", start_parameters)?;
+    check_finite("target_parameters", target_parameters)?;
+    for s in start_solutions {
+        check_length("start_solutions", system.num_variables(), s.len())?;
+        check_finite("start_solutions", s)?;
+    }
+    let homotopy = ParameterHomotopy::new(system, start_parameters, target_parameters);
+    Ok(solve_with_homotopy(
+        &homotopy,
+        start_solutions.len(),
+        |index, x| x.copy_from_slice(&start_solutions[index]),
+        options,
+    ))
+}
+
+/// Tracks `count` paths of any homotopy from `t = 0` to `t = 1` with endgame;
+/// `start(index, x)` writes start point `index`. Results in path order.
+pub fn solve_with_homotopy<H, S>(
+    homotopy: &H,
+    count: usize,
+    start: S,
+    options: &SolveOptions,
+) -> SolveResult
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    let n = homotopy.dimension();
+    let track_all = |indices: &[usize], tracker_options: &TrackerOptions| -> Vec<PathResult> {
+        indices
+            .par_iter()
+            .map_init(
+                || {
+                    (
+                        Tracker::new(homotopy, tracker_options.clone()),
+                        vec![C64::new(0.0, 0.0); n],
+                    )
+                },
+                |(tracker, x), &index| {
+                    start(index, x);
+                    tracker.track(x, index)
+                },
+            )
+            .collect()
+    };
+    let all: Vec<usize> = (0..count).collect();
+    let mut paths = track_all(&all, &options.tracker);
+    let mut retracked = 0;
+    if options.retry_failed {
+        assign_multiplicities(&mut paths, options.cluster_tolerance);
+        let suspicious: Vec<usize> = paths
+            .iter()
+            .filter(|p| {
+                matches!(p.status, PathStatus::Failed(_))
+                    || (p.status == PathStatus::Nonsingular && p.multiplicity > 1)
+            })
+            .map(|p| p.path_index)
+            .collect();
+        if !suspicious.is_empty() {
+            retracked = suspicious.len();
+            let mut conservative = TrackerOptions::conservative();
+            conservative.max_steps = conservative.max_steps.max(options.tracker.max_steps);
+            for redo in track_all(&suspicious, &conservative) {
+                let index = redo.path_index;
+                paths[index] = redo;
+            }
+        }
+    }
+    assign_multiplicities(&mut paths, options.cluster_tolerance);
+    let summary = summarize(&paths, options.real_tolerance, retracked);
+    SolveResult {
+        paths,
+        summary,
+        gamma: C64::new(1.0, 0.0),
+    }
+}
+
+/// Sets `multiplicity` of every finite path to the number of finite paths ending at
+/// the same point (within `tolerance`, relative).
+fn assign_multiplicities(paths: &mut [PathResult], tolerance: f64) {
+    let finite: Vec<usize> = (0..paths.len())
+        .filter(|&i| paths[i].status.is_finite())
+        .collect();
+    let counts: Vec<usize> = finite
+        .iter()
+        .map(|&i| {
+            finite
+                .iter()
+                .filter(|&&j| same_point(&paths[i].solution, &paths[j].solution, tolerance))
+                .count()
+        })
+        .collect();
+    for p in paths.iter_mut() {
+        p.multiplicity = if p.status.is_finite() { 1 } else { 0 };
+    }
+    for (&i, &c) in finite.iter().zip(&counts) {
+        paths[i].multiplicity = c;
+    }
+}
+
+fn summarize(paths: &[PathResult], real_tolerance: f64, retracked: usize) -> SolveSummary {
+    let mut summary = SolveSummary {
+        paths: paths.len(),
+        retracked,
+        ..SolveSummary::default()
+    };
+    for p in paths {
+        match p.status {
+            PathStatus::Nonsingular => summary.nonsingular += 1,
+            PathStatus::Singular => summary.singular_paths += 1,
+            PathStatus::AtInfinity => summary.at_infinity += 1,
+            PathStatus::Failed(_) => summary.failed += 1,
+        }
+    }
+    let distinct = distinct_finite(paths);
+    summary.singular = distinct
+        .iter()
+        .filter(|p| p.status == PathStatus::Singular)
+        .count();
+    summary.real = distinct
+        .iter()
+        .filter(|p| p.is_real(real_tolerance))
+        .count();
+    summary
+}

@@ -1,0 +1,927 @@
+//! Predictor–corrector path tracking with a Cauchy endgame.
+//!
+//! A path `x(t)` of `H(x(t), t) = 0` satisfies the Davidenko equation
+//! `∂H/∂x · ẋ = −∂H/∂t`. One step from `t` to `t + h`:
+//!
+//! 1. **Predictor**: classical fourth-order Runge–Kutta on the Davidenko equation
+//!    (local error `O(h⁵)`), every stage one LU solve.
+//! 2. **Corrector**: Newton's method at `t + h`, accepted only if it *contracts*:
+//!    the second update must be at most `max_contraction` times the first
+//!    (`‖Δ₁‖ ≤ κ‖Δ₀‖`). By Smale's α-theory an approximate zero has `‖Δ₁‖ ≤ ½‖Δ₀‖`,
+//!    and a ratio `κ ≪ ½` keeps the prediction deep inside the quadratic basin of the
+//!    path being followed, the standard guard against path jumping. At most
+//!    `max_corrector_iterations` updates.
+//! 3. **Step control**: the first Newton update `‖Δ₀‖` measures the predictor error
+//!    `≈ C h⁵`; the next step is `h·(ε_pred/‖Δ₀‖)^{1/5}` (clamped to `[½, 2]`), so
+//!    the prediction error stays near `prediction_tolerance` (relative). A rejected step
+//!    halves `h`.
+//! 4. **Extended precision**: when steps collapse on an ill-conditioned stretch the
+//!    tracker switches to double-double residual refinement of every linear solve
+//!    (see [`crate::homotopy::linalg`]) before it gives up.
+//!
+//! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
+//! - estimates the valuations `v_i = Re(s ẋ_i(s) / x_i)` (`x_i ~ s^{v_i}`): a stable
+//!   negative valuation or a norm beyond `at_infinity_norm` means the path diverges
+//!   (solution at infinity, Huber & Verschelde's power-series test);
+//! - if the Jacobian is well conditioned, tracks straight to `t = 1` and refines the
+//!   endpoint by Newton (finite nonsingular);
+//! - otherwise runs the **Cauchy endgame** (Morgan, Sommese & Wampler 1991): it tracks
+//!   around the circle `|s| = s_k` until the path closes after `c` loops (the winding
+//!   number, `x(s) = x* + Σ a_j s^{j/c}`), and the mean of the samples is the Cauchy
+//!   integral `x* = (1/2πi)∮ x(τ) dτ/τ` in `τ = s^{1/c}` (trapezoid rule, spectrally
+//!   accurate). Two successive estimates agreeing gives a finite singular endpoint.
+
+use super::homotopies::Homotopy;
+use super::linalg::LuWorkspace;
+use crate::C64;
+use serde::{Deserialize, Serialize};
+
+/// Every knob of the tracker and endgame, with presets [`TrackerOptions::fast`],
+/// [`TrackerOptions::default`] and [`TrackerOptions::conservative`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrackerOptions {
+    /// First step length in `t`.
+    pub initial_step: f64,
+    /// Largest step length in `t`.
+    pub max_step: f64,
+    /// Smallest step, as a fraction of the segment being tracked; below it the path fails.
+    pub min_step_fraction: f64,
+    /// Maximal number of predictor–corrector steps per path (endgame included).
+    pub max_steps: usize,
+    /// Target relative predictor error `‖Δ₀‖/(1 + ‖x‖)` that sets the step size.
+    pub prediction_tolerance: f64,
+    /// Relative Newton tolerance along the path.
+    pub corrector_tolerance: f64,
+    /// Newton updates allowed per step.
+    pub max_corrector_iterations: usize,
+    /// Largest accepted contraction `‖Δ_{k+1}‖/‖Δ_k‖` of the corrector.
+    pub max_contraction: f64,
+    /// Endgame zone starts at `s = 1 − t = endgame_start`.
+    pub endgame_start: f64,
+    /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
+    pub endgame_ratio: f64,
+    /// Smallest endgame radius before the path is declared failed.
+    pub endgame_min_radius: f64,
+    /// Sample points per loop of the Cauchy endgame.
+    pub cauchy_samples_per_loop: usize,
+    /// Largest winding number the Cauchy endgame tries.
+    pub max_winding_number: usize,
+    /// Relative agreement of two successive Cauchy estimates that ends the endgame.
+    pub endgame_tolerance: f64,
+    /// Paths whose max-norm exceeds this are declared at infinity.
+    pub at_infinity_norm: f64,
+    /// Stable valuation below `−valuation_threshold` (with large norm) ⇒ at infinity.
+    pub valuation_threshold: f64,
+    /// Condition estimate above which the direct finish to `t = 1` is skipped and the
+    /// Cauchy endgame used.
+    pub direct_finish_condition: f64,
+    /// Endpoints with a 1-norm condition estimate above this are singular.
+    pub singular_condition: f64,
+    /// Newton iterations that refine a finite endpoint at `t = 1`.
+    pub refinement_iterations: usize,
+    /// A singular (Cauchy) endpoint must have `‖H(x, 1)‖∞` below this (relative).
+    pub endpoint_residual: f64,
+}
+
+impl Default for TrackerOptions {
+    /// Balanced preset: reliable on the katsura/cyclic benchmarks and singdist's systems.
+    fn default() -> Self {
+        TrackerOptions {
+            initial_step: 0.05,
+            max_step: 0.1,
+            min_step_fraction: 1e-10,
+            max_steps: 20_000,
+            prediction_tolerance: 1e-6,
+            corrector_tolerance: 1e-9,
+            max_corrector_iterations: 3,
+            max_contraction: 0.25,
+            endgame_start: 0.1,
+            endgame_ratio: 0.25,
+            endgame_min_radius: 1e-13,
+            cauchy_samples_per_loop: 8,
+            max_winding_number: 16,
+            endgame_tolerance: 1e-8,
+            at_infinity_norm: 1e8,
+            valuation_threshold: 0.1,
+            direct_finish_condition: 1e8,
+            singular_condition: 1e10,
+            refinement_iterations: 6,
+            endpoint_residual: 1e-8,
+        }
+    }
+}
+
+impl TrackerOptions {
+    /// Larger steps and looser contraction: for well-conditioned families (e.g. a
+    /// parameter homotopy between nearby poses). About twice as fast as the default.
+    pub fn fast() -> Self {
+        TrackerOptions {
+            initial_step: 0.1,
+            max_step: 0.2,
+            prediction_tolerance: 1e-5,
+            max_contraction: 0.3,
+            ..Self::default()
+        }
+    }
+
+    /// Small steps, strict contraction, long endgame: for re-running failed paths.
+    pub fn conservative() -> Self {
+        TrackerOptions {
+            initial_step: 0.01,
+            max_step: 0.02,
+            min_step_fraction: 1e-13,
+            max_steps: 200_000,
+            prediction_tolerance: 1e-8,
+            corrector_tolerance: 1e-10,
+            max_contraction: 0.1,
+            endgame_ratio: 0.3,
+            endgame_min_radius: 1e-15,
+            max_winding_number: 32,
+            ..Self::default()
+        }
+    }
+}
+
+/// Why a path failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FailureReason {
+    /// The start point does not satisfy `H(x, 0) = 0` to Newton accuracy.
+    InvalidStartPoint,
+    /// The step size fell below `min_step_fraction` (even with extended precision).
+    StepSizeTooSmall,
+    /// More than `max_steps` steps.
+    TooManySteps,
+    /// The path diverged before the endgame zone (a non-generic γ or start system).
+    DivergedBeforeEndgame,
+    /// The Cauchy loop did not close within `max_winding_number` loops.
+    WindingNumberTooLarge,
+    /// The endgame reached `endgame_min_radius` without two agreeing estimates.
+    EndgameDidNotConverge,
+    /// NaN or infinity appeared in the evaluation.
+    NonFiniteValue,
+}
+
+/// Classification of a path's endpoint at `t = 1`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum PathStatus {
+    /// Finite endpoint with a well-conditioned Jacobian, refined to full precision.
+    Nonsingular,
+    /// Finite endpoint with a singular Jacobian (winding number and multiplicity given).
+    Singular,
+    /// The path diverges: a solution at infinity.
+    AtInfinity,
+    /// The tracker gave up; see the reason.
+    Failed(FailureReason),
+}
+
+impl PathStatus {
+    /// Finite endpoint (nonsingular or singular).
+    pub fn is_finite(&self) -> bool {
+        matches!(self, PathStatus::Nonsingular | PathStatus::Singular)
+    }
+}
+
+/// Outcome of one tracked path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PathResult {
+    /// Index of the path (start solution) in its run.
+    pub path_index: usize,
+    /// Endpoint (the last point reached for failed or diverging paths).
+    pub solution: Vec<C64>,
+    /// Classification.
+    pub status: PathStatus,
+    /// `‖H(x, 1)‖∞` at the endpoint.
+    pub residual: f64,
+    /// 1-norm condition estimate of `∂H/∂x` at the endpoint.
+    pub condition: f64,
+    /// Winding number `c` of the Cauchy endgame (1 for nonsingular endpoints).
+    pub winding_number: usize,
+    /// Number of paths of the run ending at the same finite point (set by `solve`).
+    pub multiplicity: usize,
+    /// Accepted plus rejected steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected_steps: usize,
+    /// Whether double-double refinement was switched on along the path.
+    pub used_extended_precision: bool,
+}
+
+impl PathResult {
+    /// Whether every coordinate is real up to `tolerance · (1 + ‖x‖∞)`.
+    pub fn is_real(&self, tolerance: f64) -> bool {
+        let scale = 1.0 + max_norm(&self.solution);
+        self.solution
+            .iter()
+            .all(|v| v.im.abs() <= tolerance * scale)
+    }
+}
+
+fn max_norm(x: &[C64]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.norm()))
+}
+
+/// Scratch for evaluations and linear solves.
+struct Evaluation {
+    work: Vec<C64>,
+    h: Vec<C64>,
+    jac: Vec<C64>,
+    dh: Vec<C64>,
+    rhs: Vec<C64>,
+    lu: LuWorkspace,
+}
+
+/// Result of a Newton update.
+enum NewtonUpdate {
+    Step(f64),
+    Singular,
+}
+
+impl Evaluation {
+    fn new(n: usize, work_len: usize) -> Self {
+        let z = C64::new(0.0, 0.0);
+        Evaluation {
+            work: vec![z; work_len],
+            h: vec![z; n],
+            jac: vec![z; n * n],
+            dh: vec![z; n],
+            rhs: vec![z; n],
+            lu: LuWorkspace::new(n),
+        }
+    }
+
+    /// `out ← dx/du = −J⁻¹ ∂H/∂t · dt` at `(x, t)`.
+    fn velocity<H: Homotopy + ?Sized>(
+        &mut self,
+        homotopy: &H,
+        x: &[C64],
+        t: C64,
+        dt: C64,
+        extended: bool,
+        out: &mut [C64],
+    ) -> bool {
+        homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
+        homotopy.evaluate_time_derivative(x, t, &mut self.work, &mut self.dh);
+        if !self.lu.factor(&self.jac) {
+            return false;
+        }
+        for (o, d) in out.iter_mut().zip(&self.dh) {
+            *o = -d * dt;
+        }
+        if extended {
+            self.rhs.copy_from_slice(out);
+            self.lu.solve_in_place(out);
+            self.lu.refine(&self.rhs, out);
+        } else {
+            self.lu.solve_in_place(out);
+        }
+        out.iter().all(|v| v.re.is_finite() && v.im.is_finite())
+    }
+
+    /// One Newton update `x ← x − J⁻¹ H(x, t)`; returns `‖Δ‖∞`.
+    fn newton<H: Homotopy + ?Sized>(
+        &mut self,
+        homotopy: &H,
+        x: &mut [C64],
+        t: C64,
+        extended: bool,
+    ) -> NewtonUpdate {
+        homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
+        if !self.lu.factor(&self.jac) {
+            return NewtonUpdate::Singular;
+        }
+        for (r, h) in self.rhs.iter_mut().zip(&self.h) {
+            *r = -h;
+        }
+        self.dh.copy_from_slice(&self.rhs);
+        self.lu.solve_in_place(&mut self.dh);
+        if extended {
+            self.lu.refine(&self.rhs, &mut self.dh);
+        }
+        let mut norm: f64 = 0.0;
+        for (xi, d) in x.iter_mut().zip(&self.dh) {
+            *xi += d;
+            norm = norm.max(d.norm());
+        }
+        if norm.is_finite() {
+            NewtonUpdate::Step(norm)
+        } else {
+            NewtonUpdate::Singular
+        }
+    }
+}
+
+/// Failure inside a segment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SegmentError {
+    Failure(FailureReason),
+    Diverged,
+}
+
+/// A path tracker bound to one homotopy, owning all per-thread buffers (allocated once
+/// in [`Tracker::new`]; tracking allocates only the returned [`PathResult`]).
+pub struct Tracker<'h, H: Homotopy + ?Sized> {
+    homotopy: &'h H,
+    options: TrackerOptions,
+    n: usize,
+    eval: Evaluation,
+    x: Vec<C64>,
+    x_predicted: Vec<C64>,
+    x_stage: Vec<C64>,
+    k1: Vec<C64>,
+    k2: Vec<C64>,
+    k3: Vec<C64>,
+    k4: Vec<C64>,
+    x_saved: Vec<C64>,
+    x_checkpoint: Vec<C64>,
+    cauchy_sum: Vec<C64>,
+    estimate: Vec<C64>,
+    previous_estimate: Vec<C64>,
+    valuations: Vec<f64>,
+    previous_valuations: Vec<f64>,
+    log_sum: Vec<f64>,
+    log_mean: Vec<f64>,
+    previous_log_mean: Vec<f64>,
+    loop_valuations: Vec<f64>,
+    previous_loop_valuations: Vec<f64>,
+    step: f64,
+    steps: usize,
+    rejected: usize,
+    extended: bool,
+    used_extended: bool,
+    winding: usize,
+}
+
+impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
+    /// Tracker for `homotopy` with `options`.
+    pub fn new(homotopy: &'h H, options: TrackerOptions) -> Self {
+        let n = homotopy.dimension();
+        let z = C64::new(0.0, 0.0);
+        Tracker {
+            homotopy,
+            eval: Evaluation::new(n, homotopy.workspace_len()),
+            options,
+            n,
+            x: vec![z; n],
+            x_predicted: vec![z; n],
+            x_stage: vec![z; n],
+            k1: vec![z; n],
+            k2: vec![z; n],
+            k3: vec![z; n],
+            k4: vec![z; n],
+            x_saved: vec![z; n],
+            x_checkpoint: vec![z; n],
+            cauchy_sum: vec![z; n],
+            estimate: vec![z; n],
+            previous_estimate: vec![z; n],
+            valuations: vec![0.0; n],
+            previous_valuations: vec![0.0; n],
+            log_sum: vec![0.0; n],
+            log_mean: vec![0.0; n],
+            previous_log_mean: vec![0.0; n],
+            loop_valuations: vec![0.0; n],
+            previous_loop_valuations: vec![0.0; n],
+            step: 0.0,
+            steps: 0,
+            rejected: 0,
+            extended: false,
+            used_extended: false,
+            winding: 1,
+        }
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &TrackerOptions {
+        &self.options
+    }
+
+    fn reset(&mut self, start: &[C64]) {
+        self.x.copy_from_slice(start);
+        self.step = self.options.initial_step;
+        self.steps = 0;
+        self.rejected = 0;
+        self.extended = false;
+        self.used_extended = false;
+        self.winding = 1;
+    }
+
+    /// Tracks `start` (a solution of `H(x, 0) = 0`) to `t = 1`, runs the endgame and
+    /// classifies and refines the endpoint.
+    pub fn track(&mut self, start: &[C64], path_index: usize) -> PathResult {
+        self.reset(start);
+        let endgame_start = {
+            let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
+            self.options.endgame_start.min(0.5 * (1.0 - last))
+        };
+        let status = match self.track_real_interval(0.0, 1.0 - endgame_start) {
+            Ok(()) => self.endgame(endgame_start),
+            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+        };
+        self.finish(path_index, status)
+    }
+
+    /// Tracks `start` from `t0` to `t1` (real, either direction) without endgame, e.g.
+    /// a monodromy loop or a parameter homotopy between generic parameters. The
+    /// endpoint is Newton-refined and returned as `Nonsingular` (or `Singular` if its
+    /// condition exceeds `singular_condition`).
+    pub fn track_between(
+        &mut self,
+        start: &[C64],
+        t0: f64,
+        t1: f64,
+        path_index: usize,
+    ) -> PathResult {
+        self.reset(start);
+        let status = match self.track_real_interval(t0, t1) {
+            Ok(()) => {
+                let (converged, _) = self.refine_at(C64::new(t1, 0.0));
+                let condition = self.condition_at(C64::new(t1, 0.0));
+                if converged && condition < self.options.singular_condition {
+                    PathStatus::Nonsingular
+                } else {
+                    PathStatus::Singular
+                }
+            }
+            Err(SegmentError::Diverged) => PathStatus::AtInfinity,
+            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+        };
+        self.finish_at(path_index, status, C64::new(t1, 0.0))
+    }
+
+    fn finish(&mut self, path_index: usize, status: PathStatus) -> PathResult {
+        self.finish_at(path_index, status, C64::new(1.0, 0.0))
+    }
+
+    fn finish_at(&mut self, path_index: usize, status: PathStatus, t: C64) -> PathResult {
+        let (residual, condition) = if self.x.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
+            self.homotopy
+                .evaluate(&self.x, t, &mut self.eval.work, &mut self.eval.h);
+            (max_norm(&self.eval.h), self.condition_at(t))
+        } else {
+            (f64::INFINITY, f64::INFINITY)
+        };
+        PathResult {
+            path_index,
+            solution: self.x.clone(),
+            status,
+            residual,
+            condition,
+            winding_number: match status {
+                PathStatus::Nonsingular => 1,
+                _ => self.winding,
+            },
+            multiplicity: 1,
+            steps: self.steps,
+            rejected_steps: self.rejected,
+            used_extended_precision: self.used_extended,
+        }
+    }
+
+    fn condition_at(&mut self, t: C64) -> f64 {
+        let e = &mut self.eval;
+        self.homotopy
+            .evaluate_with_jacobian(&self.x, t, &mut e.work, &mut e.h, &mut e.jac);
+        if e.lu.factor(&e.jac) {
+            e.lu.condition_estimate()
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
+    fn refine_at(&mut self, t: C64) -> (bool, f64) {
+        let mut previous = f64::INFINITY;
+        let mut converged = false;
+        for _ in 0..self.options.refinement_iterations {
+            self.x_saved.copy_from_slice(&self.x);
+            match self.eval.newton(self.homotopy, &mut self.x, t, true) {
+                NewtonUpdate::Singular => {
+                    self.x.copy_from_slice(&self.x_saved);
+                    break;
+                }
+                NewtonUpdate::Step(norm) => {
+                    let scale = 1.0 + max_norm(&self.x);
+                    if norm > previous && norm > 1e-14 * scale {
+                        // Diverging: keep the previous iterate.
+                        self.x.copy_from_slice(&self.x_saved);
+                        break;
+                    }
+                    if norm <= 1e-13 * scale {
+                        converged = true;
+                        break;
+                    }
+                    previous = norm;
+                }
+            }
+        }
+        (converged, previous)
+    }
+
+    /// Tracks along the real interval `[t0, t1]`, stopping at the homotopy's breakpoints.
+    fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), SegmentError> {
+        let mut a = t0;
+        let forward = t1 >= t0;
+        let breakpoints: Vec<f64> = {
+            let mut b: Vec<f64> = self
+                .homotopy
+                .breakpoints()
+                .iter()
+                .copied()
+                .filter(|&b| (b - t0) * (t1 - b) > 0.0)
+                .collect();
+            if !forward {
+                b.reverse();
+            }
+            b
+        };
+        for b in breakpoints.into_iter().chain(std::iter::once(t1)) {
+            self.track_segment(C64::new(a, 0.0), C64::new(b, 0.0))?;
+            a = b;
+        }
+        Ok(())
+    }
+
+    /// Tracks `self.x` along the straight segment from `ta` to `tb` in the complex plane.
+    fn track_segment(&mut self, ta: C64, tb: C64) -> Result<(), SegmentError> {
+        let dt = tb - ta;
+        let length = dt.norm();
+        if length == 0.0 {
+            return Ok(());
+        }
+        let mut u = 0.0f64;
+        while u < 1.0 {
+            if self.steps >= self.options.max_steps {
+                return Err(SegmentError::Failure(FailureReason::TooManySteps));
+            }
+            let mut h = (self.step.min(self.options.max_step) / length).min(1.0 - u);
+            if 1.0 - u - h < 0.05 * h {
+                h = 1.0 - u;
+            }
+            let t = ta + dt * u;
+            let t_mid = ta + dt * (u + 0.5 * h);
+            let t_new = ta + dt * (u + h);
+            self.steps += 1;
+            let accepted = if self.predict(t, t_mid, t_new, dt, h).is_some() {
+                self.correct(t_new)
+            } else {
+                None
+            };
+            match accepted {
+                Some(first_update) => {
+                    self.x.copy_from_slice(&self.x_predicted);
+                    u = if h >= 1.0 - u { 1.0 } else { u + h };
+                    let scale = 1.0 + max_norm(&self.x);
+                    if scale > self.options.at_infinity_norm {
+                        return Err(SegmentError::Diverged);
+                    }
+                    let error = first_update / scale;
+                    let factor = if error > 0.0 {
+                        (0.9 * (self.options.prediction_tolerance / error).powf(0.2))
+                            .clamp(0.5, 2.0)
+                    } else {
+                        2.0
+                    };
+                    self.step = (h * length * factor).min(self.options.max_step);
+                }
+                None => {
+                    self.rejected += 1;
+                    h *= 0.5;
+                    if h < self.options.min_step_fraction {
+                        if !self.extended {
+                            self.extended = true;
+                            self.used_extended = true;
+                            h *= 4.0;
+                        } else {
+                            let bad = self
+                                .x
+                                .iter()
+                                .any(|v| !(v.re.is_finite() && v.im.is_finite()));
+                            return Err(SegmentError::Failure(if bad {
+                                FailureReason::NonFiniteValue
+                            } else {
+                                FailureReason::StepSizeTooSmall
+                            }));
+                        }
+                    }
+                    self.step = h * length;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The endgame from `t = 1 − s0` (see the module documentation).
+    fn endgame(&mut self, s0: f64) -> PathStatus {
+        let n = self.n;
+        let mut s = s0;
+        let mut direct_failed = false;
+        let mut have_valuations = false;
+        let mut have_estimate = false;
+        let mut previous_condition = f64::INFINITY;
+        let mut stable_divergence = 0;
+        // Cauchy-loop valuations: by Jensen's formula the mean of log|x_i| over the
+        // loop is exactly `log|a_i| + w_i log s` once the radius is small, so two
+        // consecutive differences agreeing pin the valuation `w_i` down.
+        let mut loops_done = 0;
+        let mut previous_loop_radius = 0.0f64;
+        loop {
+            let t = C64::new(1.0 - s, 0.0);
+            let scale = max_norm(&self.x);
+            if scale > self.options.at_infinity_norm {
+                return PathStatus::AtInfinity;
+            }
+            // Valuations from dx/ds (dt/ds = −1).
+            let ok = self.eval.velocity(
+                self.homotopy,
+                &self.x,
+                t,
+                C64::new(-1.0, 0.0),
+                self.extended,
+                &mut self.k1,
+            );
+            let condition = if ok {
+                self.eval.lu.condition_estimate()
+            } else {
+                f64::INFINITY
+            };
+            if ok {
+                for i in 0..n {
+                    self.valuations[i] = if self.x[i].norm() > 0.0 {
+                        (self.k1[i] * s / self.x[i]).re
+                    } else {
+                        0.0
+                    };
+                }
+                if have_valuations {
+                    let mut stable = true;
+                    let mut smallest = f64::INFINITY;
+                    for i in 0..n {
+                        if self.x[i].norm() >= 1.0 {
+                            if (self.valuations[i] - self.previous_valuations[i]).abs() > 0.01 {
+                                stable = false;
+                            }
+                            smallest = smallest.min(self.valuations[i]);
+                        }
+                    }
+                    if stable && smallest < -self.options.valuation_threshold {
+                        stable_divergence += 1;
+                        if stable_divergence >= 2 {
+                            return PathStatus::AtInfinity;
+                        }
+                    } else {
+                        stable_divergence = 0;
+                    }
+                }
+                self.previous_valuations.copy_from_slice(&self.valuations);
+                have_valuations = true;
+            }
+            let valuations_finite = have_valuations
+                && (0..n).all(|i| {
+                    self.x[i].norm() < 1.0 || self.valuations[i] > -self.options.valuation_threshold
+                });
+            // A singular endpoint shows as a condition number growing like
+            // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
+            let condition_stable = condition <= 1.5 * previous_condition;
+            previous_condition = condition;
+            if !direct_failed
+                && valuations_finite
+                && condition_stable
+                && condition < self.options.direct_finish_condition
+            {
+                self.x_checkpoint.copy_from_slice(&self.x);
+                let saved_step = self.step;
+                if self.track_segment(t, C64::new(1.0, 0.0)).is_ok() {
+                    let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
+                    let final_condition = self.condition_at(C64::new(1.0, 0.0));
+                    if converged
+                        && final_condition < self.options.singular_condition
+                        && final_condition < 100.0 * condition
+                    {
+                        return PathStatus::Nonsingular;
+                    }
+                }
+                self.x.copy_from_slice(&self.x_checkpoint);
+                self.step = saved_step;
+                direct_failed = true;
+            }
+            if direct_failed || condition >= self.options.direct_finish_condition {
+                match self.cauchy_loop(s) {
+                    Ok(c) => {
+                        if loops_done >= 1 {
+                            let log_ratio = (s / previous_loop_radius).ln();
+                            for i in 0..n {
+                                self.loop_valuations[i] =
+                                    (self.log_mean[i] - self.previous_log_mean[i]) / log_ratio;
+                            }
+                            if loops_done >= 2 {
+                                let stable = (0..n).all(|i| {
+                                    (self.loop_valuations[i] - self.previous_loop_valuations[i])
+                                        .abs()
+                                        < 1e-3
+                                });
+                                let smallest = self
+                                    .loop_valuations
+                                    .iter()
+                                    .fold(f64::INFINITY, |a, &b| a.min(b));
+                                if stable && smallest < -self.options.valuation_threshold {
+                                    return PathStatus::AtInfinity;
+                                }
+                            }
+                            self.previous_loop_valuations
+                                .copy_from_slice(&self.loop_valuations);
+                        }
+                        self.previous_log_mean.copy_from_slice(&self.log_mean);
+                        previous_loop_radius = s;
+                        loops_done += 1;
+                        let scale = 1.0 + max_norm(&self.estimate);
+                        let change = self
+                            .estimate
+                            .iter()
+                            .zip(&self.previous_estimate)
+                            .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+                        self.previous_estimate.copy_from_slice(&self.estimate);
+                        if have_estimate
+                            && change <= self.options.endgame_tolerance * scale
+                            && self.estimate_residual_small()
+                        {
+                            self.winding = c;
+                            return self.classify_estimate(c);
+                        }
+                        self.winding = c;
+                        have_estimate = true;
+                    }
+                    Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
+                    Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge)) => {}
+                    Err(SegmentError::Failure(reason)) => {
+                        return self.give_up(have_estimate, reason);
+                    }
+                }
+            }
+            let s_next = s * self.options.endgame_ratio;
+            if s_next < self.options.endgame_min_radius {
+                return self.give_up(have_estimate, FailureReason::EndgameDidNotConverge);
+            }
+            match self.track_segment(t, C64::new(1.0 - s_next, 0.0)) {
+                Ok(()) => s = s_next,
+                Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
+                Err(SegmentError::Failure(reason)) => return self.give_up(have_estimate, reason),
+            }
+        }
+    }
+
+    /// End of the endgame without converged estimates: the last Cauchy estimate if
+    /// there is one (singular, lower accuracy), else failure.
+    fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
+        if have_estimate && self.winding > 1 && {
+            self.estimate.copy_from_slice(&self.previous_estimate);
+            self.estimate_residual_small()
+        } {
+            self.classify_estimate(self.winding)
+        } else {
+            PathStatus::Failed(reason)
+        }
+    }
+
+    /// Whether `‖H(estimate, 1)‖∞ ≤ endpoint_residual · (1 + ‖estimate‖∞)^d̂` with a
+    /// generous d̂ = 2 (a Cauchy mean of a diverging path has an O(1) residual).
+    fn estimate_residual_small(&mut self) -> bool {
+        let e = &mut self.eval;
+        self.homotopy
+            .evaluate(&self.estimate, C64::new(1.0, 0.0), &mut e.work, &mut e.h);
+        let scale = 1.0 + max_norm(&self.estimate);
+        max_norm(&e.h) <= self.options.endpoint_residual * scale * scale
+    }
+
+    /// Moves to the Cauchy estimate and classifies it (winding number 1 endpoints are
+    /// refined by Newton and are nonsingular if well conditioned).
+    fn classify_estimate(&mut self, winding: usize) -> PathStatus {
+        self.x.copy_from_slice(&self.estimate);
+        if winding == 1 {
+            let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
+            if converged && self.condition_at(C64::new(1.0, 0.0)) < self.options.singular_condition
+            {
+                return PathStatus::Nonsingular;
+            }
+            self.x.copy_from_slice(&self.estimate);
+        }
+        PathStatus::Singular
+    }
+
+    /// Loops around `|1 − t| = s` until the path closes; the mean of the samples (in
+    /// `self.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
+    fn cauchy_loop(&mut self, s: f64) -> Result<usize, SegmentError> {
+        let m = self.options.cauchy_samples_per_loop.max(3);
+        self.x_checkpoint.copy_from_slice(&self.x);
+        self.cauchy_sum
+            .iter_mut()
+            .for_each(|v| *v = C64::new(0.0, 0.0));
+        self.log_sum.iter_mut().for_each(|v| *v = 0.0);
+        let point = |j: usize| {
+            C64::new(1.0, 0.0) - C64::from_polar(s, std::f64::consts::TAU * j as f64 / m as f64)
+        };
+        let mut extent: f64 = 0.0;
+        for c in 1..=self.options.max_winding_number.max(1) {
+            for j in 0..m {
+                for ((acc, log_acc), x) in self
+                    .cauchy_sum
+                    .iter_mut()
+                    .zip(self.log_sum.iter_mut())
+                    .zip(&self.x)
+                {
+                    *acc += x;
+                    *log_acc += x.norm().max(1e-300).ln();
+                }
+                self.track_segment(point(j), point(j + 1))?;
+                let distance = self
+                    .x
+                    .iter()
+                    .zip(&self.x_checkpoint)
+                    .fold(0.0f64, |d, (a, b)| d.max((a - b).norm()));
+                if j + 1 < m {
+                    extent = extent.max(distance);
+                } else {
+                    let scale = 1.0 + max_norm(&self.x);
+                    let noise = 100.0 * self.options.corrector_tolerance * scale;
+                    if distance <= (1e-2 * extent).max(noise) {
+                        let weight = 1.0 / (c * m) as f64;
+                        for (e, acc) in self.estimate.iter_mut().zip(&self.cauchy_sum) {
+                            *e = acc * weight;
+                        }
+                        for (l, acc) in self.log_mean.iter_mut().zip(&self.log_sum) {
+                            *l = acc * weight;
+                        }
+                        return Ok(c);
+                    }
+                    extent = extent.max(distance);
+                }
+            }
+        }
+        Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge))
+    }
+
+    /// RK4 prediction from `(x, t)` to `t_new` into `x_predicted`.
+    fn predict(&mut self, t: C64, t_mid: C64, t_new: C64, dt: C64, h: f64) -> Option<()> {
+        let hom = self.homotopy;
+        let ext = self.extended;
+        let e = &mut self.eval;
+        if !e.velocity(hom, &self.x, t, dt, ext, &mut self.k1) {
+            return None;
+        }
+        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k1) {
+            *s = x + k * (0.5 * h);
+        }
+        if !e.velocity(hom, &self.x_stage, t_mid, dt, ext, &mut self.k2) {
+            return None;
+        }
+        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k2) {
+            *s = x + k * (0.5 * h);
+        }
+        if !e.velocity(hom, &self.x_stage, t_mid, dt, ext, &mut self.k3) {
+            return None;
+        }
+        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k3) {
+            *s = x + k * h;
+        }
+        if !e.velocity(hom, &self.x_stage, t_new, dt, ext, &mut self.k4) {
+            return None;
+        }
+        let w = h / 6.0;
+        for i in 0..self.n {
+            self.x_predicted[i] =
+                self.x[i] + (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]) * w;
+        }
+        Some(())
+    }
+
+    /// Newton corrector on `x_predicted` at `t`; `Some(‖Δ₀‖)` if accepted.
+    fn correct(&mut self, t: C64) -> Option<f64> {
+        let mut first = 0.0;
+        let mut previous = 0.0;
+        for k in 0..self.options.max_corrector_iterations.max(1) {
+            let norm =
+                match self
+                    .eval
+                    .newton(self.homotopy, &mut self.x_predicted, t, self.extended)
+                {
+                    NewtonUpdate::Step(norm) => norm,
+                    NewtonUpdate::Singular => return None,
+                };
+            let tolerance = self.options.corrector_tolerance * (1.0 + max_norm(&self.x_predicted));
+            if k == 0 {
+                first = norm;
+                if norm <= tolerance {
+                    return Some(first);
+                }
+            } else {
+                if norm > self.options.max_contraction * previous {
+                    return None;
+                }
+                if norm <= tolerance {
+                    return Some(first);
+                }
+            }
+            previous = norm;
+        }
+        None
+    }
+}
