@@ -1,5 +1,7 @@
 //! The stages of the main job (SPEC A.9): ab-initio, user homotopy, parameter homotopy, post-processing.
 
+pub mod curve;
+pub mod postprocess;
 pub mod start_file;
 pub mod start_pair;
 
