@@ -71,7 +71,8 @@ pub enum PipelineError {
 
 /// Where the generic start solutions of a sub-problem come from (the ab-initio stage;
 /// tests may supply their own). Errors are plain messages.
-pub type StartProvider<'a> = &'a (dyn Fn(ProblemId) -> Result<StartSolutions, String> + Sync);
+pub type StartProvider<'a> =
+    &'a (dyn Fn(ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> + Sync);
 
 /// Knobs of the curve pipeline.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -368,7 +369,7 @@ pub fn seed_stage(
             });
         }
         let seed_parameters = problem.parameters_for(design, &k_star);
-        prepared.push((id, problem, source, seed_parameters, start.solutions));
+        prepared.push((id, problem, source, seed_parameters, start.solutions.clone()));
     }
     let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
         .into_par_iter()
@@ -718,4 +719,64 @@ fn pose_to_pose(
             result
         })
         .collect()
+}
+
+/// Parameters τ where `S(K(τ))` changes sign between consecutive samples, refined by
+/// bisection on the analytic motion to `|Δτ| ≤ 1e-14·(1 + |τ|)` (SPEC A.8: the
+/// distance vanishes there). For pose lists, the midpoint of the sign change.
+pub fn singular_parameters(design: &Design, motion: &Motion, samples: &[SampledPose]) -> Vec<f64> {
+    let s_of = |tau: f64| {
+        motion
+            .pose(tau)
+            .map(|p| design.configuration(p).singularity())
+    };
+    let mut roots = Vec::new();
+    for pair in samples.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let sa = design.configuration(a.pose).singularity();
+        let sb = design.configuration(b.pose).singularity();
+        if sa == 0.0 {
+            roots.push(a.tau);
+            continue;
+        }
+        if sa * sb >= 0.0 {
+            continue;
+        }
+        if matches!(motion, Motion::Poses(_)) {
+            roots.push(0.5 * (a.tau + b.tau));
+            continue;
+        }
+        let (mut lo, mut hi, mut s_lo) = (a.tau, b.tau, sa);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if (hi - lo).abs() <= 1e-14 * (1.0 + mid.abs()) {
+                break;
+            }
+            let Some(s_mid) = s_of(mid) else { break };
+            if s_mid == 0.0 {
+                lo = mid;
+                hi = mid;
+                break;
+            }
+            if (s_mid < 0.0) == (s_lo < 0.0) {
+                lo = mid;
+                s_lo = s_mid;
+            } else {
+                hi = mid;
+            }
+        }
+        roots.push(0.5 * (lo + hi));
+    }
+    if let Some(last) = samples.last()
+        && design.configuration(last.pose).singularity() == 0.0
+    {
+        roots.push(last.tau);
+    }
+    roots
+}
+
+/// The default start provider: [`super::ab_initio::start_solutions`] (embedded files,
+/// else monodromy on the fly, cached per process).
+pub fn default_start_solutions(id: ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> {
+    super::ab_initio::start_solutions(id).map_err(|e| e.to_string())
 }
