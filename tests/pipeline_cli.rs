@@ -25,7 +25,11 @@ fn write(name: &str, text: &str) -> String {
 fn assert_one_line_error(code: i32, stderr: &str, needles: &[&str]) {
     assert_eq!(code, 1, "stderr: {stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
-    assert_eq!(stderr.trim().lines().count(), 1, "one line expected: {stderr}");
+    assert_eq!(
+        stderr.trim().lines().count(),
+        1,
+        "one line expected: {stderr}"
+    );
     for needle in needles {
         assert!(stderr.contains(needle), "`{needle}` missing in: {stderr}");
     }

@@ -56,7 +56,11 @@ fn distance_vanishes_and_changes_sign_at_the_singular_poses() {
     let motion = example_motion();
     let samples = sample_motion(&motion, 200).expect("valid motion");
     let roots = singular_parameters(&design, &motion, &samples);
-    assert_eq!(roots.len(), 2, "the example motion crosses S = 0 twice: {roots:?}");
+    assert_eq!(
+        roots.len(),
+        2,
+        "the example motion crosses S = 0 twice: {roots:?}"
+    );
     assert!((roots[0] + 0.086).abs() < 0.01 && (roots[1] - 3.107).abs() < 0.01);
     let delta = 0.05;
     let mut poses = Vec::new();
@@ -73,7 +77,11 @@ fn distance_vanishes_and_changes_sign_at_the_singular_poses() {
             let before = triple[0].metrics[&name].signed_distance;
             let at = triple[1].metrics[&name].distance;
             let after = triple[2].metrics[&name].signed_distance;
-            assert!(at < 1e-8, "{name}: distance {at:e} at singular tau {}", roots[r]);
+            assert!(
+                at < 1e-8,
+                "{name}: distance {at:e} at singular tau {}",
+                roots[r]
+            );
             assert!(
                 before * after < 0.0 && before.abs() > 1e-4 && after.abs() > 1e-4,
                 "{name}: signed distance must change sign across tau = {}: {before} → {after}",
@@ -176,7 +184,10 @@ fn global_minimum_is_below_every_local_minimum_and_closest_is_feasible() {
             let recomputed = m.distance(&k, &reported.closest);
             assert!((recomputed - reported.distance).abs() < 1e-12 * (1.0 + recomputed));
             let residual = constraint_residual(&reported.subproblem, &reported.closest);
-            assert!(residual < 1e-10, "trial {trial} {m}: constraint residual {residual:e}");
+            assert!(
+                residual < 1e-10,
+                "trial {trial} {m}: constraint residual {residual:e}"
+            );
             let problem = LagrangeProblem::new(ProblemId {
                 metric: m,
                 subproblem: SubProblem::Singularity,
@@ -232,9 +243,7 @@ fn same_seed_gives_identical_json_on_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .expect("thread pool")
-            .install(|| {
-                serde_json::to_string(&curve(&design, &motion, 6, &metrics)).expect("JSON")
-            })
+            .install(|| serde_json::to_string(&curve(&design, &motion, 6, &metrics)).expect("JSON"))
     };
     assert_eq!(run(1), run(2));
 }

@@ -11,6 +11,11 @@ fn warm_start_cache() {
         }
         let t = std::time::Instant::now();
         let r = pipeline_support::cached_start_solutions(id);
-        println!("{} {:?} {:.1}s", id.name(), r.map(|s| s.solutions.len()), t.elapsed().as_secs_f64());
+        println!(
+            "{} {:?} {:.1}s",
+            id.name(),
+            r.map(|s| s.solutions.len()),
+            t.elapsed().as_secs_f64()
+        );
     }
 }

@@ -148,9 +148,9 @@ pub fn run(args: CurveArgs) -> Result<()> {
         }
     }
     let partial = match &partial_path {
-        Some(path) => Some(Mutex::new(std::fs::File::create(path).with_context(|| {
-            format!("--out: {}: cannot create the partial file", path.display())
-        })?)),
+        Some(path) => Some(Mutex::new(std::fs::File::create(path).with_context(
+            || format!("--out: {}: cannot create the partial file", path.display()),
+        )?)),
         None => None,
     };
     let progress = if args.quiet {
@@ -158,8 +158,10 @@ pub fn run(args: CurveArgs) -> Result<()> {
     } else {
         let bar = ProgressBar::new(samples.len() as u64);
         bar.set_style(
-            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            ProgressStyle::with_template(
+                "{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
         bar.set_message("start solutions + seed");
         bar

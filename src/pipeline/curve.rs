@@ -23,6 +23,9 @@
 //! 4. **Post-processing** ([`super::postprocess`]).
 
 use super::postprocess::{self, Candidate, MetricDistance};
+
+/// Per (pose, sub-problem): real candidates, finite endpoints, failure, paths tracked.
+type PoseEntry = (Vec<Candidate>, usize, Option<PathFailure>, usize);
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::homotopy::{
@@ -30,7 +33,7 @@ use crate::homotopy::{
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
-use crate::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem, subproblems_of};
+use crate::problem::{LagrangeProblem, ProblemError, ProblemId, subproblems_of};
 use crate::random;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -100,7 +103,7 @@ impl Default for CurveOptions {
             seed: 1,
             tracker: TrackerOptions::default(),
             retry_tracker: TrackerOptions::conservative(),
-            retry_attempts: 2,
+            retry_attempts: 1,
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
             pose_to_pose: false,
@@ -226,9 +229,7 @@ pub fn seed_configuration(design: &Design, motion: &Motion, seed: u64) -> (Optio
     let (tau, mut k) = match motion.pose_complex(tau_star) {
         Some([x, y, phi]) => (Some(tau_star), design.configuration_complex(x, y, phi)),
         None => {
-            let first = motion
-                .pose(lo)
-                .unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
+            let first = motion.pose(lo).unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
             (None, to_real(&design.configuration(first).to_array()))
         }
     };
@@ -279,8 +280,9 @@ fn detour_point(target: &[C64], seed: u64, stream: u64) -> Vec<C64> {
         .collect()
 }
 
-/// Tracks `starts` from `from` to `to` (straight), and if fewer than `expected`
-/// finite endpoints result, re-tracks along detours. Returns the merged finite
+/// Tracks `starts` from `from` to `to` (straight); if fewer than `expected` finite
+/// endpoints result, re-tracks the lost paths with the safer settings, then (if still
+/// short) every path along complex detours. Returns the merged finite
 /// endpoints (deduplicated only across attempts), the best attempt's finite count and
 /// the number of paths tracked.
 fn track_with_retries(
@@ -294,15 +296,29 @@ fn track_with_retries(
 ) -> (Vec<Vec<C64>>, usize, usize) {
     let system = problem.evaluator();
     let straight = ParameterHomotopy::new(system, from, to);
-    let paths = track_all(&straight, starts, &options.tracker);
+    let mut paths = track_all(&straight, starts, &options.tracker);
     let mut tracked = starts.len();
+    if paths.iter().filter(|p| p.status.is_finite()).count() < expected {
+        // First re-run: only the lost paths, same homotopy, safer settings.
+        let mut careful = Tracker::new(&straight, options.retry_tracker.clone());
+        for (i, path) in paths.iter_mut().enumerate() {
+            if !path.status.is_finite() {
+                *path = careful.track(&starts[i], i);
+                tracked += 1;
+            }
+        }
+    }
     let mut endpoints = finite_solutions(&paths);
     let mut best = endpoints.len();
     for attempt in 0..options.retry_attempts {
         if best >= expected {
             break;
         }
-        let via = detour_point(to, options.seed, stream.wrapping_mul(16).wrapping_add(attempt as u64 + 1));
+        let via = detour_point(
+            to,
+            options.seed,
+            stream.wrapping_mul(16).wrapping_add(attempt as u64 + 1),
+        );
         let polyline =
             PolylineParameterHomotopy::new(system, vec![from.to_vec(), via, to.to_vec()]);
         let paths = track_all(&polyline, starts, &options.retry_tracker);
@@ -369,7 +385,13 @@ pub fn seed_stage(
             });
         }
         let seed_parameters = problem.parameters_for(design, &k_star);
-        prepared.push((id, problem, source, seed_parameters, start.solutions.clone()));
+        prepared.push((
+            id,
+            problem,
+            source,
+            seed_parameters,
+            start.solutions.clone(),
+        ));
     }
     let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
         .into_par_iter()
@@ -438,7 +460,9 @@ fn candidates(
         .iter()
         .filter(|x| postprocess::is_real(x, real_tolerance))
         .map(|x| {
-            let k_prime = problem.configuration(x, parameters, &mut work).map(|v| v.re);
+            let k_prime = problem
+                .configuration(x, parameters, &mut work)
+                .map(|v| v.re);
             Candidate {
                 distance: metric.distance(k, &k_prime),
                 closest: k_prime,
@@ -458,7 +482,7 @@ pub fn solve_pose(
     options: &CurveOptions,
 ) -> PoseResult {
     let k = design.configuration(sample.pose).to_array();
-    let per_problem: Vec<(Vec<Candidate>, usize, Option<PathFailure>, usize)> = stage
+    let per_problem: Vec<PoseEntry> = stage
         .problems
         .par_iter()
         .enumerate()
@@ -501,14 +525,13 @@ fn assemble_pose(
     index: usize,
     sample: SampledPose,
     k: &[f64; 12],
-    per_problem: Vec<(Vec<Candidate>, usize, Option<PathFailure>, usize)>,
+    per_problem: Vec<PoseEntry>,
     options: &CurveOptions,
 ) -> PoseResult {
     let singularity = singularity_polynomial(k);
     let mut failures = Vec::new();
     let mut paths_tracked = 0;
-    let mut by_metric: BTreeMap<String, Vec<(SubProblem, Vec<Candidate>, usize, usize)>> =
-        BTreeMap::new();
+    let mut by_metric: BTreeMap<String, Vec<postprocess::SubproblemCandidates>> = BTreeMap::new();
     for (seeded, (list, finite, failure, tracked)) in stage.problems.iter().zip(per_problem) {
         failures.extend(failure);
         paths_tracked += tracked;
@@ -523,8 +546,12 @@ fn assemble_pose(
     for metric in metrics {
         let name = metric.name();
         if let Some(data) = by_metric.get(&name)
-            && let Some(result) =
-                postprocess::metric_distance(*metric, data, singularity, options.cut_locus_tolerance)
+            && let Some(result) = postprocess::metric_distance(
+                *metric,
+                data,
+                singularity,
+                options.cut_locus_tolerance,
+            )
         {
             results.insert(name, result);
         }
@@ -579,7 +606,8 @@ pub fn compute_curve(
     };
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
-    let paths_tracked = stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
+    let paths_tracked =
+        stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
     Ok(CurveResult {
         metric_names: metrics.iter().map(Metric::name).collect(),
         seed: options.seed,
@@ -609,8 +637,7 @@ fn pose_to_pose(
         .iter()
         .map(|s| design.configuration(s.pose).to_array())
         .collect();
-    type Entry = (Vec<Candidate>, usize, Option<PathFailure>, usize);
-    let columns: Vec<Vec<Entry>> = stage
+    let columns: Vec<Vec<PoseEntry>> = stage
         .problems
         .par_iter()
         .enumerate()
@@ -620,7 +647,9 @@ fn pose_to_pose(
             let mut previous: Option<Vec<C64>> = None;
             let mut column = Vec::with_capacity(samples.len());
             for (j, sample) in samples.iter().enumerate() {
-                let target = seeded.problem.parameters_for(design, &to_real(&configurations[j]));
+                let target = seeded
+                    .problem
+                    .parameters_for(design, &to_real(&configurations[j]));
                 let stream = ((j as u64 + 1) << 32) | problem_index as u64;
                 let mut tracked = 0;
                 let mut endpoints = Vec::new();
@@ -696,13 +725,13 @@ fn pose_to_pose(
             column
         })
         .collect();
-    let mut columns: Vec<std::vec::IntoIter<Entry>> =
+    let mut columns: Vec<std::vec::IntoIter<PoseEntry>> =
         columns.into_iter().map(|c| c.into_iter()).collect();
     samples
         .iter()
         .enumerate()
         .map(|(j, sample)| {
-            let per_problem: Vec<Entry> = columns
+            let per_problem: Vec<PoseEntry> = columns
                 .iter_mut()
                 .map(|c| c.next().unwrap_or_else(|| (Vec::new(), 0, None, 0)))
                 .collect();

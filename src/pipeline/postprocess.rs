@@ -73,6 +73,9 @@ pub struct MetricDistance {
     pub subproblems: BTreeMap<String, SubproblemDistance>,
 }
 
+/// One sub-problem's real candidates with its finite and expected endpoint counts.
+pub type SubproblemCandidates = (SubProblem, Vec<Candidate>, usize, usize);
+
 /// Whether the complex point `x` is real: `max |Im x_k| ≤ tolerance · (1 + ‖x‖∞)`.
 pub fn is_real(x: &[crate::C64], tolerance: f64) -> bool {
     let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
@@ -81,10 +84,7 @@ pub fn is_real(x: &[crate::C64], tolerance: f64) -> bool {
 
 /// Whether two configurations differ by more than `tolerance · scale` in some coordinate.
 pub fn distinct_configurations(a: &[f64; 12], b: &[f64; 12], tolerance: f64) -> bool {
-    let scale = 1.0
-        + a.iter()
-            .chain(b.iter())
-            .fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = 1.0 + a.iter().chain(b.iter()).fold(0.0f64, |m, v| m.max(v.abs()));
     a.iter()
         .zip(b.iter())
         .any(|(x, y)| (x - y).abs() > tolerance * scale)
@@ -115,7 +115,7 @@ pub fn subproblem_distance(
 /// sub-problem has a real critical point.
 pub fn metric_distance(
     metric: Metric,
-    per_subproblem: &[(SubProblem, Vec<Candidate>, usize, usize)],
+    per_subproblem: &[SubproblemCandidates],
     singularity_value: f64,
     cut_locus_tolerance: f64,
 ) -> Option<MetricDistance> {
@@ -210,7 +210,11 @@ mod tests {
         // A tie with a different K′ is a cut locus; a tie with the same K′ is not.
         let tie = vec![(
             SubProblem::Singularity,
-            vec![candidate(1.0, 0.0), candidate(1.0, 0.0), candidate(1.0, 5.0)],
+            vec![
+                candidate(1.0, 0.0),
+                candidate(1.0, 0.0),
+                candidate(1.0, 5.0),
+            ],
             3,
             3,
         )];
