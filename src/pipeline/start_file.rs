@@ -12,17 +12,30 @@ use std::collections::BTreeMap;
 /// Certificate that a start-solution set is complete.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Certificate {
-    /// `"trace-test"`.
+    /// `"trace-test"` (trace residual below tolerance), `"verified-count"` (the SPEC
+    /// A.7 generic count, known exactly from Gröbner-basis computations, reached with
+    /// distinct nonsingular solutions at a generic point: then no solution is missing),
+    /// or `"none"` (not certified: the set may be incomplete).
     pub kind: String,
     /// Trace-test residual: relative deviation of the solutions' trace from linearity
-    /// along a pencil of parameter points (small when no solution is missing).
-    pub trace_residual: f64,
+    /// along a pencil of slices (small when no solution is missing); `None` when the
+    /// trace test was not run (the count certificate applies) or could not be formed.
+    pub trace_residual: Option<f64>,
     /// Threshold below which the trace test passes.
     pub tolerance: f64,
     /// Whether the test passed.
     pub passed: bool,
     /// Number of monodromy loops run.
     pub loops: usize,
+    /// Paths that failed during the loops (they never add solutions).
+    #[serde(default)]
+    pub failed_paths: usize,
+    /// Number of solutions found.
+    #[serde(default)]
+    pub found_count: usize,
+    /// Generic count expected (SPEC A.7), if known.
+    #[serde(default)]
+    pub expected_count: Option<usize>,
 }
 
 /// Contents of a start-solution file (field names fixed by the project: `problem`,
