@@ -118,10 +118,17 @@ pub fn warn_failures(failures: &[PathFailure]) -> bool {
             ),
         })
         .collect();
+    const SHOWN: usize = 8;
+    let more = list.len().saturating_sub(SHOWN);
     eprintln!(
-        "singdist: warning: {} path group(s) lost after re-runs (results may miss critical points): {}",
+        "singdist: warning: {} (pose, sub-problem) group(s) lost paths after re-runs (results may miss critical points; all listed under `failures` in the output): {}{}",
         failures.len(),
-        list.join("; ")
+        list[..list.len().min(SHOWN)].join("; "),
+        if more > 0 {
+            format!("; … and {more} more")
+        } else {
+            String::new()
+        }
     );
     true
 }
