@@ -1,12 +1,378 @@
-//! `singdist curve`.
+//! `singdist curve`: distance-to-singularity curves of a 3-RPR along a motion for the
+//! nine extrinsic metrics (SPEC A.9): JSON / CSV table, SVG plot, compact table on
+//! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
+use anyhow::{Context, Result, bail};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use singdist::io::{load_design, load_motion};
+use singdist::mechanism::rpr::{Design, Motion, example_design, example_motion};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{
+    CurveOptions, CurveResult, PathFailure, PoseResult, compute_curve, default_start_solutions,
+    sample_motion, singular_parameters,
+};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Exit code of a run that completed but lost paths at some pose.
+pub const EXIT_PATH_FAILURES: i32 = 3;
 
 /// Arguments of `singdist curve`.
 #[derive(Args, Debug)]
-pub struct CurveArgs {}
+pub struct CurveArgs {
+    /// Design file (JSON `{"base": [[x,y],…], "platform": [[x,y],…]}`); default: the
+    /// built-in example.
+    #[arg(long, value_name = "FILE")]
+    design: Option<PathBuf>,
+    /// Motion file (analytic motion or explicit pose list); default: the built-in example.
+    #[arg(long, value_name = "FILE")]
+    motion: Option<PathBuf>,
+    /// Number of poses evenly spaced in τ (pose lists are used as given).
+    #[arg(long, value_name = "N", default_value_t = 90)]
+    poses: usize,
+    /// Metrics: `all`, or names like `plate/plate bars/rigid` (or comma separated).
+    #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
+    metric: Vec<String>,
+    /// Output table: `.json` (full detail) or `.csv` (signed distance per metric).
+    /// Partial results are appended to `FILE.partial` (JSON lines) while running.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// SVG plot of the signed distance curves against τ, singular poses marked.
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Seed of every random choice (results are identical for any thread count).
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// Track pose to pose with complex detours instead of seed → each pose.
+    #[arg(long)]
+    pose_to_pose: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Loads the design and motion (built-in example by default).
+pub fn load_inputs(design: Option<&Path>, motion: Option<&Path>) -> Result<(Design, Motion)> {
+    let design = match design {
+        Some(path) => load_design(path)?,
+        None => example_design(),
+    };
+    let motion = match motion {
+        Some(path) => load_motion(path)?,
+        None => example_motion(),
+    };
+    Ok((design, motion))
+}
+
+/// Parses `--metric` values (each `all` or a comma-separated list).
+pub fn parse_metrics(values: &[String]) -> Result<Vec<Metric>> {
+    let mut metrics: Vec<Metric> = Vec::new();
+    for value in values {
+        for metric in Metric::parse_list(value).context("--metric")? {
+            if !metrics.contains(&metric) {
+                metrics.push(metric);
+            }
+        }
+    }
+    if metrics.is_empty() {
+        bail!("--metric: no metric given");
+    }
+    Ok(metrics)
+}
+
+/// Runs `f` on a rayon pool of `threads` workers (or the global pool).
+pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T> {
+    match threads {
+        Some(0) => bail!("--threads: must be at least 1"),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .context("--threads: cannot start the worker pool")?;
+            Ok(pool.install(f))
+        }
+        None => Ok(f()),
+    }
+}
+
+/// Prints a warning listing lost paths; returns whether there were any.
+pub fn warn_failures(failures: &[PathFailure]) -> bool {
+    if failures.is_empty() {
+        return false;
+    }
+    let list: Vec<String> = failures
+        .iter()
+        .map(|f| match (f.pose_index, f.tau) {
+            (Some(j), Some(tau)) => format!(
+                "pose {j} (tau = {tau:.6}) {}: {}/{} finite endpoints",
+                f.problem, f.finite, f.expected
+            ),
+            _ => format!(
+                "seed {}: {}/{} finite endpoints",
+                f.problem, f.finite, f.expected
+            ),
+        })
+        .collect();
+    const SHOWN: usize = 8;
+    let more = list.len().saturating_sub(SHOWN);
+    eprintln!(
+        "singdist: warning: {} (pose, sub-problem) group(s) lost paths after re-runs (results may miss critical points; all listed under `failures` in the output): {}{}",
+        failures.len(),
+        list[..list.len().min(SHOWN)].join("; "),
+        if more > 0 {
+            format!("; … and {more} more")
+        } else {
+            String::new()
+        }
+    );
+    true
+}
 
 /// Runs `singdist curve`.
-pub fn run(_args: CurveArgs) -> anyhow::Result<()> {
-    Err(super::not_yet_available("curve"))
+pub fn run(args: CurveArgs) -> Result<()> {
+    let (design, motion) = load_inputs(args.design.as_deref(), args.motion.as_deref())?;
+    let metrics = parse_metrics(&args.metric)?;
+    let samples = sample_motion(&motion, args.poses).context("--poses")?;
+    let options = CurveOptions {
+        seed: args.seed,
+        pose_to_pose: args.pose_to_pose,
+        ..CurveOptions::default()
+    };
+    let partial_path = args.out.as_ref().map(|p| {
+        let mut name = p.clone().into_os_string();
+        name.push(".partial");
+        PathBuf::from(name)
+    });
+    if let Some(out) = &args.out {
+        match out.extension().and_then(|e| e.to_str()) {
+            Some("json") | Some("csv") => {}
+            _ => bail!("--out: {}: expected a .json or .csv file", out.display()),
+        }
+    }
+    let partial = match &partial_path {
+        Some(path) => Some(Mutex::new(std::fs::File::create(path).with_context(
+            || format!("--out: {}: cannot create the partial file", path.display()),
+        )?)),
+        None => None,
+    };
+    let progress = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::new(samples.len() as u64);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar.set_message("start solutions + seed");
+        bar
+    };
+    let on_pose = |pose: &PoseResult| {
+        progress.set_message("poses");
+        progress.inc(1);
+        if let Some(file) = &partial
+            && let Ok(line) = serde_json::to_string(pose)
+        {
+            let mut file = file.lock().unwrap_or_else(|e| e.into_inner());
+            // A failed append only loses the partial copy; the final file is written anyway.
+            let _ = writeln!(file, "{line}");
+        }
+    };
+    let started = std::time::Instant::now();
+    let result = with_threads(args.threads, || {
+        compute_curve(
+            &design,
+            &motion,
+            args.poses,
+            &metrics,
+            &options,
+            &default_start_solutions,
+            &on_pose,
+        )
+    })??;
+    progress.finish_and_clear();
+    let elapsed = started.elapsed().as_secs_f64();
+    let singular = singular_parameters(&design, &motion, &samples);
+    match &args.out {
+        Some(path) => {
+            write_output(path, &result, &metrics)?;
+            if let Some(p) = &partial_path {
+                // The final file supersedes the partial one.
+                let _ = std::fs::remove_file(p);
+            }
+        }
+        None => print_table(&result, &metrics, &singular),
+    }
+    if let Some(path) = &args.plot {
+        plot(path, &result, &metrics, &singular)?;
+    }
+    if !args.quiet {
+        eprintln!(
+            "singdist: {} poses, {} metrics, {} paths in {:.3} s ({:.0} paths/s)",
+            result.poses.len(),
+            metrics.len(),
+            result.paths_tracked,
+            elapsed,
+            result.paths_tracked as f64 / elapsed.max(1e-9)
+        );
+    }
+    if warn_failures(&result.failures) {
+        std::process::exit(EXIT_PATH_FAILURES);
+    }
+    Ok(())
+}
+
+fn write_output(path: &Path, result: &CurveResult, metrics: &[Metric]) -> Result<()> {
+    let is_csv = path.extension().and_then(|e| e.to_str()) == Some("csv");
+    let text = if is_csv {
+        csv_text(result, metrics)?
+    } else {
+        serde_json::to_string_pretty(result).context("serialising the curve")?
+    };
+    std::fs::write(path, text).with_context(|| format!("--out: {}: cannot write", path.display()))
+}
+
+/// CSV: `tau, x, y, phi, S`, then one column per metric (signed distance).
+pub fn csv_text(result: &CurveResult, metrics: &[Metric]) -> Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let mut header: Vec<String> = ["tau", "x", "y", "phi", "S"].map(String::from).to_vec();
+    header.extend(metrics.iter().map(Metric::name));
+    writer.write_record(&header)?;
+    for pose in &result.poses {
+        let mut row: Vec<String> = vec![
+            pose.tau.to_string(),
+            pose.pose[0].to_string(),
+            pose.pose[1].to_string(),
+            pose.pose[2].to_string(),
+            pose.singularity.to_string(),
+        ];
+        for metric in metrics {
+            row.push(
+                pose.metrics
+                    .get(&metric.name())
+                    .map(|m| m.signed_distance.to_string())
+                    .unwrap_or_default(),
+            );
+        }
+        writer.write_record(&row)?;
+    }
+    let bytes = writer.into_inner().context("writing CSV")?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+fn print_table(result: &CurveResult, metrics: &[Metric], singular: &[f64]) {
+    print!("{:>9} {:>11}", "tau", "S");
+    for metric in metrics {
+        print!(" {:>12}", metric.name());
+    }
+    println!();
+    for pose in &result.poses {
+        print!("{:>9.4} {:>11.4e}", pose.tau, pose.singularity);
+        for metric in metrics {
+            match pose.metrics.get(&metric.name()) {
+                Some(m) => print!(
+                    " {:>11.6}{}",
+                    m.signed_distance,
+                    if m.cut_locus { "*" } else { " " }
+                ),
+                None => print!(" {:>12}", "-"),
+            }
+        }
+        println!();
+    }
+    println!(
+        "signed distance to the nearest singularity (sign of S); * = cut locus; singular poses at tau = {}",
+        singular
+            .iter()
+            .map(|t| format!("{t:.6}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+}
+
+fn plot(path: &Path, result: &CurveResult, metrics: &[Metric], singular: &[f64]) -> Result<()> {
+    use plotters::prelude::*;
+    if result.poses.len() < 2 {
+        bail!("--plot: need at least 2 poses");
+    }
+    let t0 = result.poses[0].tau;
+    let t1 = result.poses[result.poses.len() - 1].tau;
+    let values = result
+        .poses
+        .iter()
+        .flat_map(|p| p.metrics.values().map(|m| m.signed_distance));
+    let (lo, hi) = values.fold((0.0f64, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
+    let pad = 0.05 * (hi - lo).max(1e-9);
+    let root = SVGBackend::new(path, (1100, 700)).into_drawing_area();
+    let draw =
+        |e: DrawingAreaErrorKind<_>| anyhow::anyhow!("{}: plotting failed: {e:?}", path.display());
+    root.fill(&WHITE).map_err(draw)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "3-RPR signed distance to singularity along the motion",
+            ("sans-serif", 20),
+        )
+        .margin(15)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t0.min(t1)..t0.max(t1), (lo - pad)..(hi + pad))
+        .map_err(draw)?;
+    chart
+        .configure_mesh()
+        .x_desc("motion parameter tau")
+        .y_desc("signed distance D (sign of S)")
+        .draw()
+        .map_err(draw)?;
+    let colors = [
+        &BLUE,
+        &RED,
+        &GREEN,
+        &MAGENTA,
+        &CYAN,
+        &BLACK,
+        &full_palette::ORANGE,
+        &full_palette::BROWN,
+        &full_palette::PURPLE,
+    ];
+    for (metric, color) in metrics.iter().zip(colors.iter().cycle()) {
+        let name = metric.name();
+        let points: Vec<(f64, f64)> = result
+            .poses
+            .iter()
+            .filter_map(|p| p.metrics.get(&name).map(|m| (p.tau, m.signed_distance)))
+            .collect();
+        let color = *color;
+        chart
+            .draw_series(LineSeries::new(points, color.stroke_width(2)))
+            .map_err(draw)?
+            .label(name)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    for &tau in singular {
+        chart
+            .draw_series(LineSeries::new(
+                vec![(tau, lo - pad), (tau, hi + pad)],
+                BLACK.stroke_width(1),
+            ))
+            .map_err(draw)?
+            .label(format!("singular pose (S = 0) at tau = {tau:.4}"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y - 6), (x, y + 6)], BLACK.stroke_width(1)));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(draw)?;
+    root.present().map_err(draw)?;
+    Ok(())
 }

@@ -1,6 +1,8 @@
 //! The stages of the main job (SPEC A.9): ab-initio, user homotopy, parameter homotopy, post-processing.
 
 pub mod ab_initio;
+pub mod curve;
+pub mod postprocess;
 pub mod start_file;
 pub mod start_pair;
 

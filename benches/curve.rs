@@ -1,0 +1,75 @@
+//! Distance-to-singularity curve of the built-in example (SPEC A.9): the seed → pose
+//! reference homotopy against pose-to-pose tracking, on 2 threads. Start solutions
+//! come from the embedded files, else the test cache `target/start-cache/` (run
+//! `cargo test --release --test pipeline_debug -- --ignored` once to fill it).
+//! `SINGDIST_BENCH_METRICS` selects the metrics (default `all`).
+
+#[path = "../tests/pipeline_support/mod.rs"]
+mod pipeline_support;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use singdist::mechanism::rpr::{example_design, example_motion};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{CurveOptions, compute_curve};
+use std::time::Instant;
+
+fn bench_curve(c: &mut Criterion) {
+    let list = std::env::var("SINGDIST_BENCH_METRICS").unwrap_or_else(|_| "all".into());
+    let metrics = Metric::parse_list(&list).expect("SINGDIST_BENCH_METRICS: metric list");
+    let design = example_design();
+    let motion = example_motion();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("thread pool");
+    for pose_to_pose in [false, true] {
+        let options = CurveOptions {
+            pose_to_pose,
+            ..CurveOptions::default()
+        };
+        let run = || {
+            pool.install(|| {
+                compute_curve(
+                    &design,
+                    &motion,
+                    90,
+                    &metrics,
+                    &options,
+                    &pipeline_support::cached_start_solutions,
+                    &|_| {},
+                )
+                .expect("curve")
+            })
+        };
+        // One reported run: wall time, per-pose latency, paths per second, failures.
+        let started = Instant::now();
+        let result = run();
+        let seconds = started.elapsed().as_secs_f64();
+        eprintln!(
+            "curve ({}): {} metrics x 90 poses, 2 threads: {seconds:.3} s, {:.2} ms/pose, {} paths, {:.0} paths/s, {} failures",
+            if pose_to_pose {
+                "pose-to-pose"
+            } else {
+                "seed-to-pose"
+            },
+            metrics.len(),
+            1e3 * seconds / 90.0,
+            result.paths_tracked,
+            result.paths_tracked as f64 / seconds,
+            result.failures.len()
+        );
+        let name = if pose_to_pose {
+            "curve_90_poses_pose_to_pose"
+        } else {
+            "curve_90_poses_seed_to_pose"
+        };
+        c.bench_function(name, |b| b.iter(run));
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10);
+    targets = bench_curve
+}
+criterion_main!(benches);

@@ -1,0 +1,249 @@
+//! Acceptance tests of the distance-to-singularity curves (SPEC A.8, A.9).
+
+mod pipeline_support;
+
+use pipeline_support::cached_start_solutions;
+use singdist::C64;
+use singdist::mechanism::rpr::{
+    Design, Motion, Pose, PoseList, collinearity_base, collinearity_platform, example_design,
+    example_motion, singularity_polynomial,
+};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{
+    CurveOptions, CurveResult, compute_curve, sample_motion, singular_parameters,
+};
+use singdist::problem::{LagrangeProblem, ProblemId, SubProblem};
+use singdist::system::Evaluator;
+
+fn curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric]) -> CurveResult {
+    compute_curve(
+        design,
+        motion,
+        poses,
+        metrics,
+        &CurveOptions::default(),
+        &cached_start_solutions,
+        &|_| {},
+    )
+    .expect("the curve is computed")
+}
+
+fn metric(name: &str) -> Metric {
+    name.parse().expect("a valid metric name")
+}
+
+fn pose_list(poses: Vec<Pose>) -> Motion {
+    Motion::Poses(PoseList { poses })
+}
+
+/// The constraint of the reported sub-problem at K′, relative to the size of K′.
+fn constraint_residual(subproblem: &str, k: &[f64; 12]) -> f64 {
+    let scale = k.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    match subproblem {
+        "singularity" => singularity_polynomial(k).abs() / scale.powi(4),
+        "collinear-platform" => collinearity_platform(k).abs() / scale.powi(2),
+        "collinear-base" => collinearity_base(k).abs() / scale.powi(2),
+        "all-collinear" => {
+            (collinearity_platform(k).abs() + collinearity_base(k).abs()) / scale.powi(2)
+        }
+        _ => 0.0,
+    }
+}
+
+#[test]
+fn distance_vanishes_and_changes_sign_at_the_singular_poses() {
+    let design = example_design();
+    let motion = example_motion();
+    let samples = sample_motion(&motion, 200).expect("valid motion");
+    let roots = singular_parameters(&design, &motion, &samples);
+    assert_eq!(
+        roots.len(),
+        2,
+        "the example motion crosses S = 0 twice: {roots:?}"
+    );
+    assert!((roots[0] + 0.086).abs() < 0.01 && (roots[1] - 3.107).abs() < 0.01);
+    let delta = 0.05;
+    let mut poses = Vec::new();
+    for &tau in &roots {
+        for t in [tau - delta, tau, tau + delta] {
+            poses.push(motion.pose(t).expect("analytic motion"));
+        }
+    }
+    let metrics = [metric("plate/plate")];
+    let result = curve(&design, &pose_list(poses), 0, &metrics);
+    for (r, triple) in result.poses.chunks(3).enumerate() {
+        for m in &metrics {
+            let name = m.name();
+            let before = triple[0].metrics[&name].signed_distance;
+            let at = triple[1].metrics[&name].distance;
+            let after = triple[2].metrics[&name].signed_distance;
+            assert!(
+                at < 1e-8,
+                "{name}: distance {at:e} at singular tau {}",
+                roots[r]
+            );
+            assert!(
+                before * after < 0.0 && before.abs() > 1e-4 && after.abs() > 1e-4,
+                "{name}: signed distance must change sign across tau = {}: {before} → {after}",
+                roots[r]
+            );
+        }
+    }
+}
+
+/// Newton on `∇Λ = 0` (the same Lagrange system, real arithmetic) from random real
+/// starts near K: each converged point with a real K′ is a critical point; the
+/// pipeline's global minimum must not exceed the best of them.
+fn best_local_minimum(
+    problem: &LagrangeProblem,
+    design: &Design,
+    k: &[f64; 12],
+    metric: Metric,
+    starts: usize,
+    seed: u64,
+) -> Option<f64> {
+    let system = problem.evaluator();
+    let n = system.num_variables();
+    let kc = k.map(|v| C64::new(v, 0.0));
+    let p = problem.parameters_for(design, &kc);
+    let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
+    let mut f = vec![C64::new(0.0, 0.0); n];
+    let mut jac = vec![C64::new(0.0, 0.0); n * n];
+    let names = problem.variable_names().to_vec();
+    let mut rng = singdist::random::seeded(seed);
+    let mut best: Option<f64> = None;
+    for _ in 0..starts {
+        let spread = singdist::random::uniform(&mut rng, 0.05, 2.0);
+        // Start: K′ = K + noise on the coordinate unknowns, multipliers random.
+        let mut x: Vec<C64> = names
+            .iter()
+            .map(|name| {
+                let value = singdist::problem::COORDINATE_NAMES
+                    .iter()
+                    .position(|c| c == name)
+                    .map(|i| k[i])
+                    .unwrap_or(0.0);
+                C64::new(value + spread * singdist::random::normal(&mut rng), 0.0)
+            })
+            .collect();
+        let mut converged = false;
+        for _ in 0..60 {
+            system.evaluate_with_jacobian(&x, &p, &mut work, &mut f, &mut jac);
+            let residual = f.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            if !residual.is_finite() {
+                break;
+            }
+            if residual < 1e-11 {
+                converged = true;
+                break;
+            }
+            let a = nalgebra::DMatrix::from_fn(n, n, |i, j| jac[i * n + j].re);
+            let b = nalgebra::DVector::from_fn(n, |i, _| f[i].re);
+            let Some(step) = a.lu().solve(&b) else { break };
+            for (xi, s) in x.iter_mut().zip(step.iter()) {
+                *xi -= C64::new(*s, 0.0);
+            }
+        }
+        if converged {
+            let k_prime = problem.configuration(&x, &p, &mut work).map(|v| v.re);
+            let d = metric.distance(k, &k_prime);
+            best = Some(best.map_or(d, |b: f64| b.min(d)));
+        }
+    }
+    best
+}
+
+#[test]
+fn global_minimum_is_below_every_local_minimum_and_closest_is_feasible() {
+    let mut rng = singdist::random::seeded(2024);
+    for trial in 0..2 {
+        let design = loop {
+            let mut point = || {
+                [
+                    singdist::random::uniform(&mut rng, -5.0, 5.0),
+                    singdist::random::uniform(&mut rng, -5.0, 5.0),
+                ]
+            };
+            let base = [point(), point(), point()];
+            let platform = [point(), point(), point()];
+            if let Ok(d) = Design::new(base, platform) {
+                break d;
+            }
+        };
+        let pose = Pose::new(
+            singdist::random::uniform(&mut rng, -1.0, 1.0),
+            singdist::random::uniform(&mut rng, -1.0, 1.0),
+            singdist::random::uniform(&mut rng, -3.0, 3.0),
+        );
+        let k = design.configuration(pose).to_array();
+        let metrics = [metric("plate/plate")];
+        let result = curve(&design, &pose_list(vec![pose]), 0, &metrics);
+        for m in metrics {
+            let reported = &result.poses[0].metrics[&m.name()];
+            // Consistency (SPEC A.8): distance recomputed from K′, constraint satisfied.
+            let recomputed = m.distance(&k, &reported.closest);
+            assert!((recomputed - reported.distance).abs() < 1e-12 * (1.0 + recomputed));
+            let residual = constraint_residual(&reported.subproblem, &reported.closest);
+            assert!(
+                residual < 1e-10,
+                "trial {trial} {m}: constraint residual {residual:e}"
+            );
+            let problem = LagrangeProblem::new(ProblemId {
+                metric: m,
+                subproblem: SubProblem::Singularity,
+            })
+            .expect("singularity sub-problem exists");
+            let local = best_local_minimum(&problem, &design, &k, m, 200, trial as u64)
+                .expect("some Newton start converges");
+            assert!(
+                reported.distance <= local + 1e-9,
+                "trial {trial} {m}: pipeline {} > local search {local}",
+                reported.distance
+            );
+        }
+    }
+}
+
+#[test]
+fn curves_are_lipschitz_between_consecutive_poses() {
+    // D(K) = min over a fixed constraint set of a seminorm of K − K′, so
+    // |D(K_j) − D(K_{j+1})| ≤ D(K_j, K_{j+1}) (the same seminorm); a lost critical
+    // point would show as a jump violating this bound.
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric("plate/plate")];
+    let result = curve(&design, &motion, 40, &metrics);
+    let samples = sample_motion(&motion, 40).expect("valid motion");
+    let mut worst_ratio = 0.0f64;
+    for m in metrics {
+        let name = m.name();
+        for (j, pair) in result.poses.windows(2).enumerate() {
+            let k0 = design.configuration(samples[j].pose).to_array();
+            let k1 = design.configuration(samples[j + 1].pose).to_array();
+            let bound = m.distance(&k0, &k1);
+            let jump = (pair[0].metrics[&name].distance - pair[1].metrics[&name].distance).abs();
+            worst_ratio = worst_ratio.max(jump / bound);
+            assert!(
+                jump <= bound + 1e-9,
+                "{name}: jump {jump} > bound {bound} between poses {j} and {}",
+                j + 1
+            );
+        }
+    }
+    assert!(worst_ratio <= 1.0 + 1e-9);
+}
+
+#[test]
+fn same_seed_gives_identical_json_on_one_and_two_threads() {
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric("plate/plate")];
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool")
+            .install(|| serde_json::to_string(&curve(&design, &motion, 6, &metrics)).expect("JSON"))
+    };
+    assert_eq!(run(1), run(2));
+}
