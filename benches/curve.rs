@@ -4,9 +4,6 @@
 //! `cargo test --release --test pipeline_debug -- --ignored` once to fill it).
 //! `SINGDIST_BENCH_METRICS` selects the metrics (default `all`).
 
-#[path = "../tests/pipeline_support/mod.rs"]
-mod pipeline_support;
-
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::mechanism::rpr::{example_design, example_motion};
 use singdist::metric::Metric;
@@ -35,7 +32,7 @@ fn bench_curve(c: &mut Criterion) {
                     90,
                     &metrics,
                     &options,
-                    &pipeline_support::cached_start_solutions,
+                    &singdist::pipeline::curve::default_start_solutions,
                     &|_| {},
                 )
                 .expect("curve")

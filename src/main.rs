@@ -29,9 +29,6 @@ enum Command {
     Solve(cli::solve::SolveArgs),
     /// Compute, store and verify generic start solutions of every sub-problem.
     AbInitio(cli::ab_initio::AbInitioArgs),
-    /// 3-RRR singularity distances.
-    #[command(subcommand)]
-    Rrr(cli::rrr::RrrCommand),
     /// 3-PRRR indices and redundancy resolution.
     #[command(subcommand)]
     Prrr(cli::prrr::PrrrCommand),
@@ -50,13 +47,12 @@ fn main() {
         Command::System(cmd) => cli::system::run(cmd),
         Command::Solve(args) => cli::solve::run(args),
         Command::AbInitio(args) => cli::ab_initio::run(args),
-        Command::Rrr(cmd) => cli::rrr::run(cmd),
         Command::Prrr(cmd) => cli::prrr::run(cmd),
         Command::Map(args) => cli::map::run(args),
         Command::Schemes(args) => cli::schemes::run(args),
     };
     if let Err(error) = result {
         eprintln!("singdist: error: {error:#}");
-        std::process::exit(cli::exit_code(&error));
+        std::process::exit(1);
     }
 }

@@ -1,8 +1,5 @@
 //! Acceptance tests of the distance-to-singularity curves (SPEC A.8, A.9).
 
-mod pipeline_support;
-
-use pipeline_support::cached_start_solutions;
 use singdist::C64;
 use singdist::mechanism::rpr::{
     Design, Motion, Pose, PoseList, collinearity_base, collinearity_platform, example_design,
@@ -10,7 +7,8 @@ use singdist::mechanism::rpr::{
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, sample_motion, singular_parameters,
+    CurveOptions, CurveResult, compute_curve, default_start_solutions, sample_motion,
+    singular_parameters,
 };
 use singdist::problem::{LagrangeProblem, ProblemId, SubProblem};
 use singdist::system::Evaluator;
@@ -22,7 +20,7 @@ fn curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric]) -> 
         poses,
         metrics,
         &CurveOptions::default(),
-        &cached_start_solutions,
+        &default_start_solutions,
         &|_| {},
     )
     .expect("the curve is computed")
