@@ -297,7 +297,6 @@ fn print_table(result: &CurveResult, metrics: &[Metric], singular: &[f64]) {
 }
 
 fn plot(path: &Path, result: &CurveResult, metrics: &[Metric], singular: &[f64]) -> Result<()> {
-    use plotters::prelude::*;
     if result.poses.len() < 2 {
         bail!("--plot: need at least 2 poses");
     }
@@ -309,70 +308,26 @@ fn plot(path: &Path, result: &CurveResult, metrics: &[Metric], singular: &[f64])
         .flat_map(|p| p.metrics.values().map(|m| m.signed_distance));
     let (lo, hi) = values.fold((0.0f64, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
     let pad = 0.05 * (hi - lo).max(1e-9);
-    let root = SVGBackend::new(path, (1100, 700)).into_drawing_area();
-    let draw =
-        |e: DrawingAreaErrorKind<_>| anyhow::anyhow!("{}: plotting failed: {e:?}", path.display());
-    root.fill(&WHITE).map_err(draw)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "3-RPR signed distance to singularity along the motion",
-            ("sans-serif", 20),
-        )
-        .margin(15)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(t0.min(t1)..t0.max(t1), (lo - pad)..(hi + pad))
-        .map_err(draw)?;
-    chart
-        .configure_mesh()
-        .x_desc("motion parameter tau")
-        .y_desc("signed distance D (sign of S)")
-        .draw()
-        .map_err(draw)?;
-    let colors = [
-        &BLUE,
-        &RED,
-        &GREEN,
-        &MAGENTA,
-        &CYAN,
-        &BLACK,
-        &full_palette::ORANGE,
-        &full_palette::BROWN,
-        &full_palette::PURPLE,
-    ];
-    for (metric, color) in metrics.iter().zip(colors.iter().cycle()) {
-        let name = metric.name();
-        let points: Vec<(f64, f64)> = result
-            .poses
-            .iter()
-            .filter_map(|p| p.metrics.get(&name).map(|m| (p.tau, m.signed_distance)))
-            .collect();
-        let color = *color;
-        chart
-            .draw_series(LineSeries::new(points, color.stroke_width(2)))
-            .map_err(draw)?
-            .label(name)
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
-    }
-    for &tau in singular {
-        chart
-            .draw_series(LineSeries::new(
-                vec![(tau, lo - pad), (tau, hi + pad)],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(draw)?
-            .label(format!("singular pose (S = 0) at tau = {tau:.4}"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y - 6), (x, y + 6)], BLACK.stroke_width(1)));
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(draw)?;
-    root.present().map_err(draw)?;
-    Ok(())
+    let curves: Vec<super::plot::Curve> = metrics
+        .iter()
+        .map(|metric| {
+            let name = metric.name();
+            let points = result
+                .poses
+                .iter()
+                .filter_map(|p| p.metrics.get(&name).map(|m| (p.tau, m.signed_distance)))
+                .collect();
+            super::plot::Curve {
+                label: name,
+                segments: vec![points],
+            }
+        })
+        .collect();
+    let layout = super::plot::Layout {
+        caption: "3-RPR signed distance to singularity along the motion",
+        y_description: "signed distance D (sign of S)",
+        tau_range: (t0, t1),
+        y_range: (lo - pad, hi + pad),
+    };
+    super::plot::plot_against_tau(path, &layout, &curves, singular)
 }

@@ -287,90 +287,38 @@ fn singular_taus(table: &[Row]) -> Vec<f64> {
 }
 
 fn plot(path: &Path, table: &[Row]) -> Result<()> {
-    use plotters::prelude::*;
     if table.len() < 2 {
         bail!("--plot: need at least 2 poses");
     }
-    let (t0, t1) = (table[0].tau, table[table.len() - 1].tau);
-    let root = SVGBackend::new(path, (1100, 700)).into_drawing_area();
-    let draw =
-        |e: DrawingAreaErrorKind<_>| anyhow::anyhow!("{}: plotting failed: {e:?}", path.display());
-    root.fill(&WHITE).map_err(draw)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "3-RPR kinematic indices along the motion (each curve divided by its maximum)",
-            ("sans-serif", 20),
-        )
-        .margin(15)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(t0.min(t1)..t0.max(t1), 0.0..1.05)
-        .map_err(draw)?;
-    chart
-        .configure_mesh()
-        .x_desc("motion parameter tau")
-        .y_desc("index / max along the motion")
-        .draw()
-        .map_err(draw)?;
-    let colors = [
-        &BLUE,
-        &RED,
-        &GREEN,
-        &MAGENTA,
-        &CYAN,
-        &BLACK,
-        &full_palette::ORANGE,
-        &full_palette::BROWN,
-        &full_palette::PURPLE,
-        &full_palette::TEAL,
-        &full_palette::PINK,
-        &full_palette::GREY,
-    ];
-    for ((label, values), color) in plot_curves(table).into_iter().zip(colors) {
-        let max = values.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
-        let scale = if max > 0.0 { max } else { 1.0 };
-        // Split at undefined values so gaps stay gaps.
-        let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-        for (row, value) in table.iter().zip(&values) {
-            match value {
-                Some(v) => segments
-                    .last_mut()
-                    .map(|s| s.push((row.tau, v / scale)))
-                    .unwrap_or(()),
-                None => segments.push(Vec::new()),
+    let curves: Vec<super::plot::Curve> = plot_curves(table)
+        .into_iter()
+        .map(|(label, values)| {
+            let max = values.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
+            let scale = if max > 0.0 { max } else { 1.0 };
+            // Split at undefined values so gaps stay gaps.
+            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for (row, value) in table.iter().zip(&values) {
+                match value {
+                    Some(v) => {
+                        if let Some(segment) = segments.last_mut() {
+                            segment.push((row.tau, v / scale));
+                        }
+                    }
+                    None => segments.push(Vec::new()),
+                }
             }
-        }
-        let legend = format!("{label} (/ {max:.4e})");
-        let mut first = true;
-        for segment in segments.into_iter().filter(|s| !s.is_empty()) {
-            let series = chart
-                .draw_series(LineSeries::new(segment, color.stroke_width(2)))
-                .map_err(draw)?;
-            if first {
-                series.label(legend.clone()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-                first = false;
+            super::plot::Curve {
+                label: format!("{label} (/ {max:.4e})"),
+                segments,
             }
-        }
-    }
-    for tau in singular_taus(table) {
-        chart
-            .draw_series(LineSeries::new(
-                vec![(tau, 0.0), (tau, 1.05)],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(draw)?
-            .label(format!("singular pose (S = 0) at tau = {tau:.4}"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y - 6), (x, y + 6)], BLACK.stroke_width(1)));
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(draw)?;
-    root.present().map_err(draw)?;
-    Ok(())
+        })
+        .collect();
+    let layout = super::plot::Layout {
+        caption: "3-RPR kinematic indices along the motion (each curve divided by its maximum)",
+        y_description: "index / max along the motion",
+        tau_range: (table[0].tau, table[table.len() - 1].tau),
+        y_range: (0.0, 1.05),
+    };
+    let singular: Vec<f64> = singular_taus(table).into_iter().collect();
+    super::plot::plot_against_tau(path, &layout, &curves, &singular)
 }

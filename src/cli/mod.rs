@@ -6,6 +6,7 @@ pub mod curve;
 pub mod distance;
 pub mod indices;
 pub mod map;
+pub mod plot;
 pub mod prrr;
 pub mod schemes;
 pub mod solve;
