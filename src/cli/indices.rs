@@ -230,23 +230,13 @@ fn print_single_pose(indices: &RprIndices, options: &IndexOptions) {
 
 /// Curves of the plot: name and values (absolute value for S).
 fn plot_curves(table: &[Row]) -> Vec<(String, Vec<Option<f64>>)> {
-    let names = [
-        "M",
-        "S",
-        "IR",
-        "TI",
-        "DS",
-        "MTI",
-        "MDS",
-        "CN",
-        "MCN",
-        "orientation_distance",
-        "position_distance",
-        "cylinder_radius",
-    ];
-    names
+    // Every index column except the signed duplicates of the two distances.
+    let names = INDEX_COLUMN_NAMES
         .iter()
-        .map(|&name| {
+        .copied()
+        .filter(|name| !name.ends_with("_signed"));
+    names
+        .map(|name| {
             let values = table
                 .iter()
                 .map(|r| {
