@@ -1,8 +1,7 @@
-//! Distance-to-singularity curve of the built-in example (SPEC A.9): the seed → pose
-//! reference homotopy against pose-to-pose tracking, on 2 threads. Start solutions
-//! come from the embedded files, else the test cache `target/start-cache/` (run
-//! `cargo test --release --test pipeline_debug -- --ignored` once to fill it).
-//! `SINGDIST_BENCH_METRICS` selects the metrics (default `all`).
+//! Distance-to-singularity curve of the built-in example (SPEC A.9): seed stage plus
+//! seed → pose homotopies along the complexified motion, 90 poses, on 2 threads, with
+//! the embedded start files. `SINGDIST_BENCH_METRICS` selects the metrics (default
+//! `all`).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::mechanism::rpr::{example_design, example_motion};
@@ -19,49 +18,34 @@ fn bench_curve(c: &mut Criterion) {
         .num_threads(2)
         .build()
         .expect("thread pool");
-    for pose_to_pose in [false, true] {
-        let options = CurveOptions {
-            pose_to_pose,
-            ..CurveOptions::default()
-        };
-        let run = || {
-            pool.install(|| {
-                compute_curve(
-                    &design,
-                    &motion,
-                    90,
-                    &metrics,
-                    &options,
-                    &singdist::pipeline::curve::default_start_solutions,
-                    &|_| {},
-                )
-                .expect("curve")
-            })
-        };
-        // One reported run: wall time, per-pose latency, paths per second, failures.
-        let started = Instant::now();
-        let result = run();
-        let seconds = started.elapsed().as_secs_f64();
-        eprintln!(
-            "curve ({}): {} metrics x 90 poses, 2 threads: {seconds:.3} s, {:.2} ms/pose, {} paths, {:.0} paths/s, {} failures",
-            if pose_to_pose {
-                "pose-to-pose"
-            } else {
-                "seed-to-pose"
-            },
-            metrics.len(),
-            1e3 * seconds / 90.0,
-            result.paths_tracked,
-            result.paths_tracked as f64 / seconds,
-            result.failures.len()
-        );
-        let name = if pose_to_pose {
-            "curve_90_poses_pose_to_pose"
-        } else {
-            "curve_90_poses_seed_to_pose"
-        };
-        c.bench_function(name, |b| b.iter(run));
-    }
+    let options = CurveOptions::default();
+    let run = || {
+        pool.install(|| {
+            compute_curve(
+                &design,
+                &motion,
+                90,
+                &metrics,
+                &options,
+                &singdist::pipeline::curve::default_start_solutions,
+                &|_| {},
+            )
+            .expect("curve")
+        })
+    };
+    // One reported run: wall time, per-pose latency, paths per second, failures.
+    let started = Instant::now();
+    let result = run();
+    let seconds = started.elapsed().as_secs_f64();
+    eprintln!(
+        "curve: {} metrics x 90 poses, 2 threads: {seconds:.3} s, {:.2} ms/pose, {} paths, {:.0} paths/s, {} failure groups",
+        metrics.len(),
+        1e3 * seconds / 90.0,
+        result.paths_tracked,
+        result.paths_tracked as f64 / seconds,
+        result.failures.len()
+    );
+    c.bench_function("curve_90_poses", |b| b.iter(run));
 }
 
 criterion_group! {

@@ -48,9 +48,6 @@ pub struct CurveArgs {
     /// Seed of every random choice (results are identical for any thread count).
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
-    /// Track pose to pose with complex detours instead of seed → each pose.
-    #[arg(long)]
-    pose_to_pose: bool,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -109,12 +106,16 @@ pub fn warn_failures(failures: &[PathFailure]) -> bool {
         .iter()
         .map(|f| match (f.pose_index, f.tau) {
             (Some(j), Some(tau)) => format!(
-                "pose {j} (tau = {tau:.6}) {}: {}/{} finite endpoints",
-                f.problem, f.finite, f.expected
+                "pose {j} (tau = {tau:.6}) {}: {} of {} paths failed",
+                f.problem,
+                f.expected - f.accounted,
+                f.expected
             ),
             _ => format!(
-                "seed {}: {}/{} finite endpoints",
-                f.problem, f.finite, f.expected
+                "seed {}: {} of {} paths failed",
+                f.problem,
+                f.expected - f.accounted,
+                f.expected
             ),
         })
         .collect();
@@ -140,7 +141,6 @@ pub fn run(args: CurveArgs) -> Result<()> {
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
     let options = CurveOptions {
         seed: args.seed,
-        pose_to_pose: args.pose_to_pose,
         ..CurveOptions::default()
     };
     let partial_path = args.out.as_ref().map(|p| {

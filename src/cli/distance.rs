@@ -122,8 +122,8 @@ pub fn run(args: DistanceArgs) -> Result<()> {
                         .map(|v| format!("{v:.9}"))
                         .unwrap_or_else(|| "none".into()),
                     d.real_critical_points,
-                    d.finite_endpoints,
-                    d.expected_endpoints
+                    d.accounted_paths,
+                    d.expected_paths
                 );
             }
         }

@@ -251,28 +251,26 @@ impl<F: Evaluator + ?Sized> Homotopy for ParameterHomotopy<'_, F> {
     }
 }
 
-/// `H(x, t) = F(x; p(t))` with `p` piecewise linear through `p₀, …, p_K` at
-/// `t = 0, 1/K, …, 1` (a closed loop when `p_K = p₀`).
-pub struct PolylineParameterHomotopy<'a, F: Evaluator + ?Sized> {
-    system: &'a F,
+/// `p(t)` piecewise linear through `p₀, …, p_K` at `t = 0, 1/K, …, 1` (a closed loop
+/// when `p_K = p₀`): complex detours and the monodromy loops of
+/// [`crate::homotopy::monodromy`].
+pub struct PolylinePath {
     points: Vec<Vec<C64>>,
     breakpoints: Vec<f64>,
-    n: usize,
 }
 
-impl<'a, F: Evaluator + ?Sized> PolylineParameterHomotopy<'a, F> {
-    /// Polyline through `points` (at least two, each of length `num_parameters()`).
-    pub fn new(system: &'a F, points: Vec<Vec<C64>>) -> Self {
+impl PolylinePath {
+    /// Polyline through `points` (at least two, all of the same length).
+    pub fn new(points: Vec<Vec<C64>>) -> Self {
         assert!(points.len() >= 2, "a polyline needs two points");
+        let m = points[0].len();
         for p in &points {
-            assert_eq!(p.len(), system.num_parameters());
+            assert_eq!(p.len(), m);
         }
         let segments = points.len() - 1;
-        PolylineParameterHomotopy {
-            system,
+        PolylinePath {
             breakpoints: (1..segments).map(|k| k as f64 / segments as f64).collect(),
             points,
-            n: system.num_variables(),
         }
     }
 
@@ -283,29 +281,103 @@ impl<'a, F: Evaluator + ?Sized> PolylineParameterHomotopy<'a, F> {
         let k = (scaled.re.floor().max(0.0) as usize).min(segments - 1);
         (k, scaled - k as f64)
     }
+}
 
-    fn parameters_at(&self, t: C64, p: &mut [C64]) -> usize {
+impl ParameterPath for PolylinePath {
+    fn len(&self) -> usize {
+        self.points[0].len()
+    }
+
+    fn point(&self, t: C64, p: &mut [C64]) {
         let (k, s) = self.locate(t);
         for ((pi, a), b) in p.iter_mut().zip(&self.points[k]).zip(&self.points[k + 1]) {
             *pi = a + s * (b - a);
         }
-        k
+    }
+
+    fn point_and_velocity(&self, t: C64, p: &mut [C64], dp: &mut [C64]) {
+        let segments = (self.points.len() - 1) as f64;
+        let (k, s) = self.locate(t);
+        for (((pi, di), a), b) in p
+            .iter_mut()
+            .zip(dp.iter_mut())
+            .zip(&self.points[k])
+            .zip(&self.points[k + 1])
+        {
+            *pi = a + s * (b - a);
+            *di = (b - a) * segments;
+        }
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
     }
 }
 
-impl<F: Evaluator + ?Sized> Homotopy for PolylineParameterHomotopy<'_, F> {
+/// `H(x, t) = F(x; p(t))` with `p` piecewise linear through `p₀, …, p_K`
+/// ([`PolylinePath`]).
+pub type PolylineParameterHomotopy<'a, F> = PathParameterHomotopy<'a, F, PolylinePath>;
+
+impl<'a, F: Evaluator + ?Sized> PathParameterHomotopy<'a, F, PolylinePath> {
+    /// Polyline through `points` (at least two, each of length `num_parameters()`).
+    pub fn through(system: &'a F, points: Vec<Vec<C64>>) -> Self {
+        PathParameterHomotopy::new(system, PolylinePath::new(points))
+    }
+}
+
+/// A smooth curve `t ↦ p(t)` in parameter space (piecewise smooth at
+/// [`ParameterPath::breakpoints`]), for homotopies whose parameters do not move on a
+/// straight line, e.g. along a mechanism's motion at complex motion parameter.
+pub trait ParameterPath: Send + Sync {
+    /// Number of parameters.
+    fn len(&self) -> usize;
+    /// Whether the path has no parameters.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// `p ← p(t)`.
+    fn point(&self, t: C64, p: &mut [C64]);
+    /// `p ← p(t)` and `dp ← dp/dt (t)`.
+    fn point_and_velocity(&self, t: C64, p: &mut [C64], dp: &mut [C64]);
+    /// Kinks of the path in `(0, 1)`.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
+    }
+}
+
+/// `H(x, t) = F(x; p(t))` along a [`ParameterPath`], so `∂H/∂t = (∂F/∂p)·p′(t)`.
+pub struct PathParameterHomotopy<'a, F: Evaluator + ?Sized, P: ParameterPath> {
+    system: &'a F,
+    path: P,
+    n: usize,
+}
+
+impl<'a, F: Evaluator + ?Sized, P: ParameterPath> PathParameterHomotopy<'a, F, P> {
+    /// The homotopy of `system` along `path` (`path.len()` must equal the system's
+    /// number of parameters).
+    pub fn new(system: &'a F, path: P) -> Self {
+        assert_eq!(path.len(), system.num_parameters());
+        PathParameterHomotopy {
+            system,
+            n: system.num_variables(),
+            path,
+        }
+    }
+}
+
+impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy<'_, F, P> {
     fn dimension(&self) -> usize {
         self.n
     }
 
     fn workspace_len(&self) -> usize {
-        2 * self.system.num_parameters() + self.system.workspace_len()
+        2 * self.path.len() + self.system.workspace_len()
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let m = self.system.num_parameters();
+        let m = self.path.len();
         let (p, rest) = work.split_at_mut(m);
-        self.parameters_at(t, p);
+        self.path.point(t, p);
         self.system.evaluate(x, p, &mut rest[m..], h);
     }
 
@@ -317,27 +389,23 @@ impl<F: Evaluator + ?Sized> Homotopy for PolylineParameterHomotopy<'_, F> {
         h: &mut [C64],
         jac: &mut [C64],
     ) {
-        let m = self.system.num_parameters();
+        let m = self.path.len();
         let (p, rest) = work.split_at_mut(m);
-        self.parameters_at(t, p);
+        self.path.point(t, p);
         self.system
             .evaluate_with_jacobian(x, p, &mut rest[m..], h, jac);
     }
 
     fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let m = self.system.num_parameters();
-        let segments = (self.points.len() - 1) as f64;
+        let m = self.path.len();
         let (p, rest) = work.split_at_mut(m);
-        let k = self.parameters_at(t, p);
         let (dp, rest) = rest.split_at_mut(m);
-        for ((d, a), b) in dp.iter_mut().zip(&self.points[k]).zip(&self.points[k + 1]) {
-            *d = (b - a) * segments;
-        }
+        self.path.point_and_velocity(t, p, dp);
         self.system
             .evaluate_parameter_derivative(x, p, dp, rest, dh);
     }
 
     fn breakpoints(&self) -> &[f64] {
-        &self.breakpoints
+        self.path.breakpoints()
     }
 }

@@ -16,7 +16,8 @@ pub mod start;
 pub mod tracker;
 
 pub use homotopies::{
-    Homotopy, ParameterHomotopy, PolylineParameterHomotopy, StraightLineHomotopy,
+    Homotopy, ParameterHomotopy, ParameterPath, PathParameterHomotopy, PolylineParameterHomotopy,
+    PolylinePath, StraightLineHomotopy,
 };
 pub use linalg::LuWorkspace;
 pub use monodromy::{

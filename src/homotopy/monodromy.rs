@@ -138,7 +138,7 @@ fn populate<F: Evaluator + ?Sized>(
         let p1 = random_point(rng, m, scale);
         let p2 = random_point(rng, m, scale);
         let homotopy =
-            PolylineParameterHomotopy::new(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
+            PolylineParameterHomotopy::through(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
         let results: Vec<_> = solutions
             .par_iter()
             .enumerate()

@@ -59,6 +59,12 @@ pub struct TrackerOptions {
     pub max_corrector_iterations: usize,
     /// Largest accepted contraction `‖Δ_{k+1}‖/‖Δ_k‖` of the corrector.
     pub max_contraction: f64,
+    /// Relative noise floor of the corrector: two successive Newton updates below it
+    /// (the second below this, the first below ten times this) accept the step even
+    /// without contraction. At condition numbers κ with `κ·ε > corrector_tolerance`
+    /// Newton's updates stagnate at rounding level and would otherwise reject every
+    /// step until the step size underflows.
+    pub corrector_noise_tolerance: f64,
     /// Endgame zone starts at `s = 1 − t = endgame_start`.
     pub endgame_start: f64,
     /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
@@ -98,6 +104,7 @@ impl Default for TrackerOptions {
             corrector_tolerance: 1e-9,
             max_corrector_iterations: 3,
             max_contraction: 0.25,
+            corrector_noise_tolerance: 1e-8,
             endgame_start: 0.1,
             endgame_ratio: 0.25,
             endgame_min_radius: 1e-13,
@@ -133,7 +140,7 @@ impl TrackerOptions {
             initial_step: 0.01,
             max_step: 0.02,
             min_step_fraction: 1e-13,
-            max_steps: 200_000,
+            max_steps: 10_000,
             prediction_tolerance: 1e-8,
             corrector_tolerance: 1e-10,
             max_contraction: 0.1,
@@ -519,8 +526,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 NewtonUpdate::Step(norm) => {
                     let scale = 1.0 + max_norm(&self.x);
                     if norm > previous && norm > 1e-14 * scale {
-                        // Diverging: keep the previous iterate.
+                        // No longer contracting: keep the previous iterate. If the
+                        // updates were already at rounding level for the condition of
+                        // the point (below 1e-9 relative), that is the attainable
+                        // accuracy: converged.
                         self.x.copy_from_slice(&self.x_saved);
+                        converged = previous <= 1e-9 * scale;
                         break;
                     }
                     if norm <= 1e-13 * scale {
@@ -933,13 +944,23 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     NewtonUpdate::Step(norm) => norm,
                     NewtonUpdate::Singular => return None,
                 };
-            let tolerance = self.options.corrector_tolerance * (1.0 + max_norm(&self.x_predicted));
+            let scale = 1.0 + max_norm(&self.x_predicted);
+            let tolerance = self.options.corrector_tolerance * scale;
             if k == 0 {
                 first = norm;
                 if norm <= tolerance {
                     return Some(first);
                 }
             } else {
+                // Noise floor: at an ill-conditioned point (κ·ε above the tolerance)
+                // the updates stop contracting once they only reflect rounding; two
+                // successive updates below the noise tolerance mean the iterate is as
+                // accurate as the arithmetic allows, and far too close to its path for
+                // a jump to another one.
+                let noise = self.options.corrector_noise_tolerance * scale;
+                if norm <= noise && previous <= 10.0 * noise {
+                    return Some(first);
+                }
                 if norm > self.options.max_contraction * previous {
                     return None;
                 }

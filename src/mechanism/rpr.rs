@@ -516,6 +516,24 @@ impl MotionCoordinate {
         poly + trig
     }
 
+    /// Derivative `f′(τ) = Σ_k k·polynomial[k] τ^{k−1} − Σ_j A_j ω_j sin(ω_j τ + θ_j)`
+    /// at complex τ.
+    pub fn derivative_complex(&self, tau: C64) -> C64 {
+        let poly = self
+            .polynomial
+            .iter()
+            .enumerate()
+            .skip(1)
+            .rev()
+            .fold(C64::new(0.0, 0.0), |acc, (k, c)| acc * tau + c * k as f64);
+        let trig: C64 = self
+            .cosines
+            .iter()
+            .map(|t| -t.amplitude * t.frequency * (t.frequency * tau + t.phase).sin())
+            .sum();
+        poly + trig
+    }
+
     fn validate(&self, field: &str) -> Result<(), RprError> {
         for (k, c) in self.polynomial.iter().enumerate() {
             if !c.is_finite() {
@@ -649,6 +667,18 @@ impl Motion {
                 m.x.value_complex(tau),
                 m.y.value_complex(tau),
                 m.phi.value_complex(tau),
+            ]),
+            Motion::Poses(_) => None,
+        }
+    }
+
+    /// `d(x, y, φ)/dτ` at complex τ (analytic motions only).
+    pub fn pose_derivative_complex(&self, tau: C64) -> Option<[C64; 3]> {
+        match self {
+            Motion::Analytic(m) => Some([
+                m.x.derivative_complex(tau),
+                m.y.derivative_complex(tau),
+                m.phi.derivative_complex(tau),
             ]),
             Motion::Poses(_) => None,
         }

@@ -29,7 +29,8 @@ type PoseEntry = (Vec<Candidate>, usize, Option<PathFailure>, usize);
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::homotopy::{
-    Homotopy, ParameterHomotopy, PathResult, PolylineParameterHomotopy, Tracker, TrackerOptions,
+    Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, PolylinePath, Tracker,
+    TrackerOptions,
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
@@ -88,13 +89,11 @@ pub struct CurveOptions {
     pub retry_tracker: TrackerOptions,
     /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
     pub retry_attempts: usize,
+
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
     pub cut_locus_tolerance: f64,
-    /// Track pose to pose (`τ_j → τ_{j+1}` via a complex midpoint) instead of seed →
-    /// every pose; the straight seed → pose homotopy is the reference.
-    pub pose_to_pose: bool,
 }
 
 impl Default for CurveOptions {
@@ -106,7 +105,6 @@ impl Default for CurveOptions {
             retry_attempts: 1,
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
-            pose_to_pose: false,
         }
     }
 }
@@ -122,8 +120,9 @@ pub struct PathFailure {
     pub problem: String,
     /// Start-solution count.
     pub expected: usize,
-    /// Paths that reached a finite endpoint (best attempt).
-    pub finite: usize,
+    /// Paths whose endpoint was classified (finite, or at infinity), best attempt; the
+    /// difference to `expected` is the number of paths that failed.
+    pub accounted: usize,
 }
 
 /// One sub-problem prepared at the seed.
@@ -132,11 +131,14 @@ pub struct SeededProblem {
     pub id: ProblemId,
     /// The compiled Lagrange system.
     pub problem: LagrangeProblem,
-    /// Seed parameters `p* = (K*, shape constants)`.
+    /// Seed parameters `p* = (K*, shape constants)` in the normalised frame.
     pub seed_parameters: Vec<C64>,
     /// Finite solutions at the seed.
     pub seed_solutions: Vec<Vec<C64>>,
-    /// Number of generic start solutions.
+    /// Number of paths tracked from the seed to every pose: the seed's finite
+    /// solutions (the generic count, less the paths that end at infinity for this
+    /// design's rigid shapes, e.g. the leg-collapse points of paper Thm 3 case 4 when
+    /// base and platform have an equal corresponding angle).
     pub start_count: usize,
 }
 
@@ -147,9 +149,11 @@ pub struct SeedStage {
     pub problems: Vec<SeededProblem>,
     /// Sub-problems reported as not applicable for this design (SPEC A.6.3).
     pub not_applicable: Vec<String>,
-    /// The complex motion parameter of the seed (`None` for pose lists).
-    pub tau_star: Option<C64>,
-    /// The seed configuration `K*`.
+    /// The seed on the complexified motion.
+    pub seed: SeedPoint,
+    /// The normalised frame of every parameter vector of the run.
+    pub normalization: Normalization,
+    /// The seed configuration `K*` (original frame).
     pub seed_configuration: [C64; 12],
     /// Paths lost in the user homotopy.
     pub failures: Vec<PathFailure>,
@@ -202,6 +206,278 @@ fn to_real(k: &[f64; 12]) -> [C64; 12] {
     k.map(|v| C64::new(v, 0.0))
 }
 
+/// The similarity `K ↦ (K − c)/s` of the pipeline's normalised frame: `c` the
+/// centroid of the six points of the motion's first configuration, `s` their
+/// root-mean-square distance from it. One frame serves the whole curve.
+///
+/// Every sub-problem is equivariant under similarities (D² scales by `s²`, S and the
+/// collinearity polynomials are invariant up to a factor, a rigid part's `u, v` are
+/// invariant and `r² = |e|²` scales by `s²`), so the critical points at `K` are the
+/// images of those at the normalised configuration. Tracking in the normalised frame
+/// keeps coordinates and multipliers of order one whatever the design's units: with
+/// anchors ~10 apart, the multiplier of the quartic S is ~10⁻³ and the Jacobians'
+/// condition numbers grow by orders of magnitude.
+#[derive(Clone, Copy, Debug)]
+pub struct Normalization {
+    center: [C64; 2],
+    scale: f64,
+}
+
+impl Normalization {
+    /// The frame of configuration `k`.
+    pub fn of(k: &[C64; 12]) -> Self {
+        let mut center = [C64::new(0.0, 0.0); 2];
+        for i in 0..6 {
+            center[0] += k[2 * i] / 6.0;
+            center[1] += k[2 * i + 1] / 6.0;
+        }
+        let spread: f64 = (0..6)
+            .map(|i| (k[2 * i] - center[0]).norm_sqr() + (k[2 * i + 1] - center[1]).norm_sqr())
+            .sum::<f64>()
+            / 6.0;
+        let scale = spread.sqrt();
+        Normalization {
+            center,
+            // Designs are validated non-degenerate; guard anyway.
+            scale: if scale.is_finite() && scale > 0.0 {
+                scale
+            } else {
+                1.0
+            },
+        }
+    }
+
+    /// `(K − c)/s`.
+    pub fn apply(&self, k: &[C64; 12]) -> [C64; 12] {
+        std::array::from_fn(|i| (k[i] - self.center[i % 2]) / self.scale)
+    }
+
+    /// `s·K + c`.
+    pub fn restore(&self, k: &[C64; 12]) -> [C64; 12] {
+        std::array::from_fn(|i| k[i] * self.scale + self.center[i % 2])
+    }
+}
+
+/// Parameters of `problem` at the normalised configuration `k_normalized` of `design`:
+/// `k_normalized` and the rigid shape constants with `r²/s²`.
+fn normalized_parameters(
+    problem: &LagrangeProblem,
+    design: &Design,
+    k_normalized: &[C64; 12],
+    normalization: Normalization,
+) -> Vec<C64> {
+    let mut parameters = problem.parameters_for(design, k_normalized);
+    let s2 = normalization.scale * normalization.scale;
+    for (name, value) in problem.parameter_names().iter().zip(parameters.iter_mut()) {
+        if name.starts_with("r2_") {
+            *value /= s2;
+        }
+    }
+    parameters
+}
+
+/// A point of the complexified motion: complex τ of an analytic motion, or a complex
+/// pose `(x, y, φ)` for explicit pose lists (which are interpolated linearly in pose
+/// coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MotionPoint {
+    /// Motion parameter τ.
+    Tau(C64),
+    /// Pose `(x, y, φ)`.
+    Pose([C64; 3]),
+}
+
+impl MotionPoint {
+    fn target(motion: &Motion, sample: &SampledPose) -> Self {
+        match motion {
+            Motion::Analytic(_) => MotionPoint::Tau(C64::new(sample.tau, 0.0)),
+            Motion::Poses(_) => MotionPoint::Pose([
+                C64::new(sample.pose.x, 0.0),
+                C64::new(sample.pose.y, 0.0),
+                C64::new(sample.pose.phi, 0.0),
+            ]),
+        }
+    }
+
+    /// `self + ε·ξ` with ξ standard complex normal (per coordinate).
+    fn perturbed(&self, epsilon: f64, rng: &mut random::SeededRng) -> Self {
+        match *self {
+            MotionPoint::Tau(t) => MotionPoint::Tau(t + random::complex_normal(rng) * epsilon),
+            MotionPoint::Pose(p) => {
+                MotionPoint::Pose(p.map(|v| v + random::complex_normal(rng) * epsilon))
+            }
+        }
+    }
+
+    fn distance(&self, other: &Self) -> f64 {
+        match (self, other) {
+            (MotionPoint::Tau(a), MotionPoint::Tau(b)) => (a - b).norm(),
+            (MotionPoint::Pose(a), MotionPoint::Pose(b)) => a
+                .iter()
+                .zip(b)
+                .fold(0.0f64, |m, (u, v)| m.max((u - v).norm())),
+            _ => 1.0,
+        }
+    }
+}
+
+/// The seed of stage 1: a point of the complexified motion and a small complex
+/// perturbation of all twelve (normalised) coordinates, so that the fixed real base
+/// does not make the seed special. The perturbation fades linearly along every
+/// seed → pose path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeedPoint {
+    /// Where on the complexified motion.
+    pub point: MotionPoint,
+    /// Added to the normalised seed configuration.
+    pub perturbation: [C64; 12],
+}
+
+/// The seed (stage 1, see the module documentation): τ* with real part uniform on the
+/// motion's range and imaginary part 0.1–0.3 × its width (at most 3), or for pose lists
+/// the first pose plus a complex perturbation of size 0.3 (x, y scaled by the design's
+/// length); perturbation of the normalised coordinates of size 0.05.
+pub fn seed_point(design: &Design, motion: &Motion, seed: u64) -> SeedPoint {
+    let mut rng = random::stream(seed, 0x5eed);
+    let [lo, hi] = motion.tau_range();
+    let width = (hi - lo).max(1e-3);
+    let point = match motion {
+        Motion::Analytic(_) => MotionPoint::Tau(C64::new(
+            random::uniform(&mut rng, lo, hi),
+            random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
+        )),
+        Motion::Poses(_) => {
+            let first = motion.pose(lo).unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
+            let scale = design.length_scale();
+            MotionPoint::Pose([
+                C64::new(first.x, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
+                C64::new(first.y, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
+                C64::new(first.phi, 0.0) + random::complex_normal(&mut rng) * 0.3,
+            ])
+        }
+    };
+    let perturbation = std::array::from_fn(|_| random::complex_normal(&mut rng) * 0.05);
+    SeedPoint {
+        point,
+        perturbation,
+    }
+}
+
+/// The parameter path of a seed → pose homotopy (stage 2): along the complexified
+/// motion through `waypoints` (straight segments in τ, or in pose coordinates for pose
+/// lists), `p(t) = (N(K(w(t))) + (1 − t)·δ, shape constants)` with `N` the
+/// normalisation and δ the seed perturbation. Unlike a straight segment in
+/// configuration space — whose interpolated platform shrinks when the rotation angle
+/// changes a lot, which drives critical points through infinity — every point of this
+/// path is a (complex) pose of the design's rigid platform.
+struct MotionPath<'a> {
+    design: &'a Design,
+    motion: &'a Motion,
+    waypoints: Vec<MotionPoint>,
+    breakpoints: Vec<f64>,
+    perturbation: [C64; 12],
+    normalization: Normalization,
+    shape: Vec<C64>,
+}
+
+impl<'a> MotionPath<'a> {
+    fn new(
+        design: &'a Design,
+        motion: &'a Motion,
+        waypoints: Vec<MotionPoint>,
+        perturbation: [C64; 12],
+        normalization: Normalization,
+        shape: Vec<C64>,
+    ) -> Self {
+        let segments = waypoints.len().saturating_sub(1).max(1);
+        MotionPath {
+            design,
+            motion,
+            breakpoints: (1..segments).map(|k| k as f64 / segments as f64).collect(),
+            waypoints,
+            perturbation,
+            normalization,
+            shape,
+        }
+    }
+
+    /// Complex pose at `t` and its derivative `d(x, y, φ)/dt`.
+    fn pose_and_rate(&self, t: C64) -> ([C64; 3], [C64; 3]) {
+        let segments = self.waypoints.len() - 1;
+        let scaled = t * segments as f64;
+        let k = (scaled.re.floor().max(0.0) as usize).min(segments - 1);
+        let s = scaled - k as f64;
+        let zero = C64::new(0.0, 0.0);
+        match (self.waypoints[k], self.waypoints[k + 1]) {
+            (MotionPoint::Tau(a), MotionPoint::Tau(b)) => {
+                let tau = a + s * (b - a);
+                let rate = (b - a) * segments as f64;
+                let pose = self.motion.pose_complex(tau).unwrap_or([zero; 3]);
+                let derivative = self
+                    .motion
+                    .pose_derivative_complex(tau)
+                    .unwrap_or([zero; 3]);
+                (pose, derivative.map(|d| d * rate))
+            }
+            (MotionPoint::Pose(a), MotionPoint::Pose(b)) => (
+                std::array::from_fn(|i| a[i] + s * (b[i] - a[i])),
+                std::array::from_fn(|i| (b[i] - a[i]) * segments as f64),
+            ),
+            // Waypoints of one path are all of the motion's kind (see `MotionPoint::target`).
+            _ => ([zero; 3], [zero; 3]),
+        }
+    }
+
+    fn fill(&self, t: C64, pose: &[C64; 3], p: &mut [C64]) {
+        let [x, y, phi] = *pose;
+        let k = self
+            .normalization
+            .apply(&self.design.configuration_complex(x, y, phi));
+        let fade = C64::new(1.0, 0.0) - t;
+        for i in 0..12 {
+            p[i] = k[i] + fade * self.perturbation[i];
+        }
+        p[12..].copy_from_slice(&self.shape);
+    }
+}
+
+impl ParameterPath for MotionPath<'_> {
+    fn len(&self) -> usize {
+        12 + self.shape.len()
+    }
+
+    fn point(&self, t: C64, p: &mut [C64]) {
+        let (pose, _) = self.pose_and_rate(t);
+        self.fill(t, &pose, p);
+    }
+
+    /// `dK/dt`: base anchors fixed; platform anchor `b_i = (x, y) + R(φ) P_i` moves
+    /// with `(ẋ − (sin φ P_ix + cos φ P_iy) φ̇, ẏ + (cos φ P_ix − sin φ P_iy) φ̇)`;
+    /// divided by the frame's scale, minus the fading perturbation.
+    fn point_and_velocity(&self, t: C64, p: &mut [C64], dp: &mut [C64]) {
+        let (pose, rate) = self.pose_and_rate(t);
+        self.fill(t, &pose, p);
+        let (c, s) = (pose[2].cos(), pose[2].sin());
+        let inverse_scale = 1.0 / self.normalization.scale;
+        for i in 0..3 {
+            dp[2 * i] = -self.perturbation[2 * i];
+            dp[2 * i + 1] = -self.perturbation[2 * i + 1];
+            let [px, py] = self.design.platform()[i];
+            dp[6 + 2 * i] = (rate[0] - (s * px + c * py) * rate[2]) * inverse_scale
+                - self.perturbation[6 + 2 * i];
+            dp[6 + 2 * i + 1] = (rate[1] + (c * px - s * py) * rate[2]) * inverse_scale
+                - self.perturbation[6 + 2 * i + 1];
+        }
+        for d in dp[12..].iter_mut() {
+            *d = C64::new(0.0, 0.0);
+        }
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
+    }
+}
+
 /// Every (metric, sub-problem) the metrics need, each once.
 pub fn problem_ids(metrics: &[Metric]) -> Vec<ProblemId> {
     let mut ids = Vec::new();
@@ -214,30 +490,6 @@ pub fn problem_ids(metrics: &[Metric]) -> Vec<ProblemId> {
         }
     }
     ids
-}
-
-/// Seed configuration `K*` (stage 1): see the module documentation.
-pub fn seed_configuration(design: &Design, motion: &Motion, seed: u64) -> (Option<C64>, [C64; 12]) {
-    let mut rng = random::stream(seed, 0x5eed);
-    let scale = design.length_scale();
-    let [lo, hi] = motion.tau_range();
-    let width = (hi - lo).max(1e-3);
-    let tau_star = C64::new(
-        random::uniform(&mut rng, lo, hi),
-        random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
-    );
-    let (tau, mut k) = match motion.pose_complex(tau_star) {
-        Some([x, y, phi]) => (Some(tau_star), design.configuration_complex(x, y, phi)),
-        None => {
-            let first = motion.pose(lo).unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
-            (None, to_real(&design.configuration(first).to_array()))
-        }
-    };
-    let amplitude = if tau.is_some() { 0.05 } else { 0.3 };
-    for v in k.iter_mut() {
-        *v += random::complex_normal(&mut rng) * (amplitude * scale);
-    }
-    (tau, k)
 }
 
 /// Tracks every start solution through `homotopy`; returns the path results in order.
@@ -254,6 +506,16 @@ fn track_all<H: Homotopy + ?Sized>(
         .collect()
 }
 
+/// Paths whose fate is known: a finite endpoint, or an endpoint at infinity (a
+/// critical point that does not exist at these parameters, classified by the endgame).
+/// Only [`PathStatus::Failed`] paths may hide a missed critical point.
+fn accounted(paths: &[PathResult]) -> usize {
+    paths
+        .iter()
+        .filter(|p| !matches!(p.status, PathStatus::Failed(_)))
+        .count()
+}
+
 fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
     paths
         .iter()
@@ -264,15 +526,14 @@ fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
 
 /// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal,
 /// `ε = 0.1·(1 + ‖target‖∞)` (only the first twelve parameters, the configuration).
-fn detour_point(target: &[C64], seed: u64, stream: u64) -> Vec<C64> {
-    let mut rng = random::stream(seed, stream);
+fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
     let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
     target
         .iter()
         .enumerate()
         .map(|(i, v)| {
             if i < 12 {
-                v + random::complex_normal(&mut rng) * scale
+                v + random::complex_normal(rng) * scale
             } else {
                 *v
             }
@@ -280,52 +541,43 @@ fn detour_point(target: &[C64], seed: u64, stream: u64) -> Vec<C64> {
         .collect()
 }
 
-/// Tracks `starts` from `from` to `to` (straight); if fewer than `expected` finite
-/// endpoints result, re-tracks the lost paths with the safer settings, then (if still
-/// short) every path along complex detours. Returns the merged finite
-/// endpoints (deduplicated only across attempts), the best attempt's finite count and
-/// the number of paths tracked.
-fn track_with_retries(
+/// Tracks `starts` along `path(0)` (the reference route); if paths fail, re-tracks the
+/// failed ones with the safer settings, then (if some still fail) every path along the
+/// detours `path(1)`, `path(2)`, … (up to `retry_attempts`), whose endpoints are merged
+/// (deduplicated). Returns the merged finite endpoints, the best attempt's number of
+/// accounted paths ([`accounted`]) and the number of paths tracked.
+fn track_with_retries<P: ParameterPath>(
     problem: &LagrangeProblem,
     starts: &[Vec<C64>],
-    from: &[C64],
-    to: &[C64],
-    expected: usize,
+    path: impl Fn(usize) -> P,
     options: &CurveOptions,
-    stream: u64,
 ) -> (Vec<Vec<C64>>, usize, usize) {
     let system = problem.evaluator();
-    let straight = ParameterHomotopy::new(system, from, to);
-    let mut paths = track_all(&straight, starts, &options.tracker);
+    let expected = starts.len();
+    let reference = PathParameterHomotopy::new(system, path(0));
+    let mut paths = track_all(&reference, starts, &options.tracker);
     let mut tracked = starts.len();
-    if paths.iter().filter(|p| p.status.is_finite()).count() < expected {
-        // First re-run: only the lost paths, same homotopy, safer settings.
-        let mut careful = Tracker::new(&straight, options.retry_tracker.clone());
+    if accounted(&paths) < expected {
+        // First re-run: only the failed paths, same homotopy, safer settings.
+        let mut careful = Tracker::new(&reference, options.retry_tracker.clone());
         for (i, path) in paths.iter_mut().enumerate() {
-            if !path.status.is_finite() {
+            if matches!(path.status, PathStatus::Failed(_)) {
                 *path = careful.track(&starts[i], i);
                 tracked += 1;
             }
         }
     }
     let mut endpoints = finite_solutions(&paths);
-    let mut best = endpoints.len();
-    for attempt in 0..options.retry_attempts {
+    let mut best = accounted(&paths);
+    for attempt in 1..=options.retry_attempts {
         if best >= expected {
             break;
         }
-        let via = detour_point(
-            to,
-            options.seed,
-            stream.wrapping_mul(16).wrapping_add(attempt as u64 + 1),
-        );
-        let polyline =
-            PolylineParameterHomotopy::new(system, vec![from.to_vec(), via, to.to_vec()]);
-        let paths = track_all(&polyline, starts, &options.retry_tracker);
+        let detour = PathParameterHomotopy::new(system, path(attempt));
+        let paths = track_all(&detour, starts, &options.retry_tracker);
         tracked += starts.len();
-        let found = finite_solutions(&paths);
-        best = best.max(found.len());
-        for x in found {
+        best = best.max(accounted(&paths));
+        for x in finite_solutions(&paths) {
             let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
             let known = endpoints.iter().any(|y| {
                 y.iter()
@@ -355,7 +607,24 @@ pub fn seed_stage(
     motion
         .validate()
         .map_err(|e| PipelineError::Motion(e.to_string()))?;
-    let (tau_star, k_star) = seed_configuration(design, motion, options.seed);
+    let seed = seed_point(design, motion, options.seed);
+    let first_pose = motion
+        .pose(motion.tau_range()[0])
+        .unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
+    let normalization = Normalization::of(&to_real(&design.configuration(first_pose).to_array()));
+    let k_star = {
+        let at_seed = MotionPath::new(
+            design,
+            motion,
+            vec![seed.point, seed.point],
+            seed.perturbation,
+            normalization,
+            Vec::new(),
+        );
+        let mut k = [C64::new(0.0, 0.0); 12];
+        at_seed.point(C64::new(0.0, 0.0), &mut k);
+        k
+    };
     let mut prepared = Vec::new();
     let mut not_applicable = Vec::new();
     for id in problem_ids(metrics) {
@@ -384,7 +653,7 @@ pub fn seed_stage(
                 message: format!("a solution has {} entries, expected {n}", bad.len()),
             });
         }
-        let seed_parameters = problem.parameters_for(design, &k_star);
+        let seed_parameters = normalized_parameters(&problem, design, &k_star, normalization);
         prepared.push((
             id,
             problem,
@@ -398,29 +667,39 @@ pub fn seed_stage(
         .enumerate()
         .map(|(index, (id, problem, source, seed_parameters, starts))| {
             let expected = starts.len();
+            let stream = (index as u64) << 32;
             let (solutions, best, tracked) = track_with_retries(
                 &problem,
                 &starts,
-                &source,
-                &seed_parameters,
-                expected,
+                |attempt| {
+                    let mut points = vec![source.clone()];
+                    if attempt > 0 {
+                        let mut rng = random::stream(options.seed, stream + attempt as u64);
+                        points.push(detour_point(&seed_parameters, &mut rng));
+                    }
+                    points.push(seed_parameters.clone());
+                    PolylinePath::new(points)
+                },
                 options,
-                (index as u64) << 32,
             );
             let failure = (best < expected).then(|| PathFailure {
                 pose_index: None,
                 tau: None,
                 problem: id.name(),
                 expected,
-                finite: best,
+                accounted: best,
             });
+            // Paths that end at infinity at the seed are critical points that the
+            // design's shape (fixed along the motion) does not have: the poses expect
+            // the seed's finite solutions.
+            let start_count = solutions.len();
             (
                 SeededProblem {
                     id,
                     problem,
                     seed_parameters,
                     seed_solutions: solutions,
-                    start_count: expected,
+                    start_count,
                 },
                 failure,
                 tracked,
@@ -438,8 +717,9 @@ pub fn seed_stage(
     Ok(SeedStage {
         problems,
         not_applicable,
-        tau_star,
-        seed_configuration: k_star,
+        seed,
+        normalization,
+        seed_configuration: normalization.restore(&k_star),
         failures,
         paths_tracked,
     })
@@ -451,7 +731,7 @@ fn candidates(
     problem: &LagrangeProblem,
     metric: Metric,
     endpoints: &[Vec<C64>],
-    parameters: &[C64],
+    (parameters, normalization): (&[C64], Normalization),
     k: &[f64; 12],
     real_tolerance: f64,
 ) -> Vec<Candidate> {
@@ -460,8 +740,8 @@ fn candidates(
         .iter()
         .filter(|x| postprocess::is_real(x, real_tolerance))
         .map(|x| {
-            let k_prime = problem
-                .configuration(x, parameters, &mut work)
+            let k_prime = normalization
+                .restore(&problem.configuration(x, parameters, &mut work))
                 .map(|v| v.re);
             Candidate {
                 distance: metric.distance(k, &k_prime),
@@ -471,45 +751,64 @@ fn candidates(
         .collect()
 }
 
-/// Stages 2–4 at one pose: parameter homotopy from the seed for every sub-problem (in
-/// parallel), re-runs of lost paths, post-processing.
+/// Stages 2–4 at one pose: parameter homotopy from the seed along the complexified
+/// motion ([`MotionPath`]) for every sub-problem (in parallel), re-runs of failed paths
+/// (detours through a random complex point near the pose), post-processing.
 pub fn solve_pose(
     stage: &SeedStage,
     design: &Design,
+    motion: &Motion,
     metrics: &[Metric],
     index: usize,
     sample: SampledPose,
     options: &CurveOptions,
 ) -> PoseResult {
     let k = design.configuration(sample.pose).to_array();
+    let target = MotionPoint::target(motion, &sample);
+    let k_normalized = stage.normalization.apply(&to_real(&k));
     let per_problem: Vec<PoseEntry> = stage
         .problems
         .par_iter()
         .enumerate()
         .map(|(problem_index, seeded)| {
-            let target = seeded.problem.parameters_for(design, &to_real(&k));
+            let parameters =
+                normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
             let stream = ((index as u64 + 1) << 32) | problem_index as u64;
             let (endpoints, best, tracked) = track_with_retries(
                 &seeded.problem,
                 &seeded.seed_solutions,
-                &seeded.seed_parameters,
-                &target,
-                seeded.start_count,
+                |attempt| {
+                    let mut waypoints = vec![stage.seed.point];
+                    if attempt > 0 {
+                        let mut rng =
+                            random::stream(options.seed, stream.wrapping_mul(16) + attempt as u64);
+                        let epsilon = 0.3 * stage.seed.point.distance(&target) + 0.05;
+                        waypoints.push(target.perturbed(epsilon, &mut rng));
+                    }
+                    waypoints.push(target);
+                    MotionPath::new(
+                        design,
+                        motion,
+                        waypoints,
+                        stage.seed.perturbation,
+                        stage.normalization,
+                        parameters[12..].to_vec(),
+                    )
+                },
                 options,
-                stream,
             );
             let failure = (best < seeded.start_count).then(|| PathFailure {
                 pose_index: Some(index),
                 tau: Some(sample.tau),
                 problem: seeded.id.name(),
                 expected: seeded.start_count,
-                finite: best,
+                accounted: best,
             });
             let list = candidates(
                 &seeded.problem,
                 seeded.id.metric,
                 &endpoints,
-                &target,
+                (&parameters, stage.normalization),
                 &k,
                 options.real_tolerance,
             );
@@ -591,19 +890,15 @@ pub fn compute_curve(
 ) -> Result<CurveResult, PipelineError> {
     let samples = sample_motion(motion, poses)?;
     let stage = seed_stage(design, motion, metrics, options, provider)?;
-    let results: Vec<PoseResult> = if options.pose_to_pose {
-        pose_to_pose(&stage, design, metrics, &samples, options, on_pose)
-    } else {
-        samples
-            .par_iter()
-            .enumerate()
-            .map(|(j, sample)| {
-                let result = solve_pose(&stage, design, metrics, j, *sample, options);
-                on_pose(&result);
-                result
-            })
-            .collect()
-    };
+    let results: Vec<PoseResult> = samples
+        .par_iter()
+        .enumerate()
+        .map(|(j, sample)| {
+            let result = solve_pose(&stage, design, motion, metrics, j, *sample, options);
+            on_pose(&result);
+            result
+        })
+        .collect();
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
     let paths_tracked =
@@ -611,143 +906,15 @@ pub fn compute_curve(
     Ok(CurveResult {
         metric_names: metrics.iter().map(Metric::name).collect(),
         seed: options.seed,
-        tau_star: stage.tau_star.map(|t| [t.re, t.im]),
+        tau_star: match stage.seed.point {
+            MotionPoint::Tau(t) => Some([t.re, t.im]),
+            MotionPoint::Pose(_) => None,
+        },
         not_applicable: stage.not_applicable.clone(),
         poses: results,
         failures,
         paths_tracked,
     })
-}
-
-/// Alternative stage 2: per sub-problem (in parallel), the seed is tracked to the
-/// first pose, then pose `j` to pose `j + 1` along the polyline
-/// `p(K_j) → (p(K_j) + p(K_{j+1}))/2 + i·δ·ξ → p(K_{j+1})` (a complex detour of size
-/// `δ = |K_{j+1} − K_j|∞`, ξ random), so the path never runs along the real
-/// discriminant. A (pose, sub-problem) that loses paths falls back to the reference
-/// seed → pose homotopy with re-runs, and the walk continues from the full set.
-fn pose_to_pose(
-    stage: &SeedStage,
-    design: &Design,
-    metrics: &[Metric],
-    samples: &[SampledPose],
-    options: &CurveOptions,
-    on_pose: &(dyn Fn(&PoseResult) + Sync),
-) -> Vec<PoseResult> {
-    let configurations: Vec<[f64; 12]> = samples
-        .iter()
-        .map(|s| design.configuration(s.pose).to_array())
-        .collect();
-    let columns: Vec<Vec<PoseEntry>> = stage
-        .problems
-        .par_iter()
-        .enumerate()
-        .map(|(problem_index, seeded)| {
-            let system = seeded.problem.evaluator();
-            let mut current: Vec<Vec<C64>> = Vec::new();
-            let mut previous: Option<Vec<C64>> = None;
-            let mut column = Vec::with_capacity(samples.len());
-            for (j, sample) in samples.iter().enumerate() {
-                let target = seeded
-                    .problem
-                    .parameters_for(design, &to_real(&configurations[j]));
-                let stream = ((j as u64 + 1) << 32) | problem_index as u64;
-                let mut tracked = 0;
-                let mut endpoints = Vec::new();
-                if let Some(from) = &previous
-                    && current.len() == seeded.start_count
-                {
-                    let mut rng = random::stream(options.seed, stream | (1 << 63));
-                    let size = from
-                        .iter()
-                        .zip(&target)
-                        .take(12)
-                        .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()))
-                        .max(1e-6);
-                    let via: Vec<C64> = from
-                        .iter()
-                        .zip(&target)
-                        .enumerate()
-                        .map(|(i, (a, b))| {
-                            let mid = (a + b) * 0.5;
-                            if i < 12 {
-                                mid + random::complex_normal(&mut rng) * (0.5 * size)
-                            } else {
-                                mid
-                            }
-                        })
-                        .collect();
-                    let homotopy = PolylineParameterHomotopy::new(
-                        system,
-                        vec![from.clone(), via, target.clone()],
-                    );
-                    let paths = track_all(&homotopy, &current, &options.tracker);
-                    tracked += paths.len();
-                    endpoints = paths
-                        .iter()
-                        .filter(|p| p.status == crate::homotopy::PathStatus::Nonsingular)
-                        .map(|p| p.solution.clone())
-                        .collect();
-                }
-                let mut best = endpoints.len();
-                if best < seeded.start_count {
-                    let (found, b, t) = track_with_retries(
-                        &seeded.problem,
-                        &seeded.seed_solutions,
-                        &seeded.seed_parameters,
-                        &target,
-                        seeded.start_count,
-                        options,
-                        stream,
-                    );
-                    endpoints = found;
-                    best = b;
-                    tracked += t;
-                }
-                let failure = (best < seeded.start_count).then(|| PathFailure {
-                    pose_index: Some(j),
-                    tau: Some(sample.tau),
-                    problem: seeded.id.name(),
-                    expected: seeded.start_count,
-                    finite: best,
-                });
-                let list = candidates(
-                    &seeded.problem,
-                    seeded.id.metric,
-                    &endpoints,
-                    &target,
-                    &configurations[j],
-                    options.real_tolerance,
-                );
-                current = endpoints;
-                previous = Some(target);
-                column.push((list, best, failure, tracked));
-            }
-            column
-        })
-        .collect();
-    let mut columns: Vec<std::vec::IntoIter<PoseEntry>> =
-        columns.into_iter().map(|c| c.into_iter()).collect();
-    samples
-        .iter()
-        .enumerate()
-        .map(|(j, sample)| {
-            let per_problem: Vec<PoseEntry> = columns
-                .iter_mut()
-                .map(|c| c.next().unwrap_or_else(|| (Vec::new(), 0, None, 0)))
-                .collect();
-            let result = assemble_pose(
-                stage,
-                metrics,
-                j,
-                *sample,
-                &configurations[j],
-                per_problem,
-                options,
-            );
-            on_pose(&result);
-            result
-        })
-        .collect()
 }
 
 /// Parameters τ where `S(K(τ))` changes sign between consecutive samples, refined by

@@ -36,10 +36,11 @@ pub struct SubproblemDistance {
     pub closest: Option<[f64; 12]>,
     /// Number of real critical points found.
     pub real_critical_points: usize,
-    /// Number of paths that ended at a finite point (all attempts merged).
-    pub finite_endpoints: usize,
-    /// Number of start solutions (the generic root count of SPEC A.7).
-    pub expected_endpoints: usize,
+    /// Number of paths whose endpoint was classified: finite, or at infinity (a
+    /// critical point that does not exist at this pose). Best attempt.
+    pub accounted_paths: usize,
+    /// Number of paths tracked from the seed (its finite solutions).
+    pub expected_paths: usize,
 }
 
 /// An alternative minimiser reported at a cut locus.
@@ -93,8 +94,8 @@ pub fn distinct_configurations(a: &[f64; 12], b: &[f64; 12], tolerance: f64) -> 
 /// Reduces a list of candidates to the sub-problem's closest configuration.
 pub fn subproblem_distance(
     candidates: &[Candidate],
-    finite_endpoints: usize,
-    expected_endpoints: usize,
+    accounted_paths: usize,
+    expected_paths: usize,
 ) -> SubproblemDistance {
     let best = candidates
         .iter()
@@ -103,8 +104,8 @@ pub fn subproblem_distance(
         distance: best.map(|c| c.distance),
         closest: best.map(|c| c.closest),
         real_critical_points: candidates.len(),
-        finite_endpoints,
-        expected_endpoints,
+        accounted_paths,
+        expected_paths,
     }
 }
 
