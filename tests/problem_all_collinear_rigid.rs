@@ -24,8 +24,9 @@ fn line_offsets(points: &[[f64; 2]; 3]) -> [f64; 3] {
 /// unknowns `z` (the line's point `q = a₁′` and the free offsets), so `D²(K, K′(z))` is
 /// a quadratic whose gradient and Hessian are recovered exactly from values
 /// (polarisation) and minimised by one linear solve; the minimum over θ is found on a
-/// fine grid and refined by golden-section search.
-fn brute_force(metric: Metric, design: &Design, k: &[f64; 12]) -> f64 {
+/// fine grid and refined by golden-section search. Returns the minimal distance per
+/// orientation `σ` (one entry unless both parts are rigid).
+fn brute_force(metric: Metric, design: &Design, k: &[f64; 12]) -> Vec<f64> {
     let base_offsets = line_offsets(design.base());
     let platform_offsets = line_offsets(design.platform());
     let orientations: &[f64] = if metric.base == Part::Rigid && metric.platform == Part::Rigid {
@@ -33,8 +34,9 @@ fn brute_force(metric: Metric, design: &Design, k: &[f64; 12]) -> f64 {
     } else {
         &[1.0]
     };
-    let mut best = f64::INFINITY;
+    let mut per_orientation = Vec::new();
     for &sigma in orientations {
+        let mut best = f64::INFINITY;
         // K′ for direction θ and unknowns z = (qx, qy, free offsets…).
         let configuration = |theta: f64, z: &[f64]| -> [f64; 12] {
             let w = [theta.cos(), theta.sin()];
@@ -129,8 +131,9 @@ fn brute_force(metric: Metric, design: &Design, k: &[f64; 12]) -> f64 {
             }
             best = best.min(minimum_at(0.5 * (lo + hi)));
         }
+        per_orientation.push(best.max(0.0).sqrt());
     }
-    best.max(0.0).sqrt()
+    per_orientation
 }
 
 fn design(base: [[f64; 2]; 3], platform: [[f64; 2]; 3]) -> Design {
@@ -159,7 +162,14 @@ fn all_collinear_with_collinear_rigid_parts_matches_brute_force() {
         ),
         ("rigid/rigid", design(base_line, platform_line)),
     ];
-    let poses = vec![Pose::new(4.0, 3.0, 0.3), Pose::new(3.0, 5.0, -1.1)];
+    // The third pose turns the platform's anchor line against the base's (φ ≈ π), so
+    // for rigid/rigid the reversed orientation σ = −1 is the closer one there.
+    let poses = vec![
+        Pose::new(4.0, 3.0, 0.3),
+        Pose::new(3.0, 5.0, -1.1),
+        Pose::new(4.0, 3.0, 3.0),
+    ];
+    let mut reversed_orientation_wins = false;
     let options = CurveOptions::default();
     for (name, design) in &cases {
         let metric: Metric = name.parse().unwrap();
@@ -187,7 +197,10 @@ fn all_collinear_with_collinear_rigid_parts_matches_brute_force() {
             let reported = &result.metrics[name.to_string().as_str()];
             let sub = &reported.subproblems["all-collinear"];
             let distance = sub.distance.expect("a real critical point exists");
-            let expected = brute_force(metric, design, &k);
+            let orientations = brute_force(metric, design, &k);
+            let expected = orientations.iter().copied().fold(f64::INFINITY, f64::min);
+            reversed_orientation_wins |=
+                orientations.len() == 2 && orientations[1] < orientations[0];
             assert!(
                 (distance - expected).abs() < 1e-8,
                 "{name} at {pose:?}: pipeline {distance} vs brute force {expected}"
@@ -237,6 +250,10 @@ fn all_collinear_with_collinear_rigid_parts_matches_brute_force() {
             );
         }
     }
+    assert!(
+        reversed_orientation_wins,
+        "rigid/rigid: no pose where the orientation sigma = -1 is the closer one"
+    );
 }
 
 #[test]
