@@ -22,6 +22,8 @@ enum Command {
     Distance(cli::distance::DistanceArgs),
     /// Kinematic performance indices of a 3-RPR along a motion or at one pose.
     Indices(cli::indices::IndicesArgs),
+    /// Indices and metric distances side by side (`indices --with-metrics all`).
+    Compare(cli::indices::IndicesArgs),
     /// Inspect and export polynomial systems (Bertini input format).
     #[command(subcommand)]
     System(cli::system::SystemCommand),
@@ -44,6 +46,7 @@ fn main() {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
         Command::Indices(args) => cli::indices::run(args),
+        Command::Compare(args) => cli::indices::run_compare(args),
         Command::System(cmd) => cli::system::run(cmd),
         Command::Solve(args) => cli::solve::run(args),
         Command::AbInitio(args) => cli::ab_initio::run(args),

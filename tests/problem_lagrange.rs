@@ -51,22 +51,27 @@ fn unknown_counts_match_spec_a7() {
             SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
                 [13, 12, 11][rigid_parts]
             }
-            SubProblem::AllCollinear => 10,
+            // q, w, the free offsets, nu: plate/plate t2..t6; one rigid part: 3 free
+            // offsets; rigid/rigid: t4, sigma and its multiplier rho.
+            SubProblem::AllCollinear => [10, 8, 8][rigid_parts],
             SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 7,
         };
-        if id.subproblem == SubProblem::AllCollinear && rigid_parts > 0 {
-            assert!(LagrangeProblem::new(id).is_err(), "{id}");
-            continue;
-        }
         let problem = LagrangeProblem::new(id).unwrap_or_else(|e| panic!("{id}: {e}"));
         assert_eq!(problem.evaluator().num_variables(), expected, "{id}");
         assert_eq!(problem.evaluator().num_equations(), expected, "{id}");
+        // Shape constants per rigid part: (u, v, r2), or the line offsets (s2, s3).
+        let per_rigid_part = if id.subproblem == SubProblem::AllCollinear {
+            2
+        } else {
+            3
+        };
         assert_eq!(
             problem.parameter_names().len(),
-            12 + 3 * rigid_parts.min(match id.subproblem {
-                SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 1,
-                _ => 2,
-            }),
+            12 + per_rigid_part
+                * rigid_parts.min(match id.subproblem {
+                    SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => 1,
+                    _ => 2,
+                }),
             "{id}"
         );
     }
@@ -102,5 +107,29 @@ fn start_pairs_lie_on_their_constraint_variety() {
             condition.norm() < 1e-9 * scale.powi(4),
             "{id}: constraint {condition}"
         );
+        // All-collinear with a rigid part: its anchors keep their signed offsets
+        // (0, s2, s3) along the line, so |x2' - x1'|^2 = s2^2 and |x3' - x1'|^2 = s3^2
+        // (complex squares: no conjugation).
+        if id.subproblem == SubProblem::AllCollinear {
+            let parameter = |name: &str| {
+                let i = problem.parameter_names().iter().position(|n| n == name);
+                i.map(|i| pair.p[i])
+            };
+            for (role, first) in [("base", 0), ("platform", 6)] {
+                let (Some(s2), Some(s3)) = (
+                    parameter(&format!("s2_{role}")),
+                    parameter(&format!("s3_{role}")),
+                ) else {
+                    continue;
+                };
+                let square = |j: usize| {
+                    let dx = k[first + 2 * j] - k[first];
+                    let dy = k[first + 2 * j + 1] - k[first + 1];
+                    dx * dx + dy * dy
+                };
+                assert!((square(1) - s2 * s2).norm() < 1e-9 * scale.powi(2), "{id}");
+                assert!((square(2) - s3 * s3).norm() < 1e-9 * scale.powi(2), "{id}");
+            }
+        }
     }
 }

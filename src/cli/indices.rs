@@ -1,15 +1,32 @@
 //! `singdist indices`: kinematic performance indices of a 3-RPR (SPEC Part B) along a
 //! motion (CSV / JSON table, SVG plot) or at one pose (`--pose x,y,phi --json`).
+//!
+//! With `--with-metrics [all|NAME…]` (or the `compare` command) the table also holds the
+//! singularity distances of the selected extrinsic metrics (SPEC A.9, computed by
+//! [`compute_curve`] at the very same τ samples, [`sample_motion`]), so metric and index
+//! can be compared pose by pose (paper Figs. 14–16). Lost homotopy paths of the metric
+//! computation are reported on stderr, in the output, and by exit code 3 (as `curve`).
 
+use super::curve::{EXIT_PATH_FAILURES, parse_metrics, warn_failures, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use singdist::index::rpr::{
     CnVariant, DEFAULT_CYLINDER_HALF_WIDTH, DsAggregate, INDEX_COLUMN_NAMES, IndexOptions,
     RprIndices, compute_indices, index_columns,
 };
 use singdist::io::{load_design, load_motion};
-use singdist::mechanism::rpr::{Design, Motion, Pose, example_design, example_motion};
+use singdist::mechanism::rpr::{
+    Design, Motion, Pose, PoseList, SampledPose, example_design, example_motion,
+};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{
+    CurveOptions, CurveResult, PathFailure, PoseResult, compute_curve, default_start_solutions,
+    sample_motion,
+};
+use singdist::pipeline::postprocess::MetricDistance;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `singdist indices`.
@@ -49,6 +66,34 @@ pub struct IndicesArgs {
     /// singularity-free cylinder.
     #[arg(long, value_name = "RAD", default_value_t = DEFAULT_CYLINDER_HALF_WIDTH)]
     cylinder_half_width: f64,
+    /// Add the singularity distances of these metrics (SPEC A.9) at the same poses:
+    /// `all` (the default when the option has no value) or names like `plate/plate
+    /// bars/rigid`. CSV: columns `NAME` (distance) and `NAME_signed`; JSON: a `metrics`
+    /// object per pose; the plot shows them next to the indices.
+    #[arg(long, value_name = "NAME", num_args = 0.., default_missing_value = "all")]
+    with_metrics: Option<Vec<String>>,
+    /// Seed of every random choice of the metric computation (as `curve --seed`).
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// Worker threads of the metric computation (default: all cores).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// CSV of the plotted data: τ and every curve divided by its maximum along the
+    /// motion (the divisor is in the column header).
+    #[arg(long, value_name = "FILE.csv")]
+    plot_data: Option<PathBuf>,
+    /// No progress bar for the metric computation.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Runs `singdist compare`: `indices` with the metric distances (all nine unless
+/// `--with-metrics` names some).
+pub fn run_compare(mut args: IndicesArgs) -> Result<()> {
+    if args.with_metrics.is_none() {
+        args.with_metrics = Some(vec!["all".to_string()]);
+    }
+    run(args)
 }
 
 /// Runs `singdist indices`.
@@ -66,19 +111,32 @@ pub fn run(args: IndicesArgs) -> Result<()> {
         cn,
         cylinder_half_width: args.cylinder_half_width,
     };
+    let metrics = match &args.with_metrics {
+        Some(values) => parse_metrics(values).context("--with-metrics")?,
+        None => Vec::new(),
+    };
     let design = match &args.design {
         Some(path) => load_design(path)?,
         None => example_design(),
     };
     if let Some(text) = &args.pose {
+        if args.plot.is_some() || args.plot_data.is_some() || args.out.is_some() {
+            bail!("--pose: --out, --plot and --plot-data apply to a motion, not to one pose");
+        }
         let pose = parse_pose(text)?;
         let indices = compute_indices(&design, pose, &options);
+        let motion = Motion::Poses(PoseList { poses: vec![pose] });
+        let curve = metric_curve(&design, &motion, 1, &metrics, &args)?;
+        let at = curve.as_ref().and_then(|c| c.poses.first());
         if args.json {
-            println!("{}", single_pose_json(&indices, &options)?);
+            println!(
+                "{}",
+                single_pose_json(&indices, &options, curve.as_ref(), at)?
+            );
         } else {
-            print_single_pose(&indices, &options);
+            print_single_pose(&indices, &options, &metrics, at);
         }
-        return Ok(());
+        return finish(curve.as_ref());
     }
     if args.json {
         bail!("--json applies to a single pose (--pose x,y,phi); use --out FILE.json for a motion");
@@ -87,40 +145,172 @@ pub fn run(args: IndicesArgs) -> Result<()> {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    let table = motion_table(&design, &motion, args.poses, &options)?;
+    if args.poses == 0 {
+        bail!("--poses: expected at least 1");
+    }
+    let samples = sample_motion(&motion, args.poses).context("--poses")?;
+    let curve = metric_curve(&design, &motion, args.poses, &metrics, &args)?;
+    let table = motion_table(&design, &samples, &options, curve.as_ref(), &metrics)?;
     match &args.out {
         Some(path) => write_table(path, &table, &options)?,
         None => print!("{}", csv_text(&table, &options)?),
     }
-    if let Some(path) = &args.plot {
-        plot(path, &table)?;
+    if args.plot.is_some() || args.plot_data.is_some() {
+        let curves = scaled_curves(&table);
+        if let Some(path) = &args.plot {
+            plot(path, &table, &curves)?;
+        }
+        if let Some(path) = &args.plot_data {
+            write_plot_data(path, &table, &curves)?;
+        }
+    }
+    finish(curve.as_ref())
+}
+
+/// Warns about lost paths of the metric computation and exits with
+/// [`EXIT_PATH_FAILURES`] if there were any (after every output was written).
+fn finish(curve: Option<&CurveResult>) -> Result<()> {
+    if let Some(curve) = curve
+        && warn_failures(&curve.failures)
+    {
+        std::process::exit(EXIT_PATH_FAILURES);
     }
     Ok(())
+}
+
+/// The metric distances along the motion ([`compute_curve`] with the `curve` command's
+/// default start provider and options), or `None` when no metric was asked for.
+fn metric_curve(
+    design: &Design,
+    motion: &Motion,
+    poses: usize,
+    metrics: &[Metric],
+    args: &IndicesArgs,
+) -> Result<Option<CurveResult>> {
+    if metrics.is_empty() {
+        return Ok(None);
+    }
+    let options = CurveOptions {
+        seed: args.seed,
+        ..CurveOptions::default()
+    };
+    let count = match motion {
+        Motion::Poses(list) => list.poses.len(),
+        Motion::Analytic(_) => poses,
+    };
+    let progress = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::new(count as u64);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar.set_message("metric distances: start solutions + seed");
+        bar
+    };
+    let on_pose = |_: &PoseResult| {
+        progress.set_message("metric distances");
+        progress.inc(1);
+    };
+    let result = with_threads(args.threads, || {
+        compute_curve(
+            design,
+            motion,
+            poses,
+            metrics,
+            &options,
+            &default_start_solutions,
+            &on_pose,
+        )
+    })?
+    .context("--with-metrics")?;
+    progress.finish_and_clear();
+    Ok(Some(result))
 }
 
 /// One row of the motion table.
 struct Row {
     tau: f64,
     indices: RprIndices,
+    /// Per metric name: its distance at this pose (absent: no real critical point).
+    metrics: BTreeMap<String, MetricDistance>,
+    /// Lost paths of the metric computation at this pose.
+    metric_failures: Vec<PathFailure>,
+}
+
+/// The motion table: indices (and metric distances) per pose.
+struct Table {
+    rows: Vec<Row>,
+    /// Names of the metrics in the table (empty without `--with-metrics`).
+    metric_names: Vec<String>,
+    /// The metric computation, if any (seed, failures, not-applicable sub-problems).
+    curve: Option<CurveSummary>,
+}
+
+/// Run-level facts of the metric computation written into the JSON table.
+struct CurveSummary {
+    seed: u64,
+    not_applicable: Vec<String>,
+    failures: Vec<PathFailure>,
 }
 
 fn motion_table(
     design: &Design,
-    motion: &Motion,
-    poses: usize,
+    samples: &[SampledPose],
     options: &IndexOptions,
-) -> Result<Vec<Row>> {
-    if poses == 0 {
-        bail!("--poses: expected at least 1");
-    }
-    let samples = motion.sample(poses);
-    Ok(samples
+    curve: Option<&CurveResult>,
+    metrics: &[Metric],
+) -> Result<Table> {
+    let mut rows: Vec<Row> = samples
         .par_iter()
         .map(|s| Row {
             tau: s.tau,
             indices: compute_indices(design, s.pose, options),
+            metrics: BTreeMap::new(),
+            metric_failures: Vec::new(),
         })
-        .collect())
+        .collect();
+    if let Some(curve) = curve {
+        if curve.poses.len() != rows.len() {
+            bail!(
+                "--with-metrics: {} metric poses for {} index poses",
+                curve.poses.len(),
+                rows.len()
+            );
+        }
+        for (row, pose) in rows.iter_mut().zip(&curve.poses) {
+            // Both come from `sample_motion`: the same τ and pose, bit for bit.
+            if pose.tau != row.tau {
+                bail!(
+                    "--with-metrics: pose {} has tau {} for the metrics but {} for the indices",
+                    pose.index,
+                    pose.tau,
+                    row.tau
+                );
+            }
+            row.metrics = pose.metrics.clone();
+            // Losses of the seed stage affect every pose: listed with each.
+            row.metric_failures = curve
+                .failures
+                .iter()
+                .filter(|f| f.pose_index.is_none())
+                .chain(&pose.failures)
+                .cloned()
+                .collect();
+        }
+    }
+    Ok(Table {
+        rows,
+        metric_names: metrics.iter().map(Metric::name).collect(),
+        curve: curve.map(|c| CurveSummary {
+            seed: c.seed,
+            not_applicable: c.not_applicable.clone(),
+            failures: c.failures.clone(),
+        }),
+    })
 }
 
 fn parse_pose(text: &str) -> Result<Pose> {
@@ -139,8 +329,9 @@ fn parse_pose(text: &str) -> Result<Pose> {
     Ok(Pose::new(v[0], v[1], v[2]))
 }
 
-/// Column headers with the variant named where a Choice was made.
-fn headers(options: &IndexOptions) -> Vec<String> {
+/// Column headers with the variant named where a Choice was made; then per metric
+/// `NAME` (distance) and `NAME_signed` (signed distance), and `metric_failures`.
+fn headers(options: &IndexOptions, metric_names: &[String]) -> Vec<String> {
     let mut out: Vec<String> = ["tau", "x", "y", "phi"]
         .iter()
         .map(|s| s.to_string())
@@ -155,6 +346,13 @@ fn headers(options: &IndexOptions) -> Vec<String> {
             other => other.to_string(),
         });
     }
+    for name in metric_names {
+        out.push(name.clone());
+        out.push(format!("{name}_signed"));
+    }
+    if !metric_names.is_empty() {
+        out.push("metric_failures".into());
+    }
     out
 }
 
@@ -165,10 +363,23 @@ fn cell(value: Option<f64>) -> String {
     }
 }
 
-fn csv_text(table: &[Row], options: &IndexOptions) -> Result<String> {
+/// `PROBLEM finite/expected` of every lost path group (`seed PROBLEM …` for the seed
+/// stage), `;`-separated.
+fn failure_cell(failures: &[PathFailure]) -> String {
+    failures
+        .iter()
+        .map(|f| {
+            let stage = if f.pose_index.is_none() { "seed " } else { "" };
+            format!("{stage}{} {}/{}", f.problem, f.finite, f.expected)
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+fn csv_text(table: &Table, options: &IndexOptions) -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record(headers(options))?;
-    for row in table {
+    writer.write_record(headers(options, &table.metric_names))?;
+    for row in &table.rows {
         let p = row.indices.pose;
         let mut record = vec![
             format!("{}", row.tau),
@@ -177,12 +388,44 @@ fn csv_text(table: &[Row], options: &IndexOptions) -> Result<String> {
             format!("{}", p.phi),
         ];
         record.extend(index_columns(&row.indices).iter().map(|(_, v)| cell(*v)));
+        for name in &table.metric_names {
+            let m = row.metrics.get(name);
+            record.push(cell(m.map(|m| m.distance)));
+            record.push(cell(m.map(|m| m.signed_distance)));
+        }
+        if !table.metric_names.is_empty() {
+            record.push(failure_cell(&row.metric_failures));
+        }
         writer.write_record(record)?;
     }
     Ok(String::from_utf8(writer.into_inner()?)?)
 }
 
-fn write_table(path: &Path, table: &[Row], options: &IndexOptions) -> Result<()> {
+/// JSON of one metric's distance at one pose (`null` when no real critical point).
+fn metric_json(metric: Option<&MetricDistance>) -> serde_json::Value {
+    match metric {
+        Some(m) => serde_json::json!({
+            "distance": m.distance,
+            "signed_distance": m.signed_distance,
+            "subproblem": m.subproblem,
+            "cut_locus": m.cut_locus,
+            "closest": m.closest,
+        }),
+        None => serde_json::Value::Null,
+    }
+}
+
+fn metrics_json(
+    names: &[String],
+    values: &BTreeMap<String, MetricDistance>,
+) -> serde_json::Map<String, serde_json::Value> {
+    names
+        .iter()
+        .map(|name| (name.clone(), metric_json(values.get(name))))
+        .collect()
+}
+
+fn write_table(path: &Path, table: &Table, options: &IndexOptions) -> Result<()> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
@@ -191,18 +434,30 @@ fn write_table(path: &Path, table: &[Row], options: &IndexOptions) -> Result<()>
         Some("csv") => csv_text(table, options)?,
         Some("json") => {
             let rows: Vec<serde_json::Value> = table
+                .rows
                 .iter()
                 .map(|r| {
                     let mut v = serde_json::to_value(&r.indices)?;
                     v["tau"] = serde_json::json!(r.tau);
+                    if table.curve.is_some() {
+                        v["metrics"] = metrics_json(&table.metric_names, &r.metrics).into();
+                        v["metric_failures"] = serde_json::to_value(&r.metric_failures)?;
+                    }
                     Ok(v)
                 })
                 .collect::<Result<_, serde_json::Error>>()?;
-            serde_json::to_string_pretty(&serde_json::json!({
+            let mut document = serde_json::json!({
                 "variants": options.variants(),
-                "undefined": "null marks an index that is undefined at that pose",
+                "undefined": "null marks an index (or metric distance) that is undefined at that pose",
                 "poses": rows,
-            }))?
+            });
+            if let Some(curve) = &table.curve {
+                document["metric_names"] = serde_json::to_value(&table.metric_names)?;
+                document["metric_seed"] = serde_json::json!(curve.seed);
+                document["not_applicable"] = serde_json::to_value(&curve.not_applicable)?;
+                document["metric_failures"] = serde_json::to_value(&curve.failures)?;
+            }
+            serde_json::to_string_pretty(&document)?
         }
         _ => bail!(
             "--out {}: expected a .csv or .json file name",
@@ -212,32 +467,61 @@ fn write_table(path: &Path, table: &[Row], options: &IndexOptions) -> Result<()>
     std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
 }
 
-fn single_pose_json(indices: &RprIndices, options: &IndexOptions) -> Result<String> {
+fn single_pose_json(
+    indices: &RprIndices,
+    options: &IndexOptions,
+    curve: Option<&CurveResult>,
+    at: Option<&PoseResult>,
+) -> Result<String> {
     let mut value = serde_json::to_value(indices)?;
     value["variants"] = serde_json::to_value(options.variants())?;
+    if let Some(curve) = curve {
+        let empty = BTreeMap::new();
+        let values = at.map_or(&empty, |p| &p.metrics);
+        value["metrics"] = metrics_json(&curve.metric_names, values).into();
+        value["metric_seed"] = serde_json::json!(curve.seed);
+        value["not_applicable"] = serde_json::to_value(&curve.not_applicable)?;
+        value["metric_failures"] = serde_json::to_value(&curve.failures)?;
+    }
     Ok(serde_json::to_string_pretty(&value)?)
 }
 
-fn print_single_pose(indices: &RprIndices, options: &IndexOptions) {
+fn print_single_pose(
+    indices: &RprIndices,
+    options: &IndexOptions,
+    metrics: &[Metric],
+    at: Option<&PoseResult>,
+) {
     let p = indices.pose;
     println!("pose x = {}, y = {}, phi = {}", p.x, p.y, p.phi);
     for (name, value) in index_columns(indices) {
         println!("{name:>28}  {}", cell(value));
     }
+    for metric in metrics {
+        let name = metric.name();
+        let m = at.and_then(|p| p.metrics.get(&name));
+        println!(
+            "{name:>28}  {}  (signed {})",
+            cell(m.map(|m| m.distance)),
+            cell(m.map(|m| m.signed_distance))
+        );
+    }
     let v = options.variants();
     println!("variants: DS = {}; CN = {}; IR = {}", v.ds, v.cn, v.ir);
 }
 
-/// Curves of the plot: name and values (absolute value for S).
-fn plot_curves(table: &[Row]) -> Vec<(String, Vec<Option<f64>>)> {
+/// Curves of the plot, unscaled: name and values (absolute value for S; distances for
+/// the metrics).
+fn plot_curves(table: &Table) -> Vec<(String, Vec<Option<f64>>)> {
     // Every index column except the signed duplicates of the two distances.
     let names = INDEX_COLUMN_NAMES
         .iter()
         .copied()
         .filter(|name| !name.ends_with("_signed"));
-    names
+    let mut curves: Vec<(String, Vec<Option<f64>>)> = names
         .map(|name| {
             let values = table
+                .rows
                 .iter()
                 .map(|r| {
                     index_columns(&r.indices)
@@ -254,13 +538,66 @@ fn plot_curves(table: &[Row]) -> Vec<(String, Vec<Option<f64>>)> {
             };
             (label, values)
         })
+        .collect();
+    for name in &table.metric_names {
+        let values = table
+            .rows
+            .iter()
+            .map(|r| r.metrics.get(name).map(|m| m.distance))
+            .collect();
+        curves.push((format!("D {name}"), values));
+    }
+    curves
+}
+
+/// A plotted curve: label, the divisor (its maximum along the motion) and the values
+/// divided by it (`None` where undefined).
+struct ScaledCurve {
+    label: String,
+    max: f64,
+    values: Vec<Option<f64>>,
+}
+
+/// Every plotted curve divided by its maximum along the motion, so each lies in
+/// [0, 1] (a curve that is identically 0 is left as is).
+fn scaled_curves(table: &Table) -> Vec<ScaledCurve> {
+    plot_curves(table)
+        .into_iter()
+        .map(|(label, values)| {
+            let values: Vec<Option<f64>> = values
+                .into_iter()
+                .map(|v| v.filter(|v| v.is_finite()))
+                .collect();
+            let max = values.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
+            let scale = if max > 0.0 { max } else { 1.0 };
+            ScaledCurve {
+                label,
+                max,
+                values: values.into_iter().map(|v| v.map(|v| v / scale)).collect(),
+            }
+        })
         .collect()
 }
 
+fn write_plot_data(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result<()> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["tau".to_string()];
+    header.extend(curves.iter().map(|c| format!("{} / {:e}", c.label, c.max)));
+    writer.write_record(&header)?;
+    for (j, row) in table.rows.iter().enumerate() {
+        let mut record = vec![format!("{}", row.tau)];
+        record.extend(curves.iter().map(|c| cell(c.values[j])));
+        writer.write_record(&record)?;
+    }
+    let text = String::from_utf8(writer.into_inner()?)?;
+    std::fs::write(path, text)
+        .with_context(|| format!("--plot-data {}: cannot write", path.display()))
+}
+
 /// Parameter values where S changes sign (linear interpolation) or vanishes.
-fn singular_taus(table: &[Row]) -> Vec<f64> {
+fn singular_taus(rows: &[Row]) -> Vec<f64> {
     let mut out = Vec::new();
-    for pair in table.windows(2) {
+    for pair in rows.windows(2) {
         let (s0, s1) = (pair[0].indices.s, pair[1].indices.s);
         if s0 == 0.0 {
             out.push(pair[0].tau);
@@ -268,7 +605,7 @@ fn singular_taus(table: &[Row]) -> Vec<f64> {
             out.push(pair[0].tau + (pair[1].tau - pair[0].tau) * s0 / (s0 - s1));
         }
     }
-    if let Some(last) = table.last()
+    if let Some(last) = rows.last()
         && last.indices.s == 0.0
     {
         out.push(last.tau);
@@ -276,39 +613,43 @@ fn singular_taus(table: &[Row]) -> Vec<f64> {
     out
 }
 
-fn plot(path: &Path, table: &[Row]) -> Result<()> {
-    if table.len() < 2 {
+fn plot(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result<()> {
+    let rows = &table.rows;
+    if rows.len() < 2 {
         bail!("--plot: need at least 2 poses");
     }
-    let curves: Vec<super::plot::Curve> = plot_curves(table)
-        .into_iter()
-        .map(|(label, values)| {
-            let max = values.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
-            let scale = if max > 0.0 { max } else { 1.0 };
+    let curves: Vec<super::plot::Curve> = curves
+        .iter()
+        .map(|curve| {
             // Split at undefined values so gaps stay gaps.
             let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for (row, value) in table.iter().zip(&values) {
+            for (row, value) in rows.iter().zip(&curve.values) {
                 match value {
                     Some(v) => {
                         if let Some(segment) = segments.last_mut() {
-                            segment.push((row.tau, v / scale));
+                            segment.push((row.tau, *v));
                         }
                     }
                     None => segments.push(Vec::new()),
                 }
             }
             super::plot::Curve {
-                label: format!("{label} (/ {max:.4e})"),
+                label: format!("{} (/ {:.4e})", curve.label, curve.max),
                 segments,
             }
         })
         .collect();
+    let caption = if table.metric_names.is_empty() {
+        "3-RPR kinematic indices along the motion (each curve divided by its maximum)"
+    } else {
+        "3-RPR indices and metric distances D along the motion (each curve divided by its maximum)"
+    };
     let layout = super::plot::Layout {
-        caption: "3-RPR kinematic indices along the motion (each curve divided by its maximum)",
-        y_description: "index / max along the motion",
-        tau_range: (table[0].tau, table[table.len() - 1].tau),
+        caption,
+        y_description: "value / its max along the motion",
+        tau_range: (rows[0].tau, rows[rows.len() - 1].tau),
         y_range: (0.0, 1.05),
     };
-    let singular: Vec<f64> = singular_taus(table).into_iter().collect();
+    let singular = singular_taus(rows);
     super::plot::plot_against_tau(path, &layout, &curves, &singular)
 }

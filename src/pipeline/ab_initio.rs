@@ -77,11 +77,33 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
         SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
             Some(if rigid == 1 { 8 } else { 2 })
         }
-        // (w, t) and (−w, −t) give the same configuration: 2 configurations, 4 solutions.
-        SubProblem::AllCollinear => Some(4),
+        // plate/plate: (w, t) and (−w, −t) give the same configuration: 2 configurations,
+        // 4 solutions. With a rigid part: see ALL_COLLINEAR_RIGID.
+        SubProblem::AllCollinear => Some([4, ALL_COLLINEAR_RIGID, 2 * ALL_COLLINEAR_RIGID][rigid]),
         SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => MEASURED_COINCIDENT,
     }
 }
+
+/// Generic count of the all-collinear sub-problem with one rigid part whose anchors
+/// are collinear (`plate/rigid`, `rigid/plate`; SPEC A.6.3, parameterisation of
+/// `problem::build::all_collinear_offsets`), per orientation of the platform for
+/// `rigid/rigid`. Derivation (as the TLS note of SPEC A.7): with `n = E w` the line's
+/// normal, every displacement `x_k′ − x_k` splits into a normal part `h − x_k·n`
+/// (`h = q·n`) and a tangential part `q·w + c_k − x_k·w`; the cost `D²` is an
+/// isotropic PSD quadratic form in the displacements, so it is the sum of the same
+/// form on both parts. Minimising over `h` leaves `nᵀ C n` (C a weighted 2×2 scatter
+/// matrix); minimising over `q·w` and the free offsets (plate part, rigid platform's
+/// shift) leaves a quadratic in `w` with a *linear* term (the fixed offsets `s₂`, `s₃`
+/// of the rigid part do not vanish): `F(w) = wᵀ N w − 2 bᵀ w + c` on `w·w = 1`. Its
+/// critical points solve `(N − ν I) w = b`, `w·w = 1`, i.e. the quartic secular
+/// equation `bᵀ (N − ν I)⁻² b = 1`: 4 critical points, each a distinct configuration
+/// (the rigid part orients `w`, so there is no `(w, t) ↔ (−w, −t)` pairing). For
+/// `rigid/rigid` the two orientations `σ = ±1` of the platform on the base's line each
+/// give 4: 8 in all. Measured by monodromy with a passed trace test (2 source seeds,
+/// 4 each; for rigid/rigid the solution set is reducible — `σ` is constant on each
+/// component — and the seeds 20260101 and 7 certified the `σ = −1` and `σ = +1`
+/// components with 4 each; the ab-initio stage's extra start pairs collect both).
+const ALL_COLLINEAR_RIGID: usize = 4;
 
 /// Generic count of the coincident-points sub-problems (SPEC A.7 note: measured). For a
 /// fixed coincidence point q the cost over the rigid part's rotation angle θ has the

@@ -628,7 +628,7 @@ pub fn seed_stage(
     let mut prepared = Vec::new();
     let mut not_applicable = Vec::new();
     for id in problem_ids(metrics) {
-        let problem = match LagrangeProblem::new(id) {
+        let problem = match LagrangeProblem::for_design(id, design) {
             Ok(p) => p,
             Err(ProblemError::NotApplicable { .. }) => {
                 not_applicable.push(id.name());

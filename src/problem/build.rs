@@ -137,14 +137,133 @@ fn flatten(base: &[Point<Expr>; 3], platform: &[Point<Expr>; 3]) -> [Expr; 12] {
         .unwrap_or_else(|_| unreachable!("six points have twelve coordinates"))
 }
 
+/// A rigid part's anchors count as collinear (all-collinear sub-problem applicable,
+/// SPEC A.6.3) when `|v| ≤ COLLINEAR_ANCHOR_TOLERANCE`, with `v` the dimensionless
+/// offset of anchor 3 from the line of anchors 1, 2 (SPEC A.5: distance / `|e|`).
+pub const COLLINEAR_ANCHOR_TOLERANCE: f64 = 1e-9;
+
+/// Offsets along the common line of the six points of the all-collinear sub-problem
+/// (SPEC A.6.3), in the order `a₁ a₂ a₃ b₁ b₂ b₃` (`None` = 0, point 1 is `q`).
+struct LineOffsets {
+    offsets: Vec<Option<Expr>>,
+    variables: Vec<String>,
+    parameters: Vec<String>,
+    /// `σ² − 1` and its multiplier `rho` (rigid/rigid: orientation of the platform).
+    orientation: Option<(Expr, String)>,
+}
+
+/// Offsets `c_k` of the all-collinear parameterisation `x_k′ = q + c_k w`, `w·w = 1`
+/// (SPEC A.6.3, paper Eq. 56), with `c_{a₁} = 0` (the gauge: `q = a₁′`):
+///
+/// - a `plate` part: free offsets (`t2 t3` for the base, `t4 t5 t6` for the platform);
+/// - a `rigid` part whose anchors are collinear (SPEC A.5 with `v = 0`:
+///   `x₃ = x₁ + u (x₂ − x₁)`): a proper motion keeps them on one line at fixed signed
+///   distances, so its offsets are known up to a common shift: `(0, s₂, s₃)` for the
+///   base (the base fixes the direction of `w`), `(t4, t4 + s₂, t4 + s₃)` for the
+///   platform, with `s₂ = |e|`, `s₃ = u·|e|` (parameters `s2_base s3_base`,
+///   `s2_platform s3_platform`). When the base is rigid as well, `w` is already
+///   oriented by the base and the platform may point either way along the line:
+///   `(t4, t4 + σ s₂, t4 + σ s₃)` with an unknown `σ`, `σ² = 1` (multiplier `rho`);
+///   every critical point of the Lagrangian then has `σ = ±1` and is a critical point
+///   of that orientation's problem (`rho` absorbs `∂Λ/∂σ`).
+fn all_collinear_offsets(platform: Part, base: Part) -> LineOffsets {
+    let mut variables = Vec::new();
+    let mut parameters = Vec::new();
+    let mut orientation = None;
+    let mut offsets: Vec<Option<Expr>> = vec![None];
+    if base == Part::Rigid {
+        parameters.extend(["s2_base", "s3_base"].map(String::from));
+        offsets.extend([Some(par("s2_base")), Some(par("s3_base"))]);
+    } else {
+        variables.extend(["t2", "t3"].map(String::from));
+        offsets.extend([Some(var("t2")), Some(var("t3"))]);
+    }
+    if platform == Part::Rigid {
+        parameters.extend(["s2_platform", "s3_platform"].map(String::from));
+        variables.push("t4".to_string());
+        let sign = if base == Part::Rigid {
+            variables.push("sigma".to_string());
+            orientation = Some((
+                var("sigma") * var("sigma") - Expr::from(1.0),
+                "rho".to_string(),
+            ));
+            var("sigma")
+        } else {
+            Expr::from(1.0)
+        };
+        offsets.push(Some(var("t4")));
+        for s in ["s2_platform", "s3_platform"] {
+            offsets.push(Some(var("t4") + sign.clone() * par(s)));
+        }
+    } else {
+        for k in 4..=6 {
+            let t = format!("t{k}");
+            offsets.push(Some(var(&t)));
+            variables.push(t);
+        }
+    }
+    LineOffsets {
+        offsets,
+        variables,
+        parameters,
+        orientation,
+    }
+}
+
+/// Whether the anchors of a rigid part with shape `shape` are collinear
+/// ([`COLLINEAR_ANCHOR_TOLERANCE`]).
+pub fn anchors_collinear(shape: &rpr::RigidShape) -> bool {
+    shape.v.abs() <= COLLINEAR_ANCHOR_TOLERANCE
+}
+
 impl LagrangeProblem {
+    /// Whether sub-problem `id` exists for `design` (SPEC A.6.3): all-collinear with a
+    /// rigid part needs that part's anchors to be collinear
+    /// ([`COLLINEAR_ANCHOR_TOLERANCE`]); every other sub-problem always applies.
+    pub fn check_applicable(id: ProblemId, design: &Design) -> Result<(), ProblemError> {
+        if id.subproblem != SubProblem::AllCollinear {
+            return Ok(());
+        }
+        for (part, role, shape) in [
+            (id.metric.base, "base", design.base_shape()),
+            (id.metric.platform, "platform", design.platform_shape()),
+        ] {
+            if part == Part::Rigid && !anchors_collinear(&shape) {
+                return Err(ProblemError::NotApplicable {
+                    problem: id.name(),
+                    reason: format!(
+                        "all six points on one line needs the rigid {role}'s anchors to be \
+                         collinear (SPEC A.6.3); here anchor 3 is off the line of anchors 1, 2 \
+                         by v = {:.3e} |e| (tolerance {COLLINEAR_ANCHOR_TOLERANCE:e})",
+                        shape.v
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// [`LagrangeProblem::new`] for a sub-problem that applies to `design`
+    /// ([`LagrangeProblem::check_applicable`]; `NotApplicable` otherwise).
+    pub fn for_design(id: ProblemId, design: &Design) -> Result<Self, ProblemError> {
+        Self::check_applicable(id, design)?;
+        Self::new(id)
+    }
+
     /// Builds and compiles the Lagrange system of `id` (SPEC A.6).
     ///
     /// Variables: the unknown coordinates of K′ (a rigid part lists only its first two
     /// points), then the multipliers (`lambda`, `mu_base`, `mu_platform`), or for
-    /// all-collinear `qx qy wx wy t2..t6 nu` (point 1 is q), for coincident points `qx qy` + the rigid
-    /// part's coordinates + its multiplier. Parameters: `A1x … B3y`, then
-    /// `u_base v_base r2_base` and/or `u_platform v_platform r2_platform`.
+    /// all-collinear `qx qy wx wy`, the free offsets (`t2 t3` of a plate base, `t4 t5 t6`
+    /// of a plate platform, `t4` of a rigid platform, `sigma` for rigid/rigid), `nu`
+    /// (and `rho` for rigid/rigid) (point 1 is q; see `all_collinear_offsets`), for
+    /// coincident points `qx qy` + the rigid part's coordinates + its multiplier.
+    /// Parameters: `A1x … B3y`, then `u_base v_base r2_base` and/or `u_platform
+    /// v_platform r2_platform`; for all-collinear the line offsets `s2_base s3_base`
+    /// and/or `s2_platform s3_platform` of collinear rigid anchors instead.
+    ///
+    /// Every sub-problem is built for any design; whether it applies to a given design
+    /// is [`LagrangeProblem::check_applicable`].
     pub fn new(id: ProblemId) -> Result<Self, ProblemError> {
         let metric = id.metric;
         let given: [Expr; 12] = std::array::from_fn(|i| par(CONFIGURATION_PARAMETER_NAMES[i]));
@@ -175,32 +294,30 @@ impl LagrangeProblem {
                 k_prime
             }
             SubProblem::AllCollinear => {
-                if metric.base == Part::Rigid || metric.platform == Part::Rigid {
-                    return Err(ProblemError::NotApplicable {
-                        problem: id.name(),
-                        reason: "all six points collinear under a rigid part requires that part's \
-                                 anchors to be collinear (paper §4.1.1); such degenerate designs \
-                                 are not supported by this sub-problem"
-                            .to_string(),
-                    });
-                }
+                // Paper Eq. 56: the first point is q itself, the others q + c_k w
+                // (fixing c_1 = 0 removes the slide of q along the line). See
+                // `all_collinear_offsets` for the offsets c_k of a rigid part.
                 let q = [var("qx"), var("qy")];
                 let w = [var("wx"), var("wy")];
                 variables.extend(["qx", "qy", "wx", "wy"].map(String::from));
-                // Paper Eq. 56: the first point is q itself, the others q + t_k w
-                // (fixing t_1 = 0 removes the slide of q along the line).
-                let mut points: Vec<Point<Expr>> = vec![q.clone()];
-                points.extend((2..=6).map(|k| {
-                    let t = format!("t{k}");
-                    variables.push(t.clone());
-                    [
-                        q[0].clone() + var(&t) * w[0].clone(),
-                        q[1].clone() + var(&t) * w[1].clone(),
-                    ]
-                }));
+                let offsets = all_collinear_offsets(metric.platform, metric.base);
+                variables.extend(offsets.variables);
+                parameters.extend(offsets.parameters);
+                let points: Vec<Point<Expr>> = offsets
+                    .offsets
+                    .into_iter()
+                    .map(|offset| match offset {
+                        None => q.clone(),
+                        Some(c) => [
+                            q[0].clone() + c.clone() * w[0].clone(),
+                            q[1].clone() + c * w[1].clone(),
+                        ],
+                    })
+                    .collect();
                 let norm =
                     w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
                 constraints.push((norm, "nu".to_string()));
+                constraints.extend(offsets.orientation);
                 let base = [points[0].clone(), points[1].clone(), points[2].clone()];
                 let platform = [points[3].clone(), points[4].clone(), points[5].clone()];
                 flatten(&base, &platform)
@@ -274,7 +391,8 @@ impl LagrangeProblem {
 
     /// Parameter vector for the given configuration `k` (twelve coordinates, possibly
     /// complex) of `design`: `k` followed by the rigid parts' shape constants
-    /// `(u, v, r²)` of SPEC A.5, computed from the design's base and platform anchors.
+    /// `(u, v, r²)` of SPEC A.5, computed from the design's base and platform anchors
+    /// (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
     pub fn parameters_for(&self, design: &Design, k: &[C64; 12]) -> Vec<C64> {
         let mut out: Vec<C64> = k.to_vec();
         for name in &self.system.parameters()[12..] {
@@ -283,7 +401,11 @@ impl LagrangeProblem {
             } else {
                 design.platform_shape()
             };
-            let value = if name.starts_with("u_") {
+            let value = if name.starts_with("s2_") {
+                shape.r2.sqrt()
+            } else if name.starts_with("s3_") {
+                shape.u * shape.r2.sqrt()
+            } else if name.starts_with("u_") {
                 shape.u
             } else if name.starts_with("v_") {
                 shape.v

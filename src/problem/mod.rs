@@ -21,7 +21,10 @@
 
 mod build;
 
-pub use build::{CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, LagrangeProblem, ProblemError};
+pub use build::{
+    COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, LagrangeProblem,
+    ProblemError, anchors_collinear,
+};
 
 use crate::metric::{Metric, Part};
 use std::fmt;
