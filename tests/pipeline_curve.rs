@@ -245,3 +245,38 @@ fn same_seed_gives_identical_json_on_one_and_two_threads() {
     };
     assert_eq!(run(1), run(2));
 }
+
+/// Similarity equivariance (SPEC A.4: D is invariant under Euclidean motions and
+/// homogeneous of degree 1 under scaling): the same design and poses in units ten
+/// times smaller give ten times the distance at every pose and for every sub-problem,
+/// including the rigid parts' shape constants (r², which the normalised frame divides
+/// by s²) — a wrong unit conversion of any parameter breaks it.
+#[test]
+fn scaling_the_design_and_motion_scales_every_distance() {
+    let design = example_design();
+    let factor = 10.0;
+    let scale = |points: &[[f64; 2]; 3]| points.map(|[x, y]| [factor * x, factor * y]);
+    let scaled = Design::new(scale(design.base()), scale(design.platform())).expect("design");
+    let poses = vec![Pose::new(4.0, 3.0, 0.3), Pose::new(5.0, 4.0, 1.2)];
+    let scaled_poses = poses
+        .iter()
+        .map(|p| Pose::new(factor * p.x, factor * p.y, p.phi))
+        .collect();
+    let metrics = [metric("plate/plate"), metric("bars/rigid")];
+    let original = curve(&design, &pose_list(poses), 0, &metrics);
+    let enlarged = curve(&scaled, &pose_list(scaled_poses), 0, &metrics);
+    for (a, b) in original.poses.iter().zip(&enlarged.poses) {
+        for name in ["plate/plate", "bars/rigid"] {
+            for (sub, da) in &a.metrics[name].subproblems {
+                let db = &b.metrics[name].subproblems[sub];
+                let (Some(x), Some(y)) = (da.distance, db.distance) else {
+                    panic!("{name}:{sub}: no distance");
+                };
+                assert!(
+                    (factor * x - y).abs() <= 1e-8 * y,
+                    "{name}:{sub}: {x} x {factor} != {y}"
+                );
+            }
+        }
+    }
+}

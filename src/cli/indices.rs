@@ -363,14 +363,19 @@ fn cell(value: Option<f64>) -> String {
     }
 }
 
-/// `PROBLEM finite/expected` of every lost path group (`seed PROBLEM …` for the seed
-/// stage), `;`-separated.
+/// `PROBLEM failed/expected` of every group with failed paths (`seed PROBLEM …` for
+/// the seed stage), `;`-separated.
 fn failure_cell(failures: &[PathFailure]) -> String {
     failures
         .iter()
         .map(|f| {
             let stage = if f.pose_index.is_none() { "seed " } else { "" };
-            format!("{stage}{} {}/{}", f.problem, f.finite, f.expected)
+            format!(
+                "{stage}{} {}/{} failed",
+                f.problem,
+                f.expected - f.accounted,
+                f.expected
+            )
         })
         .collect::<Vec<_>>()
         .join("; ")

@@ -259,21 +259,14 @@ impl Normalization {
 }
 
 /// Parameters of `problem` at the normalised configuration `k_normalized` of `design`:
-/// `k_normalized` and the rigid shape constants with `r²/s²`.
+/// `k_normalized` and the rigid shape constants in the frame's units.
 fn normalized_parameters(
     problem: &LagrangeProblem,
     design: &Design,
     k_normalized: &[C64; 12],
     normalization: Normalization,
 ) -> Vec<C64> {
-    let mut parameters = problem.parameters_for(design, k_normalized);
-    let s2 = normalization.scale * normalization.scale;
-    for (name, value) in problem.parameter_names().iter().zip(parameters.iter_mut()) {
-        if name.starts_with("r2_") {
-            *value /= s2;
-        }
-    }
-    parameters
+    problem.parameters_in_units(design, k_normalized, normalization.scale)
 }
 
 /// A point of the complexified motion: complex τ of an analytic motion, or a complex
