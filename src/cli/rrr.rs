@@ -83,6 +83,12 @@ pub struct RrrAbInitioArgs {
     /// Verify the embedded files instead of computing.
     #[arg(long)]
     verify: bool,
+    /// Skip the trace test (measure the monodromy count only; certificate `none`).
+    #[arg(long)]
+    no_trace_test: bool,
+    /// Consecutive loops without a new solution before monodromy stops.
+    #[arg(long, value_name = "N", default_value_t = 15)]
+    stagnant_loops: usize,
 }
 
 /// Runs `singdist rrr …`.
@@ -319,10 +325,12 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
             continue;
         }
         let started = std::time::Instant::now();
-        let options = RrrAbInitioOptions {
+        let mut options = RrrAbInitioOptions {
             seed: args.seed,
             ..RrrAbInitioOptions::default()
         };
+        options.monodromy.trace_test = !args.no_trace_test;
+        options.monodromy.max_stagnant_loops = args.stagnant_loops;
         let file = compute_rrr_start_solutions(&problem, &options)?;
         println!(
             "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {:?}, {} loops, {} failed paths) in {:.1} s",

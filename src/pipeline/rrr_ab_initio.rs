@@ -55,7 +55,8 @@ pub enum RrrAbInitioError {
 pub struct RrrAbInitioOptions {
     /// Seed of the start pair, the loops and the trace slices.
     pub seed: u64,
-    /// Monodromy options (the trace test is always run).
+    /// Monodromy options; with `trace_test = false` only the monodromy count is measured
+    /// (certificate `none`).
     pub monodromy: MonodromyOptions,
 }
 
@@ -91,8 +92,7 @@ pub fn compute_rrr_start_solutions(
             problem: kind.name(),
             source,
         })?;
-    let mut monodromy = options.monodromy.clone();
-    monodromy.trace_test = true;
+    let monodromy = options.monodromy.clone();
     let result = monodromy_solve(system, &pair.x, &pair.p, &monodromy, options.seed).map_err(
         |source| RrrAbInitioError::Homotopy {
             problem: kind.name(),
@@ -114,7 +114,8 @@ pub fn compute_rrr_start_solutions(
     let mut careful = monodromy.clone();
     careful.tracker = TrackerOptions::conservative();
     let mut rng = crate::random::stream(options.seed, 1);
-    for _attempt in 0..3 {
+    let attempts = if monodromy.trace_test { 3 } else { 0 };
+    for _attempt in 0..attempts {
         if certified {
             break;
         }

@@ -491,27 +491,29 @@ fn signed(result: &RrrSubproblemResult) -> Option<f64> {
     result.distance.map(|d| sign * d)
 }
 
-/// Evenly spaced samples of the trajectory's motion with their configurations.
-pub fn sample_configurations(
+/// The configurations at the given τ (errors name the first pose outside the workspace).
+pub fn configurations_at(
     trajectory: &RrrTrajectory,
-    poses: usize,
+    taus: &[f64],
 ) -> Result<Vec<(f64, [f64; 3], RrrConfiguration)>, RrrCurveError> {
-    let samples = trajectory.motion().sample(poses);
-    if samples.is_empty() {
-        return Err(RrrCurveError::NoPoses(poses));
+    if taus.is_empty() {
+        return Err(RrrCurveError::NoPoses(0));
     }
-    samples
-        .iter()
+    taus.iter()
         .enumerate()
-        .map(|(index, s)| {
+        .map(|(index, &tau)| {
+            let pose_error = |message: String| RrrCurveError::Pose {
+                index,
+                tau,
+                message,
+            };
+            let pose = trajectory
+                .pose(tau)
+                .ok_or_else(|| pose_error("no pose at this parameter".to_string()))?;
             trajectory
-                .configuration(s.tau)
-                .map(|c| (s.tau, [s.pose.x, s.pose.y, s.pose.phi], c))
-                .map_err(|e| RrrCurveError::Pose {
-                    index,
-                    tau: s.tau,
-                    message: e.to_string(),
-                })
+                .configuration(tau)
+                .map(|c| (tau, [pose.x, pose.y, pose.phi], c))
+                .map_err(|e| pose_error(e.to_string()))
         })
         .collect()
 }
@@ -556,14 +558,29 @@ pub fn parallel_singular_parameters(trajectory: &RrrTrajectory, taus: &[f64]) ->
     roots
 }
 
-/// The whole curve: seed stage, then every (pose, sub-problem) in parallel.
+/// The whole curve at `poses` poses evenly spaced in τ (pose lists: as given).
 pub fn compute_rrr_curve(
     trajectory: &RrrTrajectory,
     poses: usize,
     options: &RrrCurveOptions,
     provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
 ) -> Result<RrrCurveResult, RrrCurveError> {
-    let samples = sample_configurations(trajectory, poses)?;
+    if poses == 0 && matches!(trajectory.motion(), crate::mechanism::rpr::Motion::Analytic(_)) {
+        return Err(RrrCurveError::NoPoses(0));
+    }
+    let taus: Vec<f64> = trajectory.motion().sample(poses).iter().map(|s| s.tau).collect();
+    compute_rrr_curve_at(trajectory, &taus, options, provider)
+}
+
+/// The curve at the given parameter values: seed stage, then every (pose, sub-problem)
+/// in parallel.
+pub fn compute_rrr_curve_at(
+    trajectory: &RrrTrajectory,
+    taus: &[f64],
+    options: &RrrCurveOptions,
+    provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
+) -> Result<RrrCurveResult, RrrCurveError> {
+    let samples = configurations_at(trajectory, taus)?;
     let stage = rrr_seed_stage(trajectory, options, provider)?;
     let arrays: Vec<[f64; CONFIGURATION_LEN]> =
         samples.iter().map(|(_, _, c)| c.to_array()).collect();
@@ -637,7 +654,6 @@ pub fn compute_rrr_curve(
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
     let paths_tracked = stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
-    let taus: Vec<f64> = samples.iter().map(|s| s.0).collect();
     Ok(RrrCurveResult {
         seed: options.seed,
         tau_star: stage.tau_star.map(|t| [t.re, t.im]),
@@ -646,7 +662,7 @@ pub fn compute_rrr_curve(
             .iter()
             .map(|p| (p.problem.kind().short_name(), p.start_count))
             .collect(),
-        parallel_singular_parameters: parallel_singular_parameters(trajectory, &taus),
+        parallel_singular_parameters: parallel_singular_parameters(trajectory, taus),
         leg_singular_parameters: trajectory.leg_crossings().clone(),
         poses: results,
         failures,
