@@ -12,9 +12,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use singdist::io::load_motion;
 use singdist::io::rrr::load_rrr_design;
-use singdist::mechanism::rrr::{
-    EXAMPLE_MODES, RrrTrajectory, example_design, example_motion,
-};
+use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
     verify_rrr_start_solutions,
@@ -274,7 +272,9 @@ fn plot(path: &Path, result: &RrrCurveResult) -> Result<()> {
                     Some(v) => {
                         lo = lo.min(v);
                         hi = hi.max(v);
-                        segments.last_mut().map(|s| s.push((p.tau, v)));
+                        if let Some(segment) = segments.last_mut() {
+                            segment.push((p.tau, v));
+                        }
                     }
                     None => segments.push(Vec::new()),
                 }

@@ -13,7 +13,7 @@
 //! [`crate::mechanism::rrr::ElbowMode`]). Motions use the 3-RPR motion format
 //! ([`super::rpr::load_motion`]). Every error names the file and the field.
 
-use crate::mechanism::rrr::{ElbowMode, Point, POSITIVE_MODES, RrrDesign, RrrError, WorkingModes};
+use crate::mechanism::rrr::{ElbowMode, POSITIVE_MODES, Point, RrrDesign, RrrError, WorkingModes};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -77,13 +77,19 @@ fn number(value: &Value, name: &str) -> Result<f64, RrrParseError> {
 }
 
 fn numbers<const N: usize>(value: &Value, name: &str) -> Result<[f64; N], RrrParseError> {
-    let items = value
-        .as_array()
-        .ok_or_else(|| field(name, format!("expected an array of {N} numbers, got {value}")))?;
+    let items = value.as_array().ok_or_else(|| {
+        field(
+            name,
+            format!("expected an array of {N} numbers, got {value}"),
+        )
+    })?;
     if items.len() != N {
         return Err(field(
             name,
-            format!("expected an array of {N} numbers, got {} elements", items.len()),
+            format!(
+                "expected an array of {N} numbers, got {} elements",
+                items.len()
+            ),
         ));
     }
     let mut out = [0.0; N];
@@ -133,8 +139,8 @@ pub fn rrr_design_from_json(value: &Value) -> Result<(RrrDesign, WorkingModes), 
         let values = numbers::<3>(list, "working_modes")?;
         for (leg, v) in values.iter().enumerate() {
             modes[leg] = match *v {
-                v if v == 1.0 => ElbowMode::Positive,
-                v if v == -1.0 => ElbowMode::Negative,
+                1.0 => ElbowMode::Positive,
+                -1.0 => ElbowMode::Negative,
                 other => {
                     return Err(field(
                         &format!("working_modes[{leg}]"),
@@ -144,7 +150,8 @@ pub fn rrr_design_from_json(value: &Value) -> Result<(RrrDesign, WorkingModes), 
             };
         }
     }
-    let design = RrrDesign::new(base, proximal, distal, platform).map_err(RrrParseError::Invalid)?;
+    let design =
+        RrrDesign::new(base, proximal, distal, platform).map_err(RrrParseError::Invalid)?;
     Ok((design, modes))
 }
 

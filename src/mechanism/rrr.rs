@@ -598,7 +598,12 @@ pub type RrrMotion = rpr::Motion;
 
 /// Circular translation of the operation point, `x = x_c + r cos τ`, `y = y_c + r sin τ`,
 /// `φ` fixed, on `tau_range` (SPEC Part C example motion).
-pub fn circular_translation(center: Point, radius: f64, phi: f64, tau_range: [f64; 2]) -> RrrMotion {
+pub fn circular_translation(
+    center: Point,
+    radius: f64,
+    phi: f64,
+    tau_range: [f64; 2],
+) -> RrrMotion {
     rpr::Motion::Analytic(AnalyticMotion {
         tau_range,
         x: MotionCoordinate {
@@ -801,9 +806,7 @@ impl RrrTrajectory {
 
     /// Pose at τ (see [`rpr::Motion::pose`]); `None` outside a pose list.
     pub fn pose(&self, tau: f64) -> Option<RrrPose> {
-        self.motion
-            .pose(tau)
-            .map(|p| RrrPose::new(p.x, p.y, p.phi))
+        self.motion.pose(tau).map(|p| RrrPose::new(p.x, p.y, p.phi))
     }
 
     /// Configuration of the nine points at τ with the continued working modes.

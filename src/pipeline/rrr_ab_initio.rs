@@ -93,12 +93,13 @@ pub fn compute_rrr_start_solutions(
             source,
         })?;
     let monodromy = options.monodromy.clone();
-    let result = monodromy_solve(system, &pair.x, &pair.p, &monodromy, options.seed).map_err(
-        |source| RrrAbInitioError::Homotopy {
-            problem: kind.name(),
-            source,
-        },
-    )?;
+    let result =
+        monodromy_solve(system, &pair.x, &pair.p, &monodromy, options.seed).map_err(|source| {
+            RrrAbInitioError::Homotopy {
+                problem: kind.name(),
+                source,
+            }
+        })?;
     let mut solutions: Vec<Vec<C64>> = Vec::new();
     for x in result.solutions {
         if !contains(&solutions, &x) {
@@ -299,9 +300,7 @@ pub fn embedded_rrr_start_solutions(
 
 /// The start solutions of `kind`: the embedded file, otherwise computed now with the
 /// default options.
-pub fn rrr_start_solutions(
-    problem: &RrrProblem,
-) -> Result<StartSolutions, RrrAbInitioError> {
+pub fn rrr_start_solutions(problem: &RrrProblem) -> Result<StartSolutions, RrrAbInitioError> {
     match embedded_rrr_start_solutions(problem.kind()) {
         Some(file) => file,
         None => compute_rrr_start_solutions(problem, &RrrAbInitioOptions::default()),

@@ -150,6 +150,9 @@ pub struct RrrSubproblemResult {
     pub real_critical_points: usize,
     /// Finite endpoints (all attempts merged).
     pub finite_endpoints: usize,
+    /// Lost paths with `K′` finite and `λ → ∞` ([`MULTIPLIER_DIVERGENCE_RATIO`]): `K′`
+    /// tends to a singular point of the constraint variety (not a critical point).
+    pub multiplier_divergent_paths: usize,
     /// Start-solution count (generic root count).
     pub expected_endpoints: usize,
 }
@@ -241,9 +244,38 @@ fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
         .all(|(x, y)| (x - y).norm() <= tolerance * scale)
 }
 
+/// A lost path whose multiplier λ (last unknown) exceeds this multiple of
+/// `1 + max |K′ coordinate|` at its last point is *multiplier-divergent*: `K′` stays finite
+/// while `λ → ∞`, i.e. `K′` tends to a singular point of the constraint variety
+/// (`∇C(K′) = 0`), where the Lagrange conditions do not apply (cf. SPEC A.6.3 for the
+/// 3-RPR). Such paths carry no finite critical point and are counted, not reported lost.
+/// (Measured on the example: every lost parallel path ends with `|K′|∞ ≤ 1.6` and
+/// `|λ|` between 15 and 300 when the tracker gives up.)
+pub const MULTIPLIER_DIVERGENCE_RATIO: f64 = 5.0;
+
+fn multiplier_divergent(x: &[C64]) -> bool {
+    let Some((lambda, coordinates)) = x.split_last() else {
+        return false;
+    };
+    let scale = 1.0 + coordinates.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    lambda.norm() > MULTIPLIER_DIVERGENCE_RATIO * scale
+}
+
+/// Endpoints of [`track_with_retries`].
+struct Tracked {
+    /// Finite endpoints, merged over attempts.
+    endpoints: Vec<Vec<C64>>,
+    /// Finite endpoints of the best attempt.
+    best: usize,
+    /// Lost paths of the straight attempt that are multiplier-divergent.
+    divergent: usize,
+    /// Paths tracked.
+    tracked: usize,
+}
+
 /// Tracks `starts` from `from` to `to`; re-tracks lost paths conservatively, then (if
-/// still short of `expected`) all paths along random complex detours. Returns the merged
-/// finite endpoints, the best attempt's finite count and the paths tracked.
+/// still short of `expected`, not counting multiplier-divergent paths) all paths along
+/// random complex detours.
 fn track_with_retries(
     problem: &RrrProblem,
     starts: &[Vec<C64>],
@@ -252,7 +284,7 @@ fn track_with_retries(
     expected: usize,
     options: &RrrCurveOptions,
     stream: u64,
-) -> (Vec<Vec<C64>>, usize, usize) {
+) -> Tracked {
     let system = problem.evaluator();
     let straight = ParameterHomotopy::new(system, from, to);
     let mut paths = track_all(&straight, starts, &options.tracker);
@@ -268,8 +300,12 @@ fn track_with_retries(
     }
     let mut endpoints = finite_solutions(&paths);
     let mut best = endpoints.len();
+    let divergent = paths
+        .iter()
+        .filter(|p| !p.status.is_finite() && multiplier_divergent(&p.solution))
+        .count();
     for attempt in 0..options.retry_attempts {
-        if best >= expected {
+        if best + divergent >= expected {
             break;
         }
         let mut rng = random::stream(
@@ -293,7 +329,12 @@ fn track_with_retries(
             }
         }
     }
-    (endpoints, best, tracked)
+    Tracked {
+        endpoints,
+        best,
+        divergent,
+        tracked,
+    }
 }
 
 /// Characteristic length of the design: largest base-joint or moving-frame platform-joint
@@ -383,7 +424,12 @@ pub fn rrr_seed_stage(
         .enumerate()
         .map(|(index, (problem, source, starts))| {
             let expected = starts.len();
-            let (solutions, best, tracked) = track_with_retries(
+            let Tracked {
+                endpoints: solutions,
+                best,
+                tracked,
+                ..
+            } = track_with_retries(
                 &problem,
                 &starts,
                 &source,
@@ -441,7 +487,12 @@ fn solve_subproblem(
 ) -> Entry {
     let target: Vec<C64> = k.iter().map(|&v| C64::new(v, 0.0)).collect();
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-    let (endpoints, best, tracked) = track_with_retries(
+    let Tracked {
+        endpoints,
+        best,
+        divergent,
+        tracked,
+    } = track_with_retries(
         &seeded.problem,
         &seeded.seed_solutions,
         &seeded.seed_parameters,
@@ -451,7 +502,7 @@ fn solve_subproblem(
         stream,
     );
     let kind = seeded.problem.kind();
-    let failure = (best < seeded.start_count).then(|| RrrPathFailure {
+    let failure = (best + divergent < seeded.start_count).then(|| RrrPathFailure {
         pose_index: Some(index),
         tau: Some(tau),
         problem: kind.name(),
@@ -479,6 +530,7 @@ fn solve_subproblem(
             determinant,
             real_critical_points: real,
             finite_endpoints: endpoints.len(),
+            multiplier_divergent_paths: divergent,
             expected_endpoints: seeded.start_count,
         },
         failure,
@@ -527,7 +579,10 @@ pub fn parallel_singular_parameters(trajectory: &RrrTrajectory, taus: &[f64]) ->
             .ok()
             .map(|c| parallel_polynomial(&c.to_array()))
     };
-    let analytic = matches!(trajectory.motion(), crate::mechanism::rpr::Motion::Analytic(_));
+    let analytic = matches!(
+        trajectory.motion(),
+        crate::mechanism::rpr::Motion::Analytic(_)
+    );
     let mut roots = Vec::new();
     for pair in taus.windows(2) {
         let (Some(sa), Some(sb)) = (value(pair[0]), value(pair[1])) else {
@@ -565,10 +620,20 @@ pub fn compute_rrr_curve(
     options: &RrrCurveOptions,
     provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
 ) -> Result<RrrCurveResult, RrrCurveError> {
-    if poses == 0 && matches!(trajectory.motion(), crate::mechanism::rpr::Motion::Analytic(_)) {
+    if poses == 0
+        && matches!(
+            trajectory.motion(),
+            crate::mechanism::rpr::Motion::Analytic(_)
+        )
+    {
         return Err(RrrCurveError::NoPoses(0));
     }
-    let taus: Vec<f64> = trajectory.motion().sample(poses).iter().map(|s| s.tau).collect();
+    let taus: Vec<f64> = trajectory
+        .motion()
+        .sample(poses)
+        .iter()
+        .map(|s| s.tau)
+        .collect();
     compute_rrr_curve_at(trajectory, &taus, options, provider)
 }
 
@@ -590,14 +655,7 @@ pub fn compute_rrr_curve_at(
     let entries: Vec<Entry> = jobs
         .par_iter()
         .map(|&(j, p)| {
-            solve_subproblem(
-                &stage.problems[p],
-                &arrays[j],
-                j,
-                samples[j].0,
-                p,
-                options,
-            )
+            solve_subproblem(&stage.problems[p], &arrays[j], j, samples[j].0, p, options)
         })
         .collect();
     let max_parallel = arrays
@@ -653,7 +711,8 @@ pub fn compute_rrr_curve_at(
     }
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
-    let paths_tracked = stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
+    let paths_tracked =
+        stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
     Ok(RrrCurveResult {
         seed: options.seed,
         tau_star: stage.tau_star.map(|t| [t.re, t.im]),
