@@ -292,7 +292,8 @@ fn track_with_retries(
     if paths.iter().filter(|p| p.status.is_finite()).count() < expected {
         let mut careful = Tracker::new(&straight, options.retry_tracker.clone());
         for (i, path) in paths.iter_mut().enumerate() {
-            if !path.status.is_finite() {
+            // Multiplier-divergent paths are structural (no finite endpoint): not re-run.
+            if !path.status.is_finite() && !multiplier_divergent(&path.solution) {
                 *path = careful.track(&starts[i], i);
                 tracked += 1;
             }
