@@ -93,6 +93,12 @@ pub enum RrrError {
         /// `proximal + distal`.
         max_reach: f64,
     },
+    /// The motion has no pose at this parameter (outside an explicit pose list).
+    #[error("tau = {tau}: no pose of the motion at this parameter")]
+    NoPose {
+        /// The parameter value.
+        tau: f64,
+    },
     /// `C_i = O_i` with equal link lengths: the elbow angle is undetermined.
     #[error("pose degenerate: platform joint {leg} coincides with its base joint")]
     DegenerateLeg {
@@ -811,10 +817,7 @@ impl RrrTrajectory {
 
     /// Configuration of the nine points at τ with the continued working modes.
     pub fn configuration(&self, tau: f64) -> Result<RrrConfiguration, RrrError> {
-        let pose = self.pose(tau).ok_or_else(|| RrrError::NonFinite {
-            field: "tau (outside the pose list)".to_string(),
-            value: tau,
-        })?;
+        let pose = self.pose(tau).ok_or(RrrError::NoPose { tau })?;
         self.design.inverse_kinematics(&pose, &self.modes_at(tau))
     }
 

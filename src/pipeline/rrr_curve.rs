@@ -30,8 +30,7 @@ use crate::homotopy::{
     Homotopy, ParameterHomotopy, PathResult, PolylineParameterHomotopy, Tracker, TrackerOptions,
 };
 use crate::mechanism::rrr::{
-    CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, leg_polynomial,
-    parallel_polynomial,
+    CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
 };
 use crate::problem::rrr::{RrrProblem, RrrProblemError, RrrSubProblem};
 use crate::random;
@@ -735,10 +734,4 @@ pub fn default_rrr_start_solutions(
     problem: &RrrProblem,
 ) -> Result<StartSolutions, RrrAbInitioError> {
     rrr_start_solutions(problem)
-}
-
-/// Leg determinant of leg `leg` at the real configuration `k` (re-exported for callers
-/// that only hold 18-vectors).
-pub fn leg_determinant(k: &[f64; CONFIGURATION_LEN], leg: usize) -> f64 {
-    leg_polynomial(k, leg)
 }
