@@ -225,6 +225,9 @@ fn print_table(result: &RrrCurveResult) {
         );
     }
     let list = |v: &[f64]| {
+        if v.is_empty() {
+            return "none".to_string();
+        }
         v.iter()
             .map(|t| format!("{t:.6}"))
             .collect::<Vec<_>>()
@@ -239,8 +242,8 @@ fn print_table(result: &RrrCurveResult) {
             .enumerate()
             .filter(|(_, v)| !v.is_empty())
             .map(|(i, v)| format!("leg{}: {}", i + 1, list(v)))
-            .collect::<Vec<_>>()
-            .join("; ")
+            .reduce(|a, b| format!("{a}; {b}"))
+            .unwrap_or_else(|| "none".to_string())
     );
 }
 

@@ -646,12 +646,12 @@ pub enum TrajectoryError {
     #[error("motion: {0}")]
     Motion(String),
     /// Inverse kinematics fails at some τ of the motion.
-    #[error("motion leaves the workspace at tau = {tau}: {source}")]
+    #[error("motion leaves the workspace at tau = {tau}: {reason}")]
     OutsideWorkspace {
         /// The parameter value.
         tau: f64,
         /// The IK error (names the leg).
-        source: RrrError,
+        reason: RrrError,
     },
 }
 
@@ -766,13 +766,13 @@ impl RrrTrajectory {
             rpr::Motion::Poses(list) => (0..list.poses.len()).map(|j| j as f64).collect(),
         };
         for tau in taus {
-            if let Err(source) = trajectory.configuration(tau) {
+            if let Err(reason) = trajectory.configuration(tau) {
                 // The grid may land on a crossing through a base joint (C_i = O_i with
                 // b = c), where only the elbow direction is undetermined.
-                if matches!(source, RrrError::DegenerateLeg { .. }) {
+                if matches!(reason, RrrError::DegenerateLeg { .. }) {
                     continue;
                 }
-                return Err(TrajectoryError::OutsideWorkspace { tau, source });
+                return Err(TrajectoryError::OutsideWorkspace { tau, reason });
             }
         }
         Ok(trajectory)
