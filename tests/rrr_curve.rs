@@ -312,3 +312,19 @@ fn bad_input_is_an_error_naming_the_field() {
         compute_rrr_curve_at(&trajectory, &[], &options, &default_rrr_start_solutions).is_err()
     );
 }
+
+/// Results do not depend on the number of worker threads (every path is a pure function
+/// of its inputs and seeded streams).
+#[test]
+fn results_are_identical_for_one_and_two_threads() {
+    let trajectory = example_trajectory();
+    let taus = [0.3, 1.9, 4.4];
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| curve_at(&trajectory, &taus))
+    };
+    assert_eq!(run(1), run(2));
+}
