@@ -38,6 +38,9 @@ enum Command {
     Map(cli::map::MapArgs),
     /// 3RRR actuation schemes, singularity loci and GCI.
     Schemes(cli::schemes::SchemesArgs),
+    /// 3-RRR distances to parallel and leg singularities along a motion.
+    #[command(subcommand)]
+    Rrr(cli::rrr::RrrCommand),
 }
 
 fn main() {
@@ -53,6 +56,7 @@ fn main() {
         Command::Prrr(cmd) => cli::prrr::run(cmd),
         Command::Map(args) => cli::map::run(args),
         Command::Schemes(args) => cli::schemes::run(args),
+        Command::Rrr(cmd) => cli::rrr::run(cmd),
     };
     if let Err(error) = result {
         eprintln!("singdist: error: {error:#}");

@@ -8,6 +8,7 @@ pub mod indices;
 pub mod map;
 pub mod plot;
 pub mod prrr;
+pub mod rrr;
 pub mod schemes;
 pub mod solve;
 pub mod system;

@@ -37,6 +37,12 @@
 //! radially); every proximal link `b`, every distal link `c`. The base radius `R` is not given
 //! by the seed and is a free choice of the example geometry.
 
+use crate::C64;
+use crate::algebra::{
+    Point as RingPoint, Ring, cross as algebra_cross, difference as algebra_difference,
+};
+use crate::mechanism::rpr::{self, AnalyticMotion, CosineTerm, MotionCoordinate};
+use crate::metric::{segment_distance_sq, triangle_distance_sq};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 use thiserror::Error;
@@ -86,6 +92,12 @@ pub enum RrrError {
         min_reach: f64,
         /// `proximal + distal`.
         max_reach: f64,
+    },
+    /// The motion has no pose at this parameter (outside an explicit pose list).
+    #[error("tau = {tau}: no pose of the motion at this parameter")]
+    NoPose {
+        /// The parameter value.
+        tau: f64,
     },
     /// `C_i = O_i` with equal link lengths: the elbow angle is undetermined.
     #[error("pose degenerate: platform joint {leg} coincides with its base joint")]
@@ -460,4 +472,393 @@ pub(crate) fn det3(m: &[[f64; 3]; 3]) -> f64 {
     m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
         - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+
+// ---------------------------------------------------------------------------------
+// Polynomial formulas on the 18-vector of the nine points (SPEC Part C)
+// ---------------------------------------------------------------------------------
+
+/// Number of coordinates of a 3-RRR configuration: nine points in the plane.
+pub const CONFIGURATION_LEN: usize = 18;
+
+/// Names of the 18 coordinates, in the order `O_1, O_2, O_3, B_1, B_2, B_3, C_1, C_2, C_3`
+/// (x before y), as used by [`RrrConfiguration::to_array`].
+pub const COORDINATE_NAMES: [&str; CONFIGURATION_LEN] = [
+    "O1x", "O1y", "O2x", "O2y", "O3x", "O3y", "B1x", "B1y", "B2x", "B2y", "B3x", "B3y", "C1x",
+    "C1y", "C2x", "C2y", "C3x", "C3y",
+];
+
+fn ring_point<T: Ring>(k: &[T; CONFIGURATION_LEN], index: usize) -> RingPoint<T> {
+    [k[2 * index].clone(), k[2 * index + 1].clone()]
+}
+
+/// Parallel-singularity polynomial of SPEC Part C on the 18-vector `k`: the singularity
+/// polynomial S of SPEC A.2 (paper Eq. 6) with `(a_i, b_i) → (B_i, C_i)`,
+/// `det[ C_i − B_i | B_i × C_i ]_{i=1..3}` (degree 4). Zero iff the lines `B_iC_i` are
+/// concurrent or parallel. Generic over [`Ring`] (numbers and symbolic Lagrangians).
+pub fn parallel_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN]) -> T {
+    let lines: [T; 12] = std::array::from_fn(|j| k[6 + j].clone());
+    rpr::singularity_polynomial(&lines)
+}
+
+/// Leg-singularity polynomial of leg `leg` (0-based) on the 18-vector `k` (SPEC Part C):
+/// `det[[O_i, 1], [B_i, 1], [C_i, 1]] = (B_i − O_i) × (C_i − B_i)` (quadratic); zero iff
+/// `O_i, B_i, C_i` are collinear.
+pub fn leg_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN], leg: usize) -> T {
+    let o = ring_point(k, leg);
+    let b = ring_point(k, 3 + leg);
+    let c = ring_point(k, 6 + leg);
+    algebra_cross(&algebra_difference(&o, &b), &algebra_difference(&b, &c))
+}
+
+/// The all-deformable metric of SPEC Part C (paper §6.3): base plate, platform plate and
+/// six deformable bars,
+///
+/// `D²(K, K′) = (tri²(O) + tri²(C) + Σ_i seg²(O_iB_i) + Σ_i seg²(B_iC_i)) / 8`
+///
+/// with `seg²`, `tri²` of SPEC A.3 ([`crate::metric`]). Generic over [`Ring`].
+pub fn distance_sq<T: Ring>(k: &[T; CONFIGURATION_LEN], k_prime: &[T; CONFIGURATION_LEN]) -> T {
+    let p: [RingPoint<T>; 9] = std::array::from_fn(|j| ring_point(k, j));
+    let q: [RingPoint<T>; 9] = std::array::from_fn(|j| ring_point(k_prime, j));
+    let mut total = triangle_distance_sq([&p[0], &p[1], &p[2]], [&q[0], &q[1], &q[2]])
+        + triangle_distance_sq([&p[6], &p[7], &p[8]], [&q[6], &q[7], &q[8]]);
+    for leg in 0..3 {
+        total = total
+            + segment_distance_sq([&p[leg], &p[3 + leg]], [&q[leg], &q[3 + leg]])
+            + segment_distance_sq([&p[3 + leg], &p[6 + leg]], [&q[3 + leg], &q[6 + leg]]);
+    }
+    total * T::from_f64(1.0 / 8.0)
+}
+
+/// `D(K, K′)`: square root of [`distance_sq`] (SPEC Part C).
+pub fn distance(k: &[f64; CONFIGURATION_LEN], k_prime: &[f64; CONFIGURATION_LEN]) -> f64 {
+    distance_sq(k, k_prime).max(0.0).sqrt()
+}
+
+impl RrrConfiguration {
+    /// The 18-vector `(O1x, O1y, …, B1x, …, C3y)` of [`COORDINATE_NAMES`].
+    pub fn to_array(&self) -> [f64; CONFIGURATION_LEN] {
+        let points = self.points();
+        std::array::from_fn(|j| points[j / 2][j % 2])
+    }
+
+    /// Inverse of [`to_array`](Self::to_array); the operation point is not part of the
+    /// 18-vector and is given separately.
+    pub fn from_array(k: &[f64; CONFIGURATION_LEN], operation_point: Point) -> Self {
+        let p = |j: usize| Point::new(k[2 * j], k[2 * j + 1]);
+        RrrConfiguration {
+            operation_point,
+            base: [p(0), p(1), p(2)],
+            elbow: [p(3), p(4), p(5)],
+            platform: [p(6), p(7), p(8)],
+        }
+    }
+}
+
+impl RrrDesign {
+    /// Configuration at a complex pose `(x, y, φ)` with working modes `modes`, as the
+    /// 18-vector of [`COORDINATE_NAMES`] (the seed configuration of the parameter
+    /// homotopy, SPEC A.9 step 2). With `d = C − O`, `L² = d·d`, `k = (L² + b² − c²)/(2L²)`,
+    /// `h = √(b²/L² − k²)` (principal branch), the elbow is `B = O + k d − σ h E d`, which
+    /// for a real reachable pose equals [`leg_elbow`](Self::leg_elbow) (`k = (b/L) cos α`,
+    /// `h = (b/L) sin α`).
+    pub fn configuration_complex(
+        &self,
+        x: C64,
+        y: C64,
+        phi: C64,
+        modes: &WorkingModes,
+    ) -> [C64; CONFIGURATION_LEN] {
+        let (s, c) = (phi.sin(), phi.cos());
+        let mut out = [C64::new(0.0, 0.0); CONFIGURATION_LEN];
+        for leg in 0..3 {
+            let o = self.base[leg];
+            let q = self.platform[leg];
+            let cx = x + c * q.x - s * q.y;
+            let cy = y + s * q.x + c * q.y;
+            let (dx, dy) = (cx - o.x, cy - o.y);
+            let l2 = dx * dx + dy * dy;
+            let (b, cl) = (self.proximal[leg], self.distal[leg]);
+            let k = (l2 + b * b - cl * cl) / (l2 * 2.0);
+            let h = (C64::new(b * b, 0.0) / l2 - k * k).sqrt();
+            let sigma = modes[leg].sign();
+            out[2 * leg] = C64::new(o.x, 0.0);
+            out[2 * leg + 1] = C64::new(o.y, 0.0);
+            out[6 + 2 * leg] = o.x + k * dx + sigma * h * dy;
+            out[6 + 2 * leg + 1] = o.y + k * dy - sigma * h * dx;
+            out[12 + 2 * leg] = cx;
+            out[12 + 2 * leg + 1] = cy;
+        }
+        out
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Motions and the working modes along them
+// ---------------------------------------------------------------------------------
+
+/// Motions of the 3-RRR platform: the same type as the 3-RPR's (SPEC A.1, paper §5.2
+/// Eq. 64): an explicit list of poses `[x, y, φ]` or an analytic motion (polynomial plus
+/// cosine terms per coordinate), evaluable at complex τ.
+pub type RrrMotion = rpr::Motion;
+
+/// Circular translation of the operation point, `x = x_c + r cos τ`, `y = y_c + r sin τ`,
+/// `φ` fixed, on `tau_range` (SPEC Part C example motion).
+pub fn circular_translation(
+    center: Point,
+    radius: f64,
+    phi: f64,
+    tau_range: [f64; 2],
+) -> RrrMotion {
+    rpr::Motion::Analytic(AnalyticMotion {
+        tau_range,
+        x: MotionCoordinate {
+            polynomial: vec![center.x],
+            cosines: vec![CosineTerm {
+                amplitude: radius,
+                frequency: 1.0,
+                phase: 0.0,
+            }],
+        },
+        y: MotionCoordinate {
+            polynomial: vec![center.y],
+            cosines: vec![CosineTerm {
+                amplitude: radius,
+                frequency: 1.0,
+                phase: -PI / 2.0,
+            }],
+        },
+        phi: MotionCoordinate::polynomial(vec![phi]),
+    })
+}
+
+/// Grid intervals used to scan an analytic motion for reachability and leg crossings.
+const SCAN_INTERVALS: usize = 4096;
+
+/// A leg passes through a leg singularity when `|C_i − O_i|` attains a boundary of its
+/// annulus `[|b − c|, b + c]` within this tolerance relative to `b + c`.
+pub const LEG_CROSSING_TOLERANCE: f64 = 1e-9;
+
+/// Errors of a 3-RRR moving along a motion.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum TrajectoryError {
+    /// The motion itself is invalid (names the field).
+    #[error("motion: {0}")]
+    Motion(String),
+    /// Inverse kinematics fails at some τ of the motion.
+    #[error("motion leaves the workspace at tau = {tau}: {reason}")]
+    OutsideWorkspace {
+        /// The parameter value.
+        tau: f64,
+        /// The IK error (names the leg).
+        reason: RrrError,
+    },
+}
+
+/// A 3-RRR design moving along a motion, with the working modes continued along it.
+///
+/// The working modes `initial_modes` hold at the start of the motion. With a fixed
+/// working mode the leg determinant `(B_i − O_i) × (C_i − B_i) = σ_i b L sin α` never
+/// changes sign; a leg reaches a leg singularity only where `L = |C_i − O_i|` touches a
+/// boundary of its annulus `[|b − c|, b + c]` (fully stretched or folded), and the
+/// analytic continuation of the inverse kinematics through that pose is the *other*
+/// working mode (the elbow angle `α` changes sign, e.g. `α ≈ K (τ − τ₀)` at a tangential
+/// touch, or `C_i` passing through `O_i` when `b = c`). So for analytic motions the mode
+/// of leg i flips at every τ where `L_i(τ)` has a local extremum on the boundary (within
+/// [`LEG_CROSSING_TOLERANCE`]); these τ are found on a grid of [`SCAN_INTERVALS`]
+/// intervals refined by golden-section search. Explicit pose lists keep the given modes
+/// (no continuation is possible between isolated poses).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RrrTrajectory {
+    design: RrrDesign,
+    initial_modes: WorkingModes,
+    motion: RrrMotion,
+    switches: [Vec<f64>; 3],
+}
+
+fn golden_section(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    let ratio = (5.0_f64.sqrt() - 1.0) / 2.0;
+    let mut a = hi - ratio * (hi - lo);
+    let mut b = lo + ratio * (hi - lo);
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..200 {
+        if (hi - lo).abs() <= 1e-15 * (1.0 + lo.abs().max(hi.abs())) {
+            break;
+        }
+        if fa < fb {
+            hi = b;
+            b = a;
+            fb = fa;
+            a = hi - ratio * (hi - lo);
+            fa = f(a);
+        } else {
+            lo = a;
+            a = b;
+            fa = fb;
+            b = lo + ratio * (hi - lo);
+            fb = f(b);
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+impl RrrTrajectory {
+    /// Validates the motion, finds the leg-singularity crossings (module documentation of
+    /// [`RrrTrajectory`]) and checks that the inverse kinematics exists on the whole
+    /// motion (analytic: on the scan grid; pose list: at every pose).
+    pub fn new(
+        design: RrrDesign,
+        initial_modes: WorkingModes,
+        motion: RrrMotion,
+    ) -> Result<Self, TrajectoryError> {
+        motion
+            .validate()
+            .map_err(|e| TrajectoryError::Motion(e.to_string()))?;
+        let mut switches: [Vec<f64>; 3] = Default::default();
+        if let rpr::Motion::Analytic(_) = &motion {
+            let [lo, hi] = motion.tau_range();
+            let tau_at = |j: usize| lo + (hi - lo) * j as f64 / SCAN_INTERVALS as f64;
+            for (leg, leg_switches) in switches.iter_mut().enumerate() {
+                let reach = |tau: f64| -> f64 {
+                    motion.pose(tau).map_or(f64::NAN, |p| {
+                        let joint = design.platform_joints(&RrrPose::new(p.x, p.y, p.phi))[leg];
+                        (joint - design.base[leg]).norm()
+                    })
+                };
+                let (b, c) = (design.proximal[leg], design.distal[leg]);
+                let boundaries = [(b - c).abs(), b + c];
+                let values: Vec<f64> = (0..=SCAN_INTERVALS).map(|j| reach(tau_at(j))).collect();
+                for j in 1..SCAN_INTERVALS {
+                    let (l, m, r) = (values[j - 1], values[j], values[j + 1]);
+                    let is_min = m <= l && m <= r;
+                    let is_max = m >= l && m >= r;
+                    if !(is_min || is_max) {
+                        continue;
+                    }
+                    let sign = if is_min { 1.0 } else { -1.0 };
+                    let tau = golden_section(|t| sign * reach(t), tau_at(j - 1), tau_at(j + 1));
+                    let extremum = reach(tau);
+                    let on_boundary = boundaries
+                        .iter()
+                        .any(|v| (extremum - v).abs() <= LEG_CROSSING_TOLERANCE * (b + c));
+                    let known = leg_switches
+                        .last()
+                        .is_some_and(|&t: &f64| (t - tau).abs() <= 1e-9 * (1.0 + tau.abs()));
+                    if on_boundary && !known && tau > lo && tau < hi {
+                        leg_switches.push(tau);
+                    }
+                }
+            }
+        }
+        let trajectory = RrrTrajectory {
+            design,
+            initial_modes,
+            motion,
+            switches,
+        };
+        let taus: Vec<f64> = match &trajectory.motion {
+            rpr::Motion::Analytic(_) => {
+                let [lo, hi] = trajectory.motion.tau_range();
+                (0..=SCAN_INTERVALS)
+                    .map(|j| lo + (hi - lo) * j as f64 / SCAN_INTERVALS as f64)
+                    .collect()
+            }
+            rpr::Motion::Poses(list) => (0..list.poses.len()).map(|j| j as f64).collect(),
+        };
+        for tau in taus {
+            if let Err(reason) = trajectory.configuration(tau) {
+                // The grid may land on a crossing through a base joint (C_i = O_i with
+                // b = c), where only the elbow direction is undetermined.
+                if matches!(reason, RrrError::DegenerateLeg { .. }) {
+                    continue;
+                }
+                return Err(TrajectoryError::OutsideWorkspace { tau, reason });
+            }
+        }
+        Ok(trajectory)
+    }
+
+    /// The design.
+    pub fn design(&self) -> &RrrDesign {
+        &self.design
+    }
+
+    /// The motion.
+    pub fn motion(&self) -> &RrrMotion {
+        &self.motion
+    }
+
+    /// Working modes at the start of the motion.
+    pub fn initial_modes(&self) -> WorkingModes {
+        self.initial_modes
+    }
+
+    /// Per leg, the τ where it passes through a leg singularity (its mode flips there).
+    pub fn leg_crossings(&self) -> &[Vec<f64>; 3] {
+        &self.switches
+    }
+
+    /// Working modes at τ: the initial mode of leg i, flipped once per crossing `≤ τ`.
+    pub fn modes_at(&self, tau: f64) -> WorkingModes {
+        std::array::from_fn(|leg| {
+            let flips = self.switches[leg].iter().filter(|&&t| t <= tau).count();
+            if flips % 2 == 0 {
+                self.initial_modes[leg]
+            } else {
+                self.initial_modes[leg].flipped()
+            }
+        })
+    }
+
+    /// Pose at τ (see [`rpr::Motion::pose`]); `None` outside a pose list.
+    pub fn pose(&self, tau: f64) -> Option<RrrPose> {
+        self.motion.pose(tau).map(|p| RrrPose::new(p.x, p.y, p.phi))
+    }
+
+    /// Configuration of the nine points at τ with the continued working modes.
+    pub fn configuration(&self, tau: f64) -> Result<RrrConfiguration, RrrError> {
+        let pose = self.pose(tau).ok_or(RrrError::NoPose { tau })?;
+        self.design.inverse_kinematics(&pose, &self.modes_at(tau))
+    }
+
+    /// Configuration at complex τ (analytic motions; `None` for pose lists) with the modes
+    /// at `Re τ`, see [`RrrDesign::configuration_complex`].
+    pub fn configuration_complex(&self, tau: C64) -> Option<[C64; CONFIGURATION_LEN]> {
+        let [x, y, phi] = self.motion.pose_complex(tau)?;
+        Some(
+            self.design
+                .configuration_complex(x, y, phi, &self.modes_at(tau.re)),
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Built-in example (systems/rrr_example_*.json)
+// ---------------------------------------------------------------------------------
+
+/// The built-in example design (also `systems/rrr_example_design.json`): the symmetric
+/// design of [`RrrDesign::symmetric`] with base radius 1, platform radius 0.4 and all
+/// links 0.8 (proximal = distal, so leg 1 can fold through its base joint).
+pub fn example_design() -> RrrDesign {
+    RrrDesign::symmetric(1.0, 0.4, 0.8, 0.8)
+        .unwrap_or_else(|_| unreachable!("the example design is valid"))
+}
+
+/// Working modes of the example at τ = 0: all positive.
+pub const EXAMPLE_MODES: WorkingModes = POSITIVE_MODES;
+
+/// The built-in example motion (also `systems/rrr_example_motion.json`): the circular
+/// translation `x = 0.15 + 0.25 cos τ`, `y = 0.4 + 0.25 sin τ`, `φ = 0`, τ ∈ [0, 2π].
+/// Platform joint C_1 runs on the circle of radius 0.25 about `(0.15, 0.8)`, which passes
+/// through `O_1 = (0, 1)` at `τ₁ = atan2(0.8, −0.6) ≈ 2.2143` (leg-1 singularity, folded
+/// leg); the parallel determinant changes sign near τ ≈ 0.111 and τ ≈ 5.52
+/// (`systems/rrr_example_README.md`, checked by the tests).
+pub fn example_motion() -> RrrMotion {
+    circular_translation(Point::new(0.15, 0.4), 0.25, 0.0, [0.0, 2.0 * PI])
+}
+
+/// The example trajectory: [`example_design`], [`EXAMPLE_MODES`], [`example_motion`].
+pub fn example_trajectory() -> RrrTrajectory {
+    RrrTrajectory::new(example_design(), EXAMPLE_MODES, example_motion())
+        .unwrap_or_else(|e| unreachable!("the example motion stays in the workspace: {e}"))
 }

@@ -3,6 +3,8 @@
 pub mod ab_initio;
 pub mod curve;
 pub mod postprocess;
+pub mod rrr_ab_initio;
+pub mod rrr_curve;
 pub mod start_file;
 pub mod start_pair;
 

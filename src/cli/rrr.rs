@@ -1,0 +1,357 @@
+//! `singdist rrr`: 3-RRR singularity distances (SPEC Part C, paper §6.3).
+//!
+//! - `rrr curve`: the four signed distance curves (parallel, legs 1–3), the overall
+//!   singularity distance and the scaled parallel determinant (paper Fig. 17) along a
+//!   motion, as JSON / CSV / a table on stdout, optionally an SVG plot. Exit code 3 when
+//!   paths were lost.
+//! - `rrr ab-initio`: computes, certifies and writes the start-solution files
+//!   `rrr-parallel.json`, `rrr-leg1.json` … (or verifies the embedded ones).
+
+use super::curve::with_threads;
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use singdist::io::load_motion;
+use singdist::io::rrr::load_rrr_design;
+use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
+use singdist::pipeline::rrr_ab_initio::{
+    RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
+    verify_rrr_start_solutions,
+};
+use singdist::pipeline::rrr_curve::{
+    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, default_rrr_start_solutions,
+};
+use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
+use std::path::{Path, PathBuf};
+
+/// Exit code of a run that completed but lost paths.
+pub const EXIT_PATH_FAILURES: i32 = 3;
+
+/// `singdist rrr` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum RrrCommand {
+    /// Signed distance curves to the parallel and leg singularities along a motion.
+    Curve(RrrCurveArgs),
+    /// Compute (or verify) the generic start solutions of the four 3-RRR sub-problems.
+    AbInitio(RrrAbInitioArgs),
+}
+
+/// Arguments of `singdist rrr curve`.
+#[derive(Args, Debug)]
+pub struct RrrCurveArgs {
+    /// Design file (JSON `{"base", "proximal", "distal", "platform", "working_modes"}`);
+    /// default: the built-in example (`systems/rrr_example_design.json`).
+    #[arg(long, value_name = "FILE")]
+    design: Option<PathBuf>,
+    /// Motion file (analytic motion or explicit pose list); default: the built-in
+    /// circular translation (`systems/rrr_example_motion.json`).
+    #[arg(long, value_name = "FILE")]
+    motion: Option<PathBuf>,
+    /// Number of poses evenly spaced in τ (pose lists are used as given).
+    #[arg(long, value_name = "N", default_value_t = 90)]
+    poses: usize,
+    /// Output table: `.json` (full detail) or `.csv` (the curves).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// SVG plot of the four signed curves and the scaled parallel determinant.
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Seed of every random choice (results are identical for any thread count).
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// No timing line on stderr.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Arguments of `singdist rrr ab-initio`.
+#[derive(Args, Debug)]
+pub struct RrrAbInitioArgs {
+    /// Directory to write `rrr-*.json` into (default: only print the summary).
+    #[arg(long, value_name = "DIR")]
+    out_dir: Option<PathBuf>,
+    /// Seed of the source point and the monodromy loops.
+    #[arg(long, value_name = "S", default_value_t = singdist::pipeline::rrr_ab_initio::RRR_DEFAULT_SEED)]
+    seed: u64,
+    /// Only these problems (`parallel`, `leg1`, `leg2`, `leg3`); default all four.
+    #[arg(long, value_name = "NAME", num_args = 1..)]
+    problem: Vec<String>,
+    /// Verify the embedded files instead of computing.
+    #[arg(long)]
+    verify: bool,
+    /// Skip the trace test (measure the monodromy count only; certificate `none`).
+    #[arg(long)]
+    no_trace_test: bool,
+    /// Consecutive loops without a new solution before monodromy stops.
+    #[arg(long, value_name = "N", default_value_t = 15)]
+    stagnant_loops: usize,
+}
+
+/// Runs `singdist rrr …`.
+pub fn run(command: RrrCommand) -> Result<()> {
+    match command {
+        RrrCommand::Curve(args) => run_curve(args),
+        RrrCommand::AbInitio(args) => run_ab_initio(args),
+    }
+}
+
+fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTrajectory> {
+    let (design, modes) = match design {
+        Some(path) => load_rrr_design(path)?,
+        None => (example_design(), EXAMPLE_MODES),
+    };
+    let motion = match motion {
+        Some(path) => load_motion(path)?,
+        None => example_motion(),
+    };
+    RrrTrajectory::new(design, modes, motion).context("--motion")
+}
+
+fn run_curve(args: RrrCurveArgs) -> Result<()> {
+    let trajectory = load_trajectory(args.design.as_deref(), args.motion.as_deref())?;
+    if let Some(out) = &args.out {
+        match out.extension().and_then(|e| e.to_str()) {
+            Some("json") | Some("csv") => {}
+            _ => bail!("--out: {}: expected a .json or .csv file", out.display()),
+        }
+    }
+    let options = RrrCurveOptions {
+        seed: args.seed,
+        ..RrrCurveOptions::default()
+    };
+    let started = std::time::Instant::now();
+    let result = with_threads(args.threads, || {
+        compute_rrr_curve(
+            &trajectory,
+            args.poses,
+            &options,
+            &default_rrr_start_solutions,
+        )
+    })??;
+    let elapsed = started.elapsed().as_secs_f64();
+    match &args.out {
+        Some(path) => {
+            let text = if path.extension().and_then(|e| e.to_str()) == Some("csv") {
+                csv_text(&result)?
+            } else {
+                serde_json::to_string_pretty(&result).context("serialising the curve")?
+            };
+            std::fs::write(path, text)
+                .with_context(|| format!("--out: {}: cannot write", path.display()))?;
+        }
+        None => print_table(&result),
+    }
+    if let Some(path) = &args.plot {
+        plot(path, &result)?;
+    }
+    if !args.quiet {
+        eprintln!(
+            "singdist: {} poses, 4 sub-problems, {} paths in {:.3} s ({:.0} paths/s)",
+            result.poses.len(),
+            result.paths_tracked,
+            elapsed,
+            result.paths_tracked as f64 / elapsed.max(1e-9)
+        );
+    }
+    if !result.failures.is_empty() {
+        eprintln!(
+            "singdist: warning: {} (pose, sub-problem) group(s) lost paths after re-runs (listed under `failures` in the JSON output)",
+            result.failures.len()
+        );
+        std::process::exit(EXIT_PATH_FAILURES);
+    }
+    Ok(())
+}
+
+fn cell(v: Option<f64>) -> String {
+    v.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// CSV: `tau, x, y, phi, parallel, leg1, leg2, leg3, distance, nearest,
+/// parallel_determinant_abs_scaled`.
+pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record([
+        "tau",
+        "x",
+        "y",
+        "phi",
+        "parallel",
+        "leg1",
+        "leg2",
+        "leg3",
+        "distance",
+        "nearest",
+        "parallel_determinant_abs_scaled",
+    ])?;
+    for p in &result.poses {
+        writer.write_record([
+            p.tau.to_string(),
+            p.pose[0].to_string(),
+            p.pose[1].to_string(),
+            p.pose[2].to_string(),
+            cell(p.parallel),
+            cell(p.leg1),
+            cell(p.leg2),
+            cell(p.leg3),
+            cell(p.distance),
+            p.nearest.clone().unwrap_or_default(),
+            p.parallel_determinant_abs_scaled.to_string(),
+        ])?;
+    }
+    let bytes = writer.into_inner().context("writing CSV")?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+fn print_table(result: &RrrCurveResult) {
+    let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
+    println!(
+        "{:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8}",
+        "tau", "parallel", "leg1", "leg2", "leg3", "distance", "nearest", "|detJ|~"
+    );
+    for p in &result.poses {
+        println!(
+            "{:>9.4} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8.4}",
+            p.tau,
+            show(p.parallel),
+            show(p.leg1),
+            show(p.leg2),
+            show(p.leg3),
+            show(p.distance),
+            p.nearest.as_deref().unwrap_or("-"),
+            p.parallel_determinant_abs_scaled
+        );
+    }
+    let list = |v: &[f64]| {
+        if v.is_empty() {
+            return "none".to_string();
+        }
+        v.iter()
+            .map(|t| format!("{t:.6}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!(
+        "signed distances (sign of the respective determinant); |detJ|~ = |parallel determinant| / its max over the poses; parallel singular at tau = {}; leg singular at tau = {}",
+        list(&result.parallel_singular_parameters),
+        result
+            .leg_singular_parameters
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| !v.is_empty())
+            .map(|(i, v)| format!("leg{}: {}", i + 1, list(v)))
+            .reduce(|a, b| format!("{a}; {b}"))
+            .unwrap_or_else(|| "none".to_string())
+    );
+}
+
+fn plot(path: &Path, result: &RrrCurveResult) -> Result<()> {
+    if result.poses.len() < 2 {
+        bail!("--plot: need at least 2 poses");
+    }
+    let t0 = result.poses[0].tau;
+    let t1 = result.poses[result.poses.len() - 1].tau;
+    type Getter = fn(&singdist::pipeline::rrr_curve::RrrPoseResult) -> Option<f64>;
+    let series: [(&str, Getter); 6] = [
+        ("parallel (signed)", |p| p.parallel),
+        ("leg 1 (signed)", |p| p.leg1),
+        ("leg 2 (signed)", |p| p.leg2),
+        ("leg 3 (signed)", |p| p.leg3),
+        ("singularity distance (min |value|)", |p| p.distance),
+        ("|parallel determinant| / max", |p| {
+            Some(p.parallel_determinant_abs_scaled)
+        }),
+    ];
+    let mut lo: f64 = 0.0;
+    let mut hi: f64 = 0.0;
+    let curves: Vec<super::plot::Curve> = series
+        .iter()
+        .map(|(label, get)| {
+            let mut segments = vec![Vec::new()];
+            for p in &result.poses {
+                match get(p) {
+                    Some(v) => {
+                        lo = lo.min(v);
+                        hi = hi.max(v);
+                        if let Some(segment) = segments.last_mut() {
+                            segment.push((p.tau, v));
+                        }
+                    }
+                    None => segments.push(Vec::new()),
+                }
+            }
+            super::plot::Curve {
+                label: label.to_string(),
+                segments,
+            }
+        })
+        .collect();
+    let pad = 0.05 * (hi - lo).max(1e-9);
+    let mut singular = result.parallel_singular_parameters.clone();
+    singular.extend(result.leg_singular_parameters.iter().flatten());
+    let layout = super::plot::Layout {
+        caption: "3-RRR signed distances to parallel and leg singularities",
+        y_description: "signed distance D (all-deformable metric)",
+        tau_range: (t0, t1),
+        y_range: (lo - pad, hi + pad),
+    };
+    super::plot::plot_against_tau(path, &layout, &curves, &singular)
+}
+
+fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
+    let kinds: Vec<RrrSubProblem> = if args.problem.is_empty() {
+        RrrSubProblem::ALL.to_vec()
+    } else {
+        args.problem
+            .iter()
+            .map(|s| s.parse().context("--problem"))
+            .collect::<Result<_>>()?
+    };
+    for kind in kinds {
+        let problem = RrrProblem::new(kind)?;
+        if args.verify {
+            let Some(file) = embedded_rrr_start_solutions(kind) else {
+                bail!("{}: no embedded start-solution file", kind.name());
+            };
+            let report = verify_rrr_start_solutions(&problem, &file?)?;
+            println!(
+                "{}: {} solutions, max residual {:.2e}, min separation {:.2e}, min σ ratio {:.2e}: {}",
+                report.problem,
+                report.count,
+                report.max_residual,
+                report.min_separation,
+                report.min_relative_singular_value,
+                if report.passed { "ok" } else { "FAILED" }
+            );
+            continue;
+        }
+        let started = std::time::Instant::now();
+        let mut options = RrrAbInitioOptions {
+            seed: args.seed,
+            ..RrrAbInitioOptions::default()
+        };
+        options.monodromy.trace_test = !args.no_trace_test;
+        options.monodromy.max_stagnant_loops = args.stagnant_loops;
+        let file = compute_rrr_start_solutions(&problem, &options)?;
+        println!(
+            "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {:?}, {} loops, {} failed paths) in {:.1} s",
+            kind.name(),
+            file.solutions.len(),
+            file.max_residual,
+            file.certificate.kind,
+            file.certificate.trace_residual,
+            file.certificate.loops,
+            file.certificate.failed_paths,
+            started.elapsed().as_secs_f64()
+        );
+        if let Some(dir) = &args.out_dir {
+            let path = dir.join(format!("{}.json", kind.file_stem()));
+            let text = serde_json::to_string(&file).context("serialising start solutions")?;
+            std::fs::write(&path, text)
+                .with_context(|| format!("--out-dir: {}: cannot write", path.display()))?;
+        }
+    }
+    Ok(())
+}

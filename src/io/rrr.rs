@@ -1,0 +1,180 @@
+//! 3-RRR design files (SPEC Part C):
+//!
+//! ```json
+//! {"base": [[x, y], [x, y], [x, y]],
+//!  "proximal": [b1, b2, b3], "distal": [c1, c2, c3],
+//!  "platform": [[x, y], [x, y], [x, y]],
+//!  "working_modes": [1, 1, -1]}
+//! ```
+//!
+//! Base joints `O_i` in the fixed frame, link lengths `|O_iB_i|` and `|B_iC_i|`, platform
+//! joints `C_i` in the moving frame (origin = operation point), and the working mode
+//! σ_i ∈ {+1, −1} of each leg at the start of the motion (optional, default all +1; see
+//! [`crate::mechanism::rrr::ElbowMode`]). Motions use the 3-RPR motion format
+//! ([`super::rpr::load_motion`]). Every error names the file and the field.
+
+use crate::mechanism::rrr::{ElbowMode, POSITIVE_MODES, Point, RrrDesign, RrrError, WorkingModes};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Errors of reading a 3-RRR design file; each names the file and the field.
+#[derive(Debug, Error)]
+pub enum RrrFileError {
+    /// The file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The file is not valid JSON.
+    #[error("{path}: malformed JSON: {source}")]
+    Json {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error (with line and column).
+        source: serde_json::Error,
+    },
+    /// A field is missing or has the wrong shape.
+    #[error("{path}: {field}: {reason}")]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// The field, e.g. `proximal[2]`.
+        field: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The values are well-formed but the design is invalid.
+    #[error("{path}: {source}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// The validation error (names the field).
+        source: RrrError,
+    },
+}
+
+/// A field-level error without the file name.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RrrParseError {
+    /// Missing field, wrong type or length (field, reason).
+    Field(String, String),
+    /// The numbers are fine but the design is invalid.
+    Invalid(RrrError),
+}
+
+fn field(name: &str, reason: impl Into<String>) -> RrrParseError {
+    RrrParseError::Field(name.to_string(), reason.into())
+}
+
+fn number(value: &Value, name: &str) -> Result<f64, RrrParseError> {
+    value
+        .as_f64()
+        .ok_or_else(|| field(name, format!("expected a number, got {value}")))
+}
+
+fn numbers<const N: usize>(value: &Value, name: &str) -> Result<[f64; N], RrrParseError> {
+    let items = value.as_array().ok_or_else(|| {
+        field(
+            name,
+            format!("expected an array of {N} numbers, got {value}"),
+        )
+    })?;
+    if items.len() != N {
+        return Err(field(
+            name,
+            format!(
+                "expected an array of {N} numbers, got {} elements",
+                items.len()
+            ),
+        ));
+    }
+    let mut out = [0.0; N];
+    for (k, item) in items.iter().enumerate() {
+        out[k] = number(item, &format!("{name}[{k}]"))?;
+    }
+    Ok(out)
+}
+
+fn points(value: &Value, name: &str) -> Result<[Point; 3], RrrParseError> {
+    let items = value
+        .as_array()
+        .ok_or_else(|| field(name, format!("expected 3 points [x, y], got {value}")))?;
+    if items.len() != 3 {
+        return Err(field(
+            name,
+            format!("expected 3 points [x, y], got {} elements", items.len()),
+        ));
+    }
+    let mut out = [Point::zeros(); 3];
+    for (i, item) in items.iter().enumerate() {
+        let [x, y] = numbers::<2>(item, &format!("{name}[{i}]"))?;
+        out[i] = Point::new(x, y);
+    }
+    Ok(out)
+}
+
+/// Design and initial working modes from a parsed JSON tree (module documentation).
+pub fn rrr_design_from_json(value: &Value) -> Result<(RrrDesign, WorkingModes), RrrParseError> {
+    const KEYS: [&str; 5] = ["base", "proximal", "distal", "platform", "working_modes"];
+    let map = value
+        .as_object()
+        .ok_or_else(|| field("(top level)", format!("expected an object, got {value}")))?;
+    if let Some(unknown) = map.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(field(
+            unknown,
+            format!("unknown field (expected one of {})", KEYS.join(", ")),
+        ));
+    }
+    let required = |key: &str| map.get(key).ok_or_else(|| field(key, "missing field"));
+    let base = points(required("base")?, "base")?;
+    let platform = points(required("platform")?, "platform")?;
+    let proximal = numbers::<3>(required("proximal")?, "proximal")?;
+    let distal = numbers::<3>(required("distal")?, "distal")?;
+    let mut modes = POSITIVE_MODES;
+    if let Some(list) = map.get("working_modes") {
+        let values = numbers::<3>(list, "working_modes")?;
+        for (leg, v) in values.iter().enumerate() {
+            modes[leg] = match *v {
+                1.0 => ElbowMode::Positive,
+                -1.0 => ElbowMode::Negative,
+                other => {
+                    return Err(field(
+                        &format!("working_modes[{leg}]"),
+                        format!("expected 1 or -1, got {other}"),
+                    ));
+                }
+            };
+        }
+    }
+    let design =
+        RrrDesign::new(base, proximal, distal, platform).map_err(RrrParseError::Invalid)?;
+    Ok((design, modes))
+}
+
+/// Loads and validates a 3-RRR design file.
+pub fn load_rrr_design(path: impl AsRef<Path>) -> Result<(RrrDesign, WorkingModes), RrrFileError> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path).map_err(|source| RrrFileError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let value: Value = serde_json::from_str(&text).map_err(|source| RrrFileError::Json {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    rrr_design_from_json(&value).map_err(|e| match e {
+        RrrParseError::Field(field, reason) => RrrFileError::Field {
+            path: path.to_path_buf(),
+            field,
+            reason,
+        },
+        RrrParseError::Invalid(source) => RrrFileError::Invalid {
+            path: path.to_path_buf(),
+            source,
+        },
+    })
+}

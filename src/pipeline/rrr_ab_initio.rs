@@ -1,0 +1,308 @@
+//! Ab-initio stage for the 3-RRR sub-problems of SPEC Part C (paper §6.3): all finite
+//! critical points of `∇Λ = 0` at a random complex source configuration, certified by a
+//! trace test, stored in `supplementary/start/rrr-*.json` (the JSON format of
+//! [`super::start_file`], `metric` = `rrr-all-deformable`).
+//!
+//! Method (as for the 3-RPR, [`super::ab_initio`]): a start pair from minimum-norm
+//! Gauss–Newton ([`find_start_pair`]), monodromy loops until stagnation
+//! ([`monodromy_solve`]), the trace test on the incidence curve as certificate (re-run on
+//! fresh slices with conservative tracking if a path failed), Newton refinement. No
+//! generic count is known in advance: the counts were measured with two seeds (see the
+//! tests and `systems/rrr_example_README.md`), and `certificate.passed` is set only when
+//! the trace test passed.
+
+use super::start_file::{Certificate, StartSolutions};
+use super::start_pair::{StartPairError, find_start_pair};
+use crate::C64;
+use crate::homotopy::{HomotopyError, MonodromyOptions, TrackerOptions, monodromy_solve};
+use crate::problem::rrr::{RRR_METRIC_NAME, RrrProblem, RrrSubProblem};
+use crate::system::Evaluator;
+
+/// Default seed of the 3-RRR ab-initio stage (the stored files were made with it).
+pub const RRR_DEFAULT_SEED: u64 = 20_260_201;
+
+/// Errors of the 3-RRR ab-initio stage.
+#[derive(Debug, thiserror::Error)]
+pub enum RrrAbInitioError {
+    /// No start pair.
+    #[error("{problem}: {source}")]
+    StartPair {
+        /// Problem name.
+        problem: String,
+        /// Cause.
+        source: StartPairError,
+    },
+    /// The monodromy solver failed.
+    #[error("{problem}: {source}")]
+    Homotopy {
+        /// Problem name.
+        problem: String,
+        /// Cause.
+        source: HomotopyError,
+    },
+    /// A start-solution file is unreadable or does not belong to its problem.
+    #[error("start-solution file of {problem}: {message}")]
+    File {
+        /// Problem name.
+        problem: String,
+        /// What is wrong, naming the field.
+        message: String,
+    },
+}
+
+/// Options of the 3-RRR ab-initio stage.
+#[derive(Clone, Debug)]
+pub struct RrrAbInitioOptions {
+    /// Seed of the start pair, the loops and the trace slices.
+    pub seed: u64,
+    /// Monodromy options; with `trace_test = false` only the monodromy count is measured
+    /// (certificate `none`).
+    pub monodromy: MonodromyOptions,
+}
+
+impl Default for RrrAbInitioOptions {
+    fn default() -> Self {
+        RrrAbInitioOptions {
+            seed: RRR_DEFAULT_SEED,
+            monodromy: MonodromyOptions {
+                max_stagnant_loops: 15,
+                trace_test: true,
+                ..MonodromyOptions::default()
+            },
+        }
+    }
+}
+
+/// Whether `x` is within 1e-6 (relative) of a point of `set`.
+fn contains(set: &[Vec<C64>], x: &[C64]) -> bool {
+    let scale = 1.0 + x.iter().map(|v| v.norm()).fold(0.0, f64::max);
+    set.iter()
+        .any(|y| y.iter().zip(x).all(|(a, b)| (a - b).norm() <= 1e-6 * scale))
+}
+
+/// Computes and certifies the generic start solutions of `problem` (module documentation).
+pub fn compute_rrr_start_solutions(
+    problem: &RrrProblem,
+    options: &RrrAbInitioOptions,
+) -> Result<StartSolutions, RrrAbInitioError> {
+    let kind = problem.kind();
+    let system = problem.evaluator();
+    let pair =
+        find_start_pair(system, options.seed).map_err(|source| RrrAbInitioError::StartPair {
+            problem: kind.name(),
+            source,
+        })?;
+    let monodromy = options.monodromy.clone();
+    let result =
+        monodromy_solve(system, &pair.x, &pair.p, &monodromy, options.seed).map_err(|source| {
+            RrrAbInitioError::Homotopy {
+                problem: kind.name(),
+                source,
+            }
+        })?;
+    let mut solutions: Vec<Vec<C64>> = Vec::new();
+    for x in result.solutions {
+        if !contains(&solutions, &x) {
+            solutions.push(x);
+        }
+    }
+    let mut loops = result.loops + result.witness_loops;
+    let mut failed_paths = result.failed_paths;
+    let mut trace_residual = result.trace_residual;
+    let mut certified = result.certified;
+    // A failed path on the trace slices voids the test: retry on fresh random slices
+    // with conservative tracking (points added there join the set).
+    let mut careful = monodromy.clone();
+    careful.tracker = TrackerOptions::conservative();
+    let mut rng = crate::random::stream(options.seed, 1);
+    let attempts = if monodromy.trace_test { 3 } else { 0 };
+    for _attempt in 0..attempts {
+        if certified {
+            break;
+        }
+        if let Some(trace) =
+            crate::homotopy::trace_test(system, &result.parameters, &solutions, &careful, &mut rng)
+        {
+            loops += trace.witness_loops;
+            failed_paths += trace.failed_paths;
+            for x in trace.added_solutions {
+                if !contains(&solutions, &x) {
+                    solutions.push(x);
+                }
+            }
+            trace_residual = Some(trace.residual);
+            certified = trace.residual < careful.trace_tolerance;
+        }
+    }
+    let max_residual = refine(system, &result.parameters, &mut solutions);
+    solutions.sort_by(|a, b| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let found = solutions.len();
+    Ok(StartSolutions {
+        problem: kind.name(),
+        metric: RRR_METRIC_NAME.to_string(),
+        subproblem: kind.short_name(),
+        variables: problem.variable_names().to_vec(),
+        parameters: problem
+            .parameter_names()
+            .iter()
+            .cloned()
+            .zip(result.parameters.iter().copied())
+            .collect(),
+        solutions,
+        max_residual,
+        method: "monodromy (minimum-norm Gauss-Newton start pair) + trace test".to_string(),
+        seed: options.seed,
+        certificate: Certificate {
+            kind: if certified { "trace-test" } else { "none" }.to_string(),
+            trace_residual,
+            tolerance: monodromy.trace_tolerance,
+            passed: certified,
+            loops,
+            failed_paths,
+            found_count: found,
+            expected_count: None,
+        },
+    })
+}
+
+/// Newton-refines every solution (a few steps) and returns the largest residual
+/// `‖F(x; p)‖_∞` afterwards.
+pub fn refine<E: Evaluator + ?Sized>(system: &E, p: &[C64], solutions: &mut [Vec<C64>]) -> f64 {
+    let n = system.num_variables();
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    let mut f = vec![C64::new(0.0, 0.0); n];
+    let mut jac = vec![C64::new(0.0, 0.0); n * n];
+    let mut worst: f64 = 0.0;
+    for x in solutions.iter_mut() {
+        for _ in 0..3 {
+            system.evaluate_with_jacobian(x, p, &mut work, &mut f, &mut jac);
+            let matrix = nalgebra::DMatrix::from_row_slice(n, n, &jac);
+            let Some(step) = matrix.lu().solve(&nalgebra::DVector::from_column_slice(&f)) else {
+                break;
+            };
+            for (xi, si) in x.iter_mut().zip(step.iter()) {
+                *xi -= si;
+            }
+        }
+        system.evaluate(x, p, &mut work, &mut f);
+        worst = worst.max(f.iter().map(|v| v.norm()).fold(0.0, f64::max));
+    }
+    worst
+}
+
+/// Outcome of re-checking a 3-RRR start-solution file ([`verify_rrr_start_solutions`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RrrVerification {
+    /// Problem name.
+    pub problem: String,
+    /// Number of stored solutions.
+    pub count: usize,
+    /// Largest residual recomputed at the stored parameters.
+    pub max_residual: f64,
+    /// Smallest distance between two stored solutions (relative to their size).
+    pub min_separation: f64,
+    /// Smallest `σ_min/σ_max` of the Jacobian over the solutions.
+    pub min_relative_singular_value: f64,
+    /// Residual < 1e-10, separation > 1e-6, nonsingular, stored certificate passed.
+    pub passed: bool,
+}
+
+/// Re-checks a stored file against its problem: names, residuals, distinctness,
+/// nonsingularity and the stored certificate.
+pub fn verify_rrr_start_solutions(
+    problem: &RrrProblem,
+    file: &StartSolutions,
+) -> Result<RrrVerification, RrrAbInitioError> {
+    let kind = problem.kind();
+    let file_error = |message: String| RrrAbInitioError::File {
+        problem: kind.name(),
+        message,
+    };
+    if file.problem != kind.name() {
+        return Err(file_error(format!("field `problem` is `{}`", file.problem)));
+    }
+    if file.variables != problem.variable_names() {
+        return Err(file_error(
+            "field `variables` does not match the problem's unknowns".to_string(),
+        ));
+    }
+    let p = file
+        .parameter_vector(problem.parameter_names())
+        .map_err(|name| file_error(format!("field `parameters` lacks `{name}`")))?;
+    let n = problem.variable_names().len();
+    if let Some(bad) = file.solutions.iter().position(|x| x.len() != n) {
+        return Err(file_error(format!(
+            "field `solutions[{bad}]` has the wrong length"
+        )));
+    }
+    let system = problem.evaluator();
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    let mut f = vec![C64::new(0.0, 0.0); n];
+    let mut max_residual: f64 = 0.0;
+    for x in &file.solutions {
+        system.evaluate(x, &p, &mut work, &mut f);
+        max_residual = max_residual.max(f.iter().map(|v| v.norm()).fold(0.0, f64::max));
+    }
+    let mut min_separation = f64::INFINITY;
+    for (i, x) in file.solutions.iter().enumerate() {
+        for y in &file.solutions[i + 1..] {
+            let scale = 1.0
+                + x.iter()
+                    .chain(y.iter())
+                    .map(|v| v.norm())
+                    .fold(0.0, f64::max);
+            let distance = x
+                .iter()
+                .zip(y)
+                .map(|(a, b)| (a - b).norm())
+                .fold(0.0, f64::max);
+            min_separation = min_separation.min(distance / scale);
+        }
+    }
+    let min_relative_singular_value =
+        super::ab_initio::smallest_relative_singular_value(system, &p, &file.solutions);
+    let passed = max_residual < 1e-10
+        && min_separation > 1e-6
+        && min_relative_singular_value > super::ab_initio::NONSINGULAR_THRESHOLD
+        && file.certificate.passed;
+    Ok(RrrVerification {
+        problem: kind.name(),
+        count: file.solutions.len(),
+        max_residual,
+        min_separation,
+        min_relative_singular_value,
+        passed,
+    })
+}
+
+/// The embedded start-solution file of `kind` (`supplementary/start/rrr-*.json`, embedded
+/// by `build.rs`), if the build had one.
+pub fn embedded_rrr_start_solutions(
+    kind: RrrSubProblem,
+) -> Option<Result<StartSolutions, RrrAbInitioError>> {
+    let stem = kind.file_stem();
+    super::embedded::EMBEDDED_START_FILES
+        .iter()
+        .find(|(s, _)| *s == stem)
+        .map(|(_, text)| {
+            serde_json::from_str(text).map_err(|e| RrrAbInitioError::File {
+                problem: kind.name(),
+                message: e.to_string(),
+            })
+        })
+}
+
+/// The start solutions of `kind`: the embedded file, otherwise computed now with the
+/// default options.
+pub fn rrr_start_solutions(problem: &RrrProblem) -> Result<StartSolutions, RrrAbInitioError> {
+    match embedded_rrr_start_solutions(problem.kind()) {
+        Some(file) => file,
+        None => compute_rrr_start_solutions(problem, &RrrAbInitioOptions::default()),
+    }
+}

@@ -1,0 +1,737 @@
+//! 3-RRR singularity-distance curves along a motion (SPEC Part C, paper §6.3, Fig. 17).
+//!
+//! Four sub-problems ([`RrrSubProblem`]): the parallel singularity and the three leg
+//! singularities, each with the all-deformable metric of SPEC Part C. Stages, as for the
+//! 3-RPR (SPEC A.9):
+//!
+//! 1. **Seed** (user homotopy, paper Eqs. 65–66): the generic start solutions
+//!    ([`super::rrr_ab_initio`]) are tracked along the straight parameter segment from
+//!    their source configuration to `K*`: the trajectory's configuration at a random
+//!    complex `τ*` ([`RrrTrajectory::configuration_complex`], complex inverse kinematics)
+//!    plus a small random complex perturbation of all 18 coordinates (for pose lists: the
+//!    first pose's configuration plus a larger perturbation).
+//! 2. **Parameter homotopy** (paper §5.3): seed solutions → the real configuration of
+//!    every pose, all (pose, sub-problem) pairs in parallel (rayon); each path is a pure
+//!    function of its inputs, so results do not depend on the thread count.
+//! 3. **No silent losses**: a (pose, sub-problem) that ends with fewer finite endpoints
+//!    than start solutions re-tracks the lost paths with conservative settings, then all
+//!    paths along a random complex detour; what is still missing is reported as an
+//!    [`RrrPathFailure`].
+//! 4. **Post-processing**: real critical points (`max |Im| ≤ tol·(1+‖x‖∞)`), `D(K, K′)`
+//!    recomputed in f64 ([`distance`]), minimum per sub-problem; the signed distance
+//!    carries the sign of the sub-problem's determinant at K (parallel determinant, or
+//!    the leg determinant); the overall singularity distance is the smallest |value| of
+//!    the four (paper Remark 11).
+
+use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
+use super::start_file::StartSolutions;
+use crate::C64;
+use crate::homotopy::{
+    Homotopy, ParameterHomotopy, PathResult, PolylineParameterHomotopy, Tracker, TrackerOptions,
+};
+use crate::mechanism::rrr::{
+    CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
+};
+use crate::problem::rrr::{RrrProblem, RrrProblemError, RrrSubProblem};
+use crate::random;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Errors of the 3-RRR curve pipeline.
+#[derive(Debug, thiserror::Error)]
+pub enum RrrCurveError {
+    /// No pose to compute.
+    #[error("poses: at least one pose is required, got {0}")]
+    NoPoses(usize),
+    /// A sub-problem's system could not be built.
+    #[error(transparent)]
+    Problem(#[from] RrrProblemError),
+    /// Start solutions unavailable.
+    #[error(transparent)]
+    Start(#[from] RrrAbInitioError),
+    /// The start solutions of a sub-problem are inconsistent with its system.
+    #[error("start solutions of {problem}: {message}")]
+    StartSolutions {
+        /// Problem name.
+        problem: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Inverse kinematics fails at a sampled pose.
+    #[error("pose {index} (tau = {tau}): {message}")]
+    Pose {
+        /// Pose index.
+        index: usize,
+        /// τ.
+        tau: f64,
+        /// The IK error.
+        message: String,
+    },
+}
+
+/// Knobs of the 3-RRR curve pipeline.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RrrCurveOptions {
+    /// Seed of every random choice (τ*, perturbations, detours).
+    pub seed: u64,
+    /// Tracker settings of the seed and pose homotopies.
+    pub tracker: TrackerOptions,
+    /// Tracker settings of the re-runs.
+    pub retry_tracker: TrackerOptions,
+    /// Detour re-runs of a (pose, sub-problem) that lost paths.
+    pub retry_attempts: usize,
+    /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
+    pub real_tolerance: f64,
+}
+
+impl Default for RrrCurveOptions {
+    fn default() -> Self {
+        RrrCurveOptions {
+            seed: 1,
+            tracker: TrackerOptions::default(),
+            retry_tracker: TrackerOptions::conservative(),
+            retry_attempts: 2,
+            real_tolerance: 1e-8,
+        }
+    }
+}
+
+/// Paths lost at some pose (or at the seed), reported instead of dropped.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RrrPathFailure {
+    /// Pose index (`None` for the seed stage).
+    pub pose_index: Option<usize>,
+    /// τ of the pose.
+    pub tau: Option<f64>,
+    /// Problem name, e.g. `rrr:leg2`.
+    pub problem: String,
+    /// Start-solution count.
+    pub expected: usize,
+    /// Finite endpoints reached (best attempt).
+    pub finite: usize,
+}
+
+/// One sub-problem prepared at the seed.
+pub struct RrrSeededProblem {
+    /// The compiled system.
+    pub problem: RrrProblem,
+    /// Seed parameters `K*`.
+    pub seed_parameters: Vec<C64>,
+    /// Finite solutions at the seed.
+    pub seed_solutions: Vec<Vec<C64>>,
+    /// Number of generic start solutions.
+    pub start_count: usize,
+}
+
+/// Every sub-problem at the common seed.
+pub struct RrrSeedStage {
+    /// Parallel, leg 1, leg 2, leg 3.
+    pub problems: Vec<RrrSeededProblem>,
+    /// Complex motion parameter of the seed (`None` for pose lists).
+    pub tau_star: Option<C64>,
+    /// Paths lost in the seed stage.
+    pub failures: Vec<RrrPathFailure>,
+    /// Paths tracked in the seed stage.
+    pub paths_tracked: usize,
+}
+
+/// One sub-problem at one pose.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RrrSubproblemResult {
+    /// Smallest `D(K, K′)` over the real critical points (`None` if none).
+    pub distance: Option<f64>,
+    /// The minimising `K′` (18 coordinates, `O1x … C3y`).
+    pub closest: Option<[f64; CONFIGURATION_LEN]>,
+    /// The sub-problem's determinant at K (its sign is the sign of the signed distance).
+    pub determinant: f64,
+    /// Real critical points found.
+    pub real_critical_points: usize,
+    /// Finite endpoints (all attempts merged).
+    pub finite_endpoints: usize,
+    /// Lost paths with `K′` finite and `λ → ∞` ([`MULTIPLIER_DIVERGENCE_RATIO`]): `K′`
+    /// tends to a singular point of the constraint variety (not a critical point).
+    pub multiplier_divergent_paths: usize,
+    /// Start-solution count (generic root count).
+    pub expected_endpoints: usize,
+}
+
+/// Result at one pose (JSON field names fixed by the issue: `tau`, `parallel`, `leg1`,
+/// `leg2`, `leg3`, `distance`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RrrPoseResult {
+    /// Index of the pose along the motion.
+    pub index: usize,
+    /// Motion parameter.
+    pub tau: f64,
+    /// `[x, y, φ]`.
+    pub pose: [f64; 3],
+    /// Working modes σ_i ∈ {+1, −1} at this pose (continued along the motion).
+    pub working_modes: [i8; 3],
+    /// Signed distance to the parallel singularity (sign of the parallel determinant).
+    pub parallel: Option<f64>,
+    /// Signed distance to the leg-1 singularity (sign of the leg-1 determinant).
+    pub leg1: Option<f64>,
+    /// Signed distance to the leg-2 singularity.
+    pub leg2: Option<f64>,
+    /// Signed distance to the leg-3 singularity.
+    pub leg3: Option<f64>,
+    /// Overall singularity distance: the smallest |value| of the four (paper Remark 11).
+    pub distance: Option<f64>,
+    /// Which curve attains it (`parallel`, `leg1`, `leg2`, `leg3`).
+    pub nearest: Option<String>,
+    /// Comparison index of paper Fig. 17: `|det|` of the parallel determinant
+    /// (`det[C_i − B_i | B_i × C_i]`, SPEC Part C) divided by its largest |value| over the
+    /// sampled poses, so in [0, 1].
+    pub parallel_determinant_abs_scaled: f64,
+    /// Per sub-problem (`parallel`, `leg1`, …): distance, closest configuration, counts.
+    pub subproblems: BTreeMap<String, RrrSubproblemResult>,
+    /// Paths lost at this pose.
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub failures: Vec<RrrPathFailure>,
+    /// Paths tracked at this pose (re-runs included).
+    #[serde(skip)]
+    pub paths_tracked: usize,
+}
+
+/// A whole 3-RRR curve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RrrCurveResult {
+    /// Seed of the run.
+    pub seed: u64,
+    /// `[Re τ*, Im τ*]` of the seed (analytic motions).
+    pub tau_star: Option<[f64; 2]>,
+    /// Start-solution count per sub-problem.
+    pub start_counts: BTreeMap<String, usize>,
+    /// τ where the parallel determinant changes sign (bisection on the motion).
+    pub parallel_singular_parameters: Vec<f64>,
+    /// Per leg, τ where it passes through a leg singularity (its working mode flips).
+    pub leg_singular_parameters: [Vec<f64>; 3],
+    /// Every pose, in order.
+    pub poses: Vec<RrrPoseResult>,
+    /// Every path failure (seed stage and poses).
+    pub failures: Vec<RrrPathFailure>,
+    /// Total number of paths tracked.
+    pub paths_tracked: usize,
+}
+
+fn track_all<H: Homotopy + ?Sized>(
+    homotopy: &H,
+    starts: &[Vec<C64>],
+    options: &TrackerOptions,
+) -> Vec<PathResult> {
+    let mut tracker = Tracker::new(homotopy, options.clone());
+    starts
+        .iter()
+        .enumerate()
+        .map(|(i, x)| tracker.track(x, i))
+        .collect()
+}
+
+fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
+    paths
+        .iter()
+        .filter(|p| p.status.is_finite())
+        .map(|p| p.solution.clone())
+        .collect()
+}
+
+fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| (x - y).norm() <= tolerance * scale)
+}
+
+/// A lost path whose multiplier λ (last unknown) exceeds this multiple of
+/// `1 + max |K′ coordinate|` at its last point is *multiplier-divergent*: `K′` stays finite
+/// while `λ → ∞`, i.e. `K′` tends to a singular point of the constraint variety
+/// (`∇C(K′) = 0`), where the Lagrange conditions do not apply (cf. SPEC A.6.3 for the
+/// 3-RPR). Such paths carry no finite critical point and are counted, not reported lost.
+/// (Measured on the example: every lost parallel path ends with `|K′|∞ ≤ 1.6` and
+/// `|λ|` between 15 and 300 when the tracker gives up.)
+pub const MULTIPLIER_DIVERGENCE_RATIO: f64 = 5.0;
+
+fn multiplier_divergent(x: &[C64]) -> bool {
+    let Some((lambda, coordinates)) = x.split_last() else {
+        return false;
+    };
+    let scale = 1.0 + coordinates.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    lambda.norm() > MULTIPLIER_DIVERGENCE_RATIO * scale
+}
+
+/// Endpoints of [`track_with_retries`].
+struct Tracked {
+    /// Finite endpoints, merged over attempts.
+    endpoints: Vec<Vec<C64>>,
+    /// Finite endpoints of the best attempt.
+    best: usize,
+    /// Lost paths of the straight attempt that are multiplier-divergent.
+    divergent: usize,
+    /// Paths tracked.
+    tracked: usize,
+}
+
+/// Tracks `starts` from `from` to `to`; re-tracks lost paths conservatively, then (if
+/// still short of `expected`, not counting multiplier-divergent paths) all paths along
+/// random complex detours.
+fn track_with_retries(
+    problem: &RrrProblem,
+    starts: &[Vec<C64>],
+    from: &[C64],
+    to: &[C64],
+    expected: usize,
+    options: &RrrCurveOptions,
+    stream: u64,
+) -> Tracked {
+    let system = problem.evaluator();
+    let straight = ParameterHomotopy::new(system, from, to);
+    let mut paths = track_all(&straight, starts, &options.tracker);
+    let mut tracked = starts.len();
+    if paths.iter().filter(|p| p.status.is_finite()).count() < expected {
+        let mut careful = Tracker::new(&straight, options.retry_tracker.clone());
+        for (i, path) in paths.iter_mut().enumerate() {
+            // Multiplier-divergent paths are structural (no finite endpoint): not re-run.
+            if !path.status.is_finite() && !multiplier_divergent(&path.solution) {
+                *path = careful.track(&starts[i], i);
+                tracked += 1;
+            }
+        }
+    }
+    let mut endpoints = finite_solutions(&paths);
+    let mut best = endpoints.len();
+    let divergent = paths
+        .iter()
+        .filter(|p| !p.status.is_finite() && multiplier_divergent(&p.solution))
+        .count();
+    for attempt in 0..options.retry_attempts {
+        if best + divergent >= expected {
+            break;
+        }
+        let mut rng = random::stream(
+            options.seed,
+            stream.wrapping_mul(16).wrapping_add(attempt as u64 + 1),
+        );
+        let scale = 0.1 * (1.0 + to.iter().fold(0.0f64, |m, v| m.max(v.norm())));
+        let via: Vec<C64> = to
+            .iter()
+            .map(|v| v + random::complex_normal(&mut rng) * scale)
+            .collect();
+        let polyline =
+            PolylineParameterHomotopy::new(system, vec![from.to_vec(), via, to.to_vec()]);
+        let paths = track_all(&polyline, starts, &options.retry_tracker);
+        tracked += starts.len();
+        let found = finite_solutions(&paths);
+        best = best.max(found.len());
+        for x in found {
+            if !endpoints.iter().any(|y| same_point(y, &x, 1e-8)) {
+                endpoints.push(x);
+            }
+        }
+    }
+    Tracked {
+        endpoints,
+        best,
+        divergent,
+        tracked,
+    }
+}
+
+/// Characteristic length of the design: largest base-joint or moving-frame platform-joint
+/// norm, link length, at least 1.
+fn length_scale(trajectory: &RrrTrajectory) -> f64 {
+    let design = trajectory.design();
+    design
+        .base()
+        .iter()
+        .chain(design.platform().iter())
+        .map(|p| p.norm())
+        .chain(design.proximal().iter().copied())
+        .chain(design.distal().iter().copied())
+        .fold(1.0, f64::max)
+}
+
+/// Seed configuration `K*` (stage 1, module documentation).
+pub fn seed_configuration(
+    trajectory: &RrrTrajectory,
+    seed: u64,
+) -> Result<(Option<C64>, [C64; CONFIGURATION_LEN]), RrrCurveError> {
+    let mut rng = random::stream(seed, 0x5eed);
+    let scale = length_scale(trajectory);
+    let [lo, hi] = trajectory.motion().tau_range();
+    let width = (hi - lo).max(1e-3);
+    let tau_star = C64::new(
+        random::uniform(&mut rng, lo, hi),
+        random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
+    );
+    let (tau, mut k, amplitude) = match trajectory.configuration_complex(tau_star) {
+        Some(k) if k.iter().all(|v| v.re.is_finite() && v.im.is_finite()) => {
+            (Some(tau_star), k, 0.05)
+        }
+        _ => {
+            let first = trajectory
+                .configuration(lo)
+                .map_err(|e| RrrCurveError::Pose {
+                    index: 0,
+                    tau: lo,
+                    message: e.to_string(),
+                })?;
+            (None, first.to_array().map(|v| C64::new(v, 0.0)), 0.3)
+        }
+    };
+    for v in k.iter_mut() {
+        *v += random::complex_normal(&mut rng) * (amplitude * scale);
+    }
+    Ok((tau, k))
+}
+
+/// Stage 1: builds the four sub-problems, takes their start solutions from `provider`
+/// and tracks them to the common seed (in parallel).
+pub fn rrr_seed_stage(
+    trajectory: &RrrTrajectory,
+    options: &RrrCurveOptions,
+    provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
+) -> Result<RrrSeedStage, RrrCurveError> {
+    let (tau_star, k_star) = seed_configuration(trajectory, options.seed)?;
+    let seed_parameters = k_star.to_vec();
+    let mut prepared = Vec::new();
+    for kind in RrrSubProblem::ALL {
+        let problem = RrrProblem::new(kind)?;
+        let start = provider(&problem)?;
+        let source = start
+            .parameter_vector(problem.parameter_names())
+            .map_err(|name| RrrCurveError::StartSolutions {
+                problem: kind.name(),
+                message: format!("parameter `{name}` missing"),
+            })?;
+        let n = problem.variable_names().len();
+        if start.variables != problem.variable_names() {
+            return Err(RrrCurveError::StartSolutions {
+                problem: kind.name(),
+                message: "field `variables` does not match the problem's unknowns".to_string(),
+            });
+        }
+        if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
+            return Err(RrrCurveError::StartSolutions {
+                problem: kind.name(),
+                message: format!("a solution has {} entries, expected {n}", bad.len()),
+            });
+        }
+        prepared.push((problem, source, start.solutions));
+    }
+    let tracked: Vec<(RrrSeededProblem, Option<RrrPathFailure>, usize)> = prepared
+        .into_par_iter()
+        .enumerate()
+        .map(|(index, (problem, source, starts))| {
+            let expected = starts.len();
+            let Tracked {
+                endpoints: solutions,
+                best,
+                tracked,
+                ..
+            } = track_with_retries(
+                &problem,
+                &starts,
+                &source,
+                &seed_parameters,
+                expected,
+                options,
+                (index as u64) << 32,
+            );
+            let failure = (best < expected).then(|| RrrPathFailure {
+                pose_index: None,
+                tau: None,
+                problem: problem.kind().name(),
+                expected,
+                finite: best,
+            });
+            (
+                RrrSeededProblem {
+                    problem,
+                    seed_parameters: seed_parameters.clone(),
+                    seed_solutions: solutions,
+                    start_count: expected,
+                },
+                failure,
+                tracked,
+            )
+        })
+        .collect();
+    let mut problems = Vec::new();
+    let mut failures = Vec::new();
+    let mut paths_tracked = 0;
+    for (problem, failure, count) in tracked {
+        problems.push(problem);
+        failures.extend(failure);
+        paths_tracked += count;
+    }
+    Ok(RrrSeedStage {
+        problems,
+        tau_star,
+        failures,
+        paths_tracked,
+    })
+}
+
+/// Per (pose, sub-problem): sub-problem result, failure, paths tracked.
+type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
+
+/// Stages 2–4 for one sub-problem at the real configuration `k`.
+fn solve_subproblem(
+    seeded: &RrrSeededProblem,
+    k: &[f64; CONFIGURATION_LEN],
+    index: usize,
+    tau: f64,
+    problem_index: usize,
+    options: &RrrCurveOptions,
+) -> Entry {
+    let target: Vec<C64> = k.iter().map(|&v| C64::new(v, 0.0)).collect();
+    let stream = ((index as u64 + 1) << 32) | problem_index as u64;
+    let Tracked {
+        endpoints,
+        best,
+        divergent,
+        tracked,
+    } = track_with_retries(
+        &seeded.problem,
+        &seeded.seed_solutions,
+        &seeded.seed_parameters,
+        &target,
+        seeded.start_count,
+        options,
+        stream,
+    );
+    let kind = seeded.problem.kind();
+    let failure = (best + divergent < seeded.start_count).then(|| RrrPathFailure {
+        pose_index: Some(index),
+        tau: Some(tau),
+        problem: kind.name(),
+        expected: seeded.start_count,
+        finite: best,
+    });
+    let mut best_candidate: Option<(f64, [f64; CONFIGURATION_LEN])> = None;
+    let mut real = 0;
+    for x in &endpoints {
+        if !super::postprocess::is_real(x, options.real_tolerance) {
+            continue;
+        }
+        real += 1;
+        let k_prime = RrrProblem::configuration(x).map(|v| v.re);
+        let d = distance(k, &k_prime);
+        if best_candidate.is_none_or(|(b, _)| d < b) {
+            best_candidate = Some((d, k_prime));
+        }
+    }
+    let determinant = kind.constraint(k);
+    (
+        RrrSubproblemResult {
+            distance: best_candidate.map(|(d, _)| d),
+            closest: best_candidate.map(|(_, c)| c),
+            determinant,
+            real_critical_points: real,
+            finite_endpoints: endpoints.len(),
+            multiplier_divergent_paths: divergent,
+            expected_endpoints: seeded.start_count,
+        },
+        failure,
+        tracked,
+    )
+}
+
+fn signed(result: &RrrSubproblemResult) -> Option<f64> {
+    let sign = if result.determinant < 0.0 { -1.0 } else { 1.0 };
+    result.distance.map(|d| sign * d)
+}
+
+/// The configurations at the given τ (errors name the first pose outside the workspace).
+pub fn configurations_at(
+    trajectory: &RrrTrajectory,
+    taus: &[f64],
+) -> Result<Vec<(f64, [f64; 3], RrrConfiguration)>, RrrCurveError> {
+    if taus.is_empty() {
+        return Err(RrrCurveError::NoPoses(0));
+    }
+    taus.iter()
+        .enumerate()
+        .map(|(index, &tau)| {
+            let pose_error = |message: String| RrrCurveError::Pose {
+                index,
+                tau,
+                message,
+            };
+            let pose = trajectory
+                .pose(tau)
+                .ok_or_else(|| pose_error("no pose at this parameter".to_string()))?;
+            trajectory
+                .configuration(tau)
+                .map(|c| (tau, [pose.x, pose.y, pose.phi], c))
+                .map_err(|e| pose_error(e.to_string()))
+        })
+        .collect()
+}
+
+/// τ where the parallel determinant changes sign between consecutive samples, refined by
+/// bisection on the motion (pose lists: the midpoint).
+pub fn parallel_singular_parameters(trajectory: &RrrTrajectory, taus: &[f64]) -> Vec<f64> {
+    let value = |tau: f64| {
+        trajectory
+            .configuration(tau)
+            .ok()
+            .map(|c| parallel_polynomial(&c.to_array()))
+    };
+    let analytic = matches!(
+        trajectory.motion(),
+        crate::mechanism::rpr::Motion::Analytic(_)
+    );
+    let mut roots = Vec::new();
+    for pair in taus.windows(2) {
+        let (Some(sa), Some(sb)) = (value(pair[0]), value(pair[1])) else {
+            continue;
+        };
+        if sa * sb >= 0.0 {
+            continue;
+        }
+        if !analytic {
+            roots.push(0.5 * (pair[0] + pair[1]));
+            continue;
+        }
+        let (mut lo, mut hi) = (pair[0], pair[1]);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if (hi - lo).abs() <= 1e-14 * (1.0 + mid.abs()) {
+                break;
+            }
+            let Some(s) = value(mid) else { break };
+            if (s < 0.0) == (sa < 0.0) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        roots.push(0.5 * (lo + hi));
+    }
+    roots
+}
+
+/// The whole curve at `poses` poses evenly spaced in τ (pose lists: as given).
+pub fn compute_rrr_curve(
+    trajectory: &RrrTrajectory,
+    poses: usize,
+    options: &RrrCurveOptions,
+    provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
+) -> Result<RrrCurveResult, RrrCurveError> {
+    if poses == 0
+        && matches!(
+            trajectory.motion(),
+            crate::mechanism::rpr::Motion::Analytic(_)
+        )
+    {
+        return Err(RrrCurveError::NoPoses(0));
+    }
+    let taus: Vec<f64> = trajectory
+        .motion()
+        .sample(poses)
+        .iter()
+        .map(|s| s.tau)
+        .collect();
+    compute_rrr_curve_at(trajectory, &taus, options, provider)
+}
+
+/// The curve at the given parameter values: seed stage, then every (pose, sub-problem)
+/// in parallel.
+pub fn compute_rrr_curve_at(
+    trajectory: &RrrTrajectory,
+    taus: &[f64],
+    options: &RrrCurveOptions,
+    provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
+) -> Result<RrrCurveResult, RrrCurveError> {
+    let samples = configurations_at(trajectory, taus)?;
+    let stage = rrr_seed_stage(trajectory, options, provider)?;
+    let arrays: Vec<[f64; CONFIGURATION_LEN]> =
+        samples.iter().map(|(_, _, c)| c.to_array()).collect();
+    let jobs: Vec<(usize, usize)> = (0..samples.len())
+        .flat_map(|j| (0..stage.problems.len()).map(move |p| (j, p)))
+        .collect();
+    let entries: Vec<Entry> = jobs
+        .par_iter()
+        .map(|&(j, p)| {
+            solve_subproblem(&stage.problems[p], &arrays[j], j, samples[j].0, p, options)
+        })
+        .collect();
+    let max_parallel = arrays
+        .iter()
+        .map(|k| parallel_polynomial(k).abs())
+        .fold(0.0f64, f64::max);
+    let mut entries = entries.into_iter();
+    let mut results = Vec::with_capacity(samples.len());
+    for (j, (tau, pose, _)) in samples.iter().enumerate() {
+        let mut subproblems = BTreeMap::new();
+        let mut failures = Vec::new();
+        let mut paths_tracked = 0;
+        for seeded in &stage.problems {
+            let Some((result, failure, tracked)) = entries.next() else {
+                break;
+            };
+            failures.extend(failure);
+            paths_tracked += tracked;
+            subproblems.insert(seeded.problem.kind().short_name(), result);
+        }
+        let get = |name: &str| subproblems.get(name).and_then(signed);
+        let (parallel, leg1, leg2, leg3) = (get("parallel"), get("leg1"), get("leg2"), get("leg3"));
+        let nearest = [
+            ("parallel", parallel),
+            ("leg1", leg1),
+            ("leg2", leg2),
+            ("leg3", leg3),
+        ]
+        .into_iter()
+        .filter_map(|(name, v)| v.map(|v| (name, v.abs())))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+        let modes = trajectory.modes_at(*tau);
+        results.push(RrrPoseResult {
+            index: j,
+            tau: *tau,
+            pose: *pose,
+            working_modes: modes.map(|m| m.sign() as i8),
+            parallel,
+            leg1,
+            leg2,
+            leg3,
+            distance: nearest.map(|(_, d)| d),
+            nearest: nearest.map(|(name, _)| name.to_string()),
+            parallel_determinant_abs_scaled: if max_parallel > 0.0 {
+                parallel_polynomial(&arrays[j]).abs() / max_parallel
+            } else {
+                0.0
+            },
+            subproblems,
+            failures,
+            paths_tracked,
+        });
+    }
+    let mut failures = stage.failures.clone();
+    failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
+    let paths_tracked =
+        stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
+    Ok(RrrCurveResult {
+        seed: options.seed,
+        tau_star: stage.tau_star.map(|t| [t.re, t.im]),
+        start_counts: stage
+            .problems
+            .iter()
+            .map(|p| (p.problem.kind().short_name(), p.start_count))
+            .collect(),
+        parallel_singular_parameters: parallel_singular_parameters(trajectory, taus),
+        leg_singular_parameters: trajectory.leg_crossings().clone(),
+        poses: results,
+        failures,
+        paths_tracked,
+    })
+}
+
+/// The default start provider: embedded `supplementary/start/rrr-*.json`, else computed.
+pub fn default_rrr_start_solutions(
+    problem: &RrrProblem,
+) -> Result<StartSolutions, RrrAbInitioError> {
+    rrr_start_solutions(problem)
+}
