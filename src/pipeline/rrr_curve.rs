@@ -318,7 +318,7 @@ fn track_with_retries(
             .map(|v| v + random::complex_normal(&mut rng) * scale)
             .collect();
         let polyline =
-            PolylineParameterHomotopy::new(system, vec![from.to_vec(), via, to.to_vec()]);
+            PolylineParameterHomotopy::through(system, vec![from.to_vec(), via, to.to_vec()]);
         let paths = track_all(&polyline, starts, &options.retry_tracker);
         tracked += starts.len();
         let found = finite_solutions(&paths);

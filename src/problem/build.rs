@@ -394,6 +394,14 @@ impl LagrangeProblem {
     /// `(u, v, r²)` of SPEC A.5, computed from the design's base and platform anchors
     /// (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
     pub fn parameters_for(&self, design: &Design, k: &[C64; 12]) -> Vec<C64> {
+        self.parameters_in_units(design, k, 1.0)
+    }
+
+    /// [`LagrangeProblem::parameters_for`] with lengths measured in units of `unit`:
+    /// `k` is taken as given (already in those units) and the design's shape constants
+    /// are converted (`r² / unit²`, offsets `s / unit`; `u, v` are dimensionless). The
+    /// curve pipeline works in a normalised frame this way.
+    pub fn parameters_in_units(&self, design: &Design, k: &[C64; 12], unit: f64) -> Vec<C64> {
         let mut out: Vec<C64> = k.to_vec();
         for name in &self.system.parameters()[12..] {
             let shape = if name.ends_with("_base") {
@@ -402,15 +410,15 @@ impl LagrangeProblem {
                 design.platform_shape()
             };
             let value = if name.starts_with("s2_") {
-                shape.r2.sqrt()
+                shape.r2.sqrt() / unit
             } else if name.starts_with("s3_") {
-                shape.u * shape.r2.sqrt()
+                shape.u * shape.r2.sqrt() / unit
             } else if name.starts_with("u_") {
                 shape.u
             } else if name.starts_with("v_") {
                 shape.v
             } else {
-                shape.r2
+                shape.r2 / (unit * unit)
             };
             out.push(C64::new(value, 0.0));
         }
