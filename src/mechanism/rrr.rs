@@ -665,7 +665,7 @@ pub enum TrajectoryError {
 /// working mode (the elbow angle `α` changes sign, e.g. `α ≈ K (τ − τ₀)` at a tangential
 /// touch, or `C_i` passing through `O_i` when `b = c`). So for analytic motions the mode
 /// of leg i flips at every τ where `L_i(τ)` has a local extremum on the boundary (within
-/// [`LEG_CROSSING_TOLERANCE`]); these τ are found on a grid of [`SCAN_INTERVALS`]
+/// [`LEG_CROSSING_TOLERANCE`]); these τ are found on a grid of `SCAN_INTERVALS`
 /// intervals refined by golden-section search. Explicit pose lists keep the given modes
 /// (no continuation is possible between isolated poses).
 #[derive(Debug, Clone, PartialEq)]

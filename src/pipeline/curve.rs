@@ -1,25 +1,34 @@
 //! Distance-to-singularity curves of a 3-RPR along a motion (SPEC A.9, paper §5).
 //!
-//! Stages, for every (metric, sub-problem) the selected metrics need:
+//! Stages, for every (metric, sub-problem) the selected metrics need. Every parameter
+//! vector lives in one normalised frame per curve ([`Normalization`]: centroid and RMS
+//! size of the first configuration), so coordinates and multipliers stay of order one.
 //!
 //! 1. **User homotopy** (paper Eqs. 65–66): the generic start solutions at their
 //!    source parameters `p_src` (ab-initio stage) are tracked along the straight
 //!    parameter segment `p(t) = (1 − t) p_src + t p*` to the *seed* `p*`: the motion at
 //!    a random complex `τ*` (seeded), `K* = K(x(τ*), y(τ*), φ(τ*))` with complex
-//!    `cos`, `sin`, plus a small random complex perturbation of all twelve coordinates
-//!    so that the fixed real base does not make the seed special; for explicit pose
-//!    lists a random complex perturbation of the first pose's configuration. The rigid
-//!    parts' shape constants are those of the design ([`LagrangeProblem::parameters_for`]).
-//!    One seed solve serves every pose.
-//! 2. **Parameter homotopy** (paper §5.3, Paramotopy): the seed solutions are tracked
-//!    along `p(t) = (1 − t) p* + t p(K_j)` to the real configuration `K_j` of every pose;
-//!    poses × sub-problems run in parallel (rayon). Every path is a pure function of
-//!    its inputs, so results are identical for any thread count.
-//! 3. **No silent losses**: a (pose, sub-problem) whose number of finite endpoints is
-//!    below the start count is re-tracked with [`TrackerOptions::conservative`] along
-//!    a different complex detour `p* → p(K_j) + ε·ξ → p(K_j)` (ξ random complex,
-//!    seeded per pose, sub-problem and attempt); finite endpoints of all attempts are
-//!    merged. What is still missing is reported as a [`PathFailure`].
+//!    `cos`, `sin` (for explicit pose lists: the first pose plus a complex
+//!    perturbation), plus a small random complex perturbation δ of all twelve
+//!    coordinates so that the fixed real base does not make the seed special
+//!    ([`seed_point`]). The rigid parts' shape constants are those of the design. One
+//!    seed solve serves every pose. Paths that end at infinity there are critical
+//!    points the design's fixed shape does not have (e.g. the example design's base and
+//!    platform have equal angles at anchor 1, so leg-collapse singular points of paper
+//!    Thm 3 case 4 exist and absorb some critical points); the poses expect the seed's
+//!    finite count.
+//! 2. **Parameter homotopy** (paper §5.3): the seed solutions are tracked to the real
+//!    configuration `K_j` of every pose along the complexified motion
+//!    (`MotionPath`: straight from τ* to τ_j in the τ-plane, or from the seed pose to
+//!    pose j in pose coordinates, with δ fading), so every intermediate parameter is a
+//!    pose of the design; poses × sub-problems run in parallel (rayon). Every path is a
+//!    pure function of its inputs, so results are identical for any thread count.
+//! 3. **No silent losses**: a (pose, sub-problem) with failed paths re-tracks them with
+//!    [`TrackerOptions::conservative`], then tracks every path along a detour through a
+//!    random complex motion point near the pose (seeded per pose, sub-problem and
+//!    attempt; at the seed, through random complex parameters near `p*`, more
+//!    attempts); finite endpoints of all attempts are merged. Paths classified at
+//!    infinity are accounted for; what still fails is reported as a [`PathFailure`].
 //! 4. **Post-processing** ([`super::postprocess`]).
 
 use super::postprocess::{self, Candidate, MetricDistance};
@@ -89,6 +98,10 @@ pub struct CurveOptions {
     pub retry_tracker: TrackerOptions,
     /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
     pub retry_attempts: usize,
+    /// Number of detour re-runs of the user homotopy (source → seed) of a sub-problem
+    /// that lost paths: it runs once per curve and every pose inherits what it misses.
+    #[serde(default = "default_seed_retry_attempts")]
+    pub seed_retry_attempts: usize,
 
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
@@ -103,10 +116,15 @@ impl Default for CurveOptions {
             tracker: TrackerOptions::default(),
             retry_tracker: TrackerOptions::conservative(),
             retry_attempts: 1,
+            seed_retry_attempts: default_seed_retry_attempts(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
         }
     }
+}
+
+fn default_seed_retry_attempts() -> usize {
+    6
 }
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
@@ -536,13 +554,13 @@ fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
 
 /// Tracks `starts` along `path(0)` (the reference route); if paths fail, re-tracks the
 /// failed ones with the safer settings, then (if some still fail) every path along the
-/// detours `path(1)`, `path(2)`, … (up to `retry_attempts`), whose endpoints are merged
-/// (deduplicated). Returns the merged finite endpoints, the best attempt's number of
+/// detours `path(1)`, … `path(attempts)`, whose endpoints are merged (deduplicated). Returns the merged finite endpoints, the best attempt's number of
 /// accounted paths ([`accounted`]) and the number of paths tracked.
 fn track_with_retries<P: ParameterPath>(
     problem: &LagrangeProblem,
     starts: &[Vec<C64>],
     path: impl Fn(usize) -> P,
+    attempts: usize,
     options: &CurveOptions,
 ) -> (Vec<Vec<C64>>, usize, usize) {
     let system = problem.evaluator();
@@ -562,12 +580,16 @@ fn track_with_retries<P: ParameterPath>(
     }
     let mut endpoints = finite_solutions(&paths);
     let mut best = accounted(&paths);
-    for attempt in 1..=options.retry_attempts {
+    let at_infinity = paths
+        .iter()
+        .filter(|p| p.status == PathStatus::AtInfinity)
+        .count();
+    for attempt in 1..=attempts {
         if best >= expected {
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
-        let paths = track_all(&detour, starts, &options.retry_tracker);
+        let paths = track_all(&detour, starts, &options.tracker);
         tracked += starts.len();
         best = best.max(accounted(&paths));
         for x in finite_solutions(&paths) {
@@ -581,6 +603,9 @@ fn track_with_retries<P: ParameterPath>(
                 endpoints.push(x);
             }
         }
+        // The union of the attempts' distinct finite endpoints, plus the reference
+        // route's paths to infinity, may account for more than any single attempt.
+        best = best.max(endpoints.len() + at_infinity);
     }
     (endpoints, best, tracked)
 }
@@ -673,6 +698,7 @@ pub fn seed_stage(
                     points.push(seed_parameters.clone());
                     PolylinePath::new(points)
                 },
+                options.seed_retry_attempts,
                 options,
             );
             let failure = (best < expected).then(|| PathFailure {
@@ -745,7 +771,7 @@ fn candidates(
 }
 
 /// Stages 2–4 at one pose: parameter homotopy from the seed along the complexified
-/// motion ([`MotionPath`]) for every sub-problem (in parallel), re-runs of failed paths
+/// motion (`MotionPath`) for every sub-problem (in parallel), re-runs of failed paths
 /// (detours through a random complex point near the pose), post-processing.
 pub fn solve_pose(
     stage: &SeedStage,
@@ -788,6 +814,7 @@ pub fn solve_pose(
                         parameters[12..].to_vec(),
                     )
                 },
+                options.retry_attempts,
                 options,
             );
             let failure = (best < seeded.start_count).then(|| PathFailure {
