@@ -67,7 +67,7 @@ fn distance_vanishes_and_changes_sign_at_the_singular_poses() {
             poses.push(motion.pose(t).expect("analytic motion"));
         }
     }
-    let metrics = [metric("plate/plate")];
+    let metrics = Metric::all();
     let result = curve(&design, &pose_list(poses), 0, &metrics);
     for (r, triple) in result.poses.chunks(3).enumerate() {
         for m in &metrics {
@@ -174,7 +174,11 @@ fn global_minimum_is_below_every_local_minimum_and_closest_is_feasible() {
             singdist::random::uniform(&mut rng, -3.0, 3.0),
         );
         let k = design.configuration(pose).to_array();
-        let metrics = [metric("plate/plate")];
+        let metrics = [
+            metric("plate/plate"),
+            metric("bars/rigid"),
+            metric("rigid/rigid"),
+        ];
         let result = curve(&design, &pose_list(vec![pose]), 0, &metrics);
         for m in metrics {
             let reported = &result.poses[0].metrics[&m.name()];
