@@ -178,79 +178,6 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
     }
 }
 
-/// `H(x, t) = F(x; (1 − t) p₀ + t p₁)`, so `∂H/∂t = (∂F/∂p)(p₁ − p₀)`.
-pub struct ParameterHomotopy<'a, F: Evaluator + ?Sized> {
-    system: &'a F,
-    start_parameters: Vec<C64>,
-    direction: Vec<C64>,
-    n: usize,
-}
-
-impl<'a, F: Evaluator + ?Sized> ParameterHomotopy<'a, F> {
-    /// Segment from `start_parameters` (t = 0) to `target_parameters` (t = 1).
-    pub fn new(system: &'a F, start_parameters: &[C64], target_parameters: &[C64]) -> Self {
-        let m = system.num_parameters();
-        assert_eq!(start_parameters.len(), m);
-        assert_eq!(target_parameters.len(), m);
-        ParameterHomotopy {
-            system,
-            start_parameters: start_parameters.to_vec(),
-            direction: target_parameters
-                .iter()
-                .zip(start_parameters)
-                .map(|(b, a)| b - a)
-                .collect(),
-            n: system.num_variables(),
-        }
-    }
-
-    fn parameters_at(&self, t: C64, p: &mut [C64]) {
-        for ((pi, a), d) in p
-            .iter_mut()
-            .zip(&self.start_parameters)
-            .zip(&self.direction)
-        {
-            *pi = a + t * d;
-        }
-    }
-}
-
-impl<F: Evaluator + ?Sized> Homotopy for ParameterHomotopy<'_, F> {
-    fn dimension(&self) -> usize {
-        self.n
-    }
-
-    fn workspace_len(&self) -> usize {
-        self.start_parameters.len() + self.system.workspace_len()
-    }
-
-    fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let (p, rest) = work.split_at_mut(self.start_parameters.len());
-        self.parameters_at(t, p);
-        self.system.evaluate(x, p, rest, h);
-    }
-
-    fn evaluate_with_jacobian(
-        &self,
-        x: &[C64],
-        t: C64,
-        work: &mut [C64],
-        h: &mut [C64],
-        jac: &mut [C64],
-    ) {
-        let (p, rest) = work.split_at_mut(self.start_parameters.len());
-        self.parameters_at(t, p);
-        self.system.evaluate_with_jacobian(x, p, rest, h, jac);
-    }
-
-    fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let (p, rest) = work.split_at_mut(self.start_parameters.len());
-        self.parameters_at(t, p);
-        self.system
-            .evaluate_parameter_derivative(x, p, &self.direction, rest, dh);
-    }
-}
-
 /// `p(t)` piecewise linear through `p₀, …, p_K` at `t = 0, 1/K, …, 1` (a closed loop
 /// when `p_K = p₀`): complex detours and the monodromy loops of
 /// [`crate::homotopy::monodromy`].
@@ -318,10 +245,22 @@ impl ParameterPath for PolylinePath {
 /// ([`PolylinePath`]).
 pub type PolylineParameterHomotopy<'a, F> = PathParameterHomotopy<'a, F, PolylinePath>;
 
+/// `H(x, t) = F(x; (1 − t) p₀ + t p₁)`, so `∂H/∂t = (∂F/∂p)(p₁ − p₀)`: the
+/// coefficient-parameter homotopy (Morgan & Sommese 1989), a one-segment polyline.
+pub type ParameterHomotopy<'a, F> = PolylineParameterHomotopy<'a, F>;
+
 impl<'a, F: Evaluator + ?Sized> PathParameterHomotopy<'a, F, PolylinePath> {
     /// Polyline through `points` (at least two, each of length `num_parameters()`).
     pub fn through(system: &'a F, points: Vec<Vec<C64>>) -> Self {
         PathParameterHomotopy::new(system, PolylinePath::new(points))
+    }
+
+    /// The segment from `start_parameters` (t = 0) to `target_parameters` (t = 1).
+    pub fn segment(system: &'a F, start_parameters: &[C64], target_parameters: &[C64]) -> Self {
+        Self::through(
+            system,
+            vec![start_parameters.to_vec(), target_parameters.to_vec()],
+        )
     }
 }
 

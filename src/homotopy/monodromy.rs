@@ -299,7 +299,7 @@ pub fn trace_test<F: Evaluator + ?Sized>(
     let special = vec![C64::new(0.0, 0.0); n + 1];
     let generic = random_point(rng, n + 1, 1.0);
     let track = |from: &[C64], to: &[C64], starts: &[Vec<C64>], endgame: bool| {
-        let homotopy = ParameterHomotopy::new(&curve, from, to);
+        let homotopy = ParameterHomotopy::segment(&curve, from, to);
         starts
             .par_iter()
             .enumerate()

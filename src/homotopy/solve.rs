@@ -243,7 +243,7 @@ pub fn solve_parameter_homotopy<F: Evaluator + ?Sized>(
         check_length("start_solutions", system.num_variables(), s.len())?;
         check_finite("start_solutions", s)?;
     }
-    let homotopy = ParameterHomotopy::new(system, start_parameters, target_parameters);
+    let homotopy = ParameterHomotopy::segment(system, start_parameters, target_parameters);
     Ok(solve_with_homotopy(
         &homotopy,
         start_solutions.len(),

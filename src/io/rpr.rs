@@ -55,6 +55,14 @@ pub enum FileError {
         /// The validation error (names the field).
         source: RprError,
     },
+    /// The values are well-formed but the 3-RRR design is invalid.
+    #[error("{path}: {source}")]
+    InvalidRrr {
+        /// The file.
+        path: PathBuf,
+        /// The validation error (names the field).
+        source: crate::mechanism::rrr::RrrError,
+    },
 }
 
 /// A field-level error without the file name (attached by the loaders).
@@ -261,7 +269,8 @@ pub fn motion_from_json(value: &Value) -> Result<Motion, ParseError> {
     Ok(motion)
 }
 
-fn read_json(path: &Path) -> Result<Value, FileError> {
+/// Reads a JSON file into a tree (errors name the file, with line and column).
+pub(crate) fn read_json(path: &Path) -> Result<Value, FileError> {
     let text = std::fs::read_to_string(path).map_err(|source| FileError::Read {
         path: path.to_path_buf(),
         source,

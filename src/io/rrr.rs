@@ -13,49 +13,14 @@
 //! [`crate::mechanism::rrr::ElbowMode`]). Motions use the 3-RPR motion format
 //! ([`super::rpr::load_motion`]). Every error names the file and the field.
 
+use super::rpr::{FileError, read_json};
 use crate::mechanism::rrr::{ElbowMode, POSITIVE_MODES, Point, RrrDesign, RrrError, WorkingModes};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use thiserror::Error;
+use std::path::Path;
 
-/// Errors of reading a 3-RRR design file; each names the file and the field.
-#[derive(Debug, Error)]
-pub enum RrrFileError {
-    /// The file could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The file.
-        path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
-    },
-    /// The file is not valid JSON.
-    #[error("{path}: malformed JSON: {source}")]
-    Json {
-        /// The file.
-        path: PathBuf,
-        /// The parser's error (with line and column).
-        source: serde_json::Error,
-    },
-    /// A field is missing or has the wrong shape.
-    #[error("{path}: {field}: {reason}")]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// The field, e.g. `proximal[2]`.
-        field: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// The values are well-formed but the design is invalid.
-    #[error("{path}: {source}")]
-    Invalid {
-        /// The file.
-        path: PathBuf,
-        /// The validation error (names the field).
-        source: RrrError,
-    },
-}
+/// Errors of reading a 3-RRR design file: the 3-RPR loaders' error type (read, JSON,
+/// field, and [`FileError::InvalidRrr`] for a well-formed but invalid design).
+pub type RrrFileError = FileError;
 
 /// A field-level error without the file name.
 #[derive(Debug, Clone, PartialEq)]
@@ -158,21 +123,14 @@ pub fn rrr_design_from_json(value: &Value) -> Result<(RrrDesign, WorkingModes), 
 /// Loads and validates a 3-RRR design file.
 pub fn load_rrr_design(path: impl AsRef<Path>) -> Result<(RrrDesign, WorkingModes), RrrFileError> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| RrrFileError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let value: Value = serde_json::from_str(&text).map_err(|source| RrrFileError::Json {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let value = read_json(path)?;
     rrr_design_from_json(&value).map_err(|e| match e {
         RrrParseError::Field(field, reason) => RrrFileError::Field {
             path: path.to_path_buf(),
             field,
             reason,
         },
-        RrrParseError::Invalid(source) => RrrFileError::Invalid {
+        RrrParseError::Invalid(source) => RrrFileError::InvalidRrr {
             path: path.to_path_buf(),
             source,
         },

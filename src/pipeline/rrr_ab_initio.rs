@@ -224,47 +224,19 @@ pub fn verify_rrr_start_solutions(
         problem: kind.name(),
         message,
     };
-    if file.problem != kind.name() {
-        return Err(file_error(format!("field `problem` is `{}`", file.problem)));
-    }
-    if file.variables != problem.variable_names() {
-        return Err(file_error(
-            "field `variables` does not match the problem's unknowns".to_string(),
-        ));
-    }
-    let p = file
-        .parameter_vector(problem.parameter_names())
-        .map_err(|name| file_error(format!("field `parameters` lacks `{name}`")))?;
-    let n = problem.variable_names().len();
-    if let Some(bad) = file.solutions.iter().position(|x| x.len() != n) {
-        return Err(file_error(format!(
-            "field `solutions[{bad}]` has the wrong length"
-        )));
-    }
     let system = problem.evaluator();
-    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-    let mut f = vec![C64::new(0.0, 0.0); n];
-    let mut max_residual: f64 = 0.0;
-    for x in &file.solutions {
-        system.evaluate(x, &p, &mut work, &mut f);
-        max_residual = max_residual.max(f.iter().map(|v| v.norm()).fold(0.0, f64::max));
-    }
-    let mut min_separation = f64::INFINITY;
-    for (i, x) in file.solutions.iter().enumerate() {
-        for y in &file.solutions[i + 1..] {
-            let scale = 1.0
-                + x.iter()
-                    .chain(y.iter())
-                    .map(|v| v.norm())
-                    .fold(0.0, f64::max);
-            let distance = x
-                .iter()
-                .zip(y)
-                .map(|(a, b)| (a - b).norm())
-                .fold(0.0, f64::max);
-            min_separation = min_separation.min(distance / scale);
-        }
-    }
+    let super::start_file::StoredMeasures {
+        parameters: p,
+        max_residual,
+        min_separation,
+    } = file
+        .measure(
+            &kind.name(),
+            problem.variable_names(),
+            problem.parameter_names(),
+            system,
+        )
+        .map_err(file_error)?;
     let min_relative_singular_value =
         super::ab_initio::smallest_relative_singular_value(system, &p, &file.solutions);
     let passed = max_residual < 1e-10

@@ -285,7 +285,7 @@ fn track_with_retries(
     stream: u64,
 ) -> Tracked {
     let system = problem.evaluator();
-    let straight = ParameterHomotopy::new(system, from, to);
+    let straight = ParameterHomotopy::segment(system, from, to);
     let mut paths = track_all(&straight, starts, &options.tracker);
     let mut tracked = starts.len();
     if paths.iter().filter(|p| p.status.is_finite()).count() < expected {

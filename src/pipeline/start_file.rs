@@ -6,6 +6,7 @@
 //! the method and seed that produced it, and the certificate of completeness.
 
 use crate::C64;
+use crate::system::Evaluator;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -65,7 +66,69 @@ pub struct StartSolutions {
     pub certificate: Certificate,
 }
 
+/// What every verification recomputes from a stored file (see
+/// [`StartSolutions::measure`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredMeasures {
+    /// The stored parameters, in the system's order.
+    pub parameters: Vec<C64>,
+    /// Largest `‖F(x; p)‖_∞` over the stored solutions.
+    pub max_residual: f64,
+    /// Smallest `‖x − y‖_∞ / (1 + max(‖x‖_∞, ‖y‖_∞))` over pairs (∞ for fewer than two).
+    pub min_separation: f64,
+}
+
 impl StartSolutions {
+    /// Checks that the file belongs to problem `name` with unknowns `variables` and
+    /// parameters `parameter_names` of `system`, then recomputes residuals and the
+    /// separation of the stored solutions. Errors name the offending field.
+    pub fn measure<E: Evaluator + ?Sized>(
+        &self,
+        name: &str,
+        variables: &[String],
+        parameter_names: &[String],
+        system: &E,
+    ) -> Result<StoredMeasures, String> {
+        if self.problem != name {
+            return Err(format!("field `problem` is `{}`", self.problem));
+        }
+        if self.variables != variables {
+            return Err("field `variables` does not match the problem's unknowns".to_string());
+        }
+        let parameters = self
+            .parameter_vector(parameter_names)
+            .map_err(|missing| format!("field `parameters` lacks `{missing}`"))?;
+        let n = variables.len();
+        if let Some(bad) = self.solutions.iter().position(|x| x.len() != n) {
+            return Err(format!("field `solutions[{bad}]` has the wrong length"));
+        }
+        let max_norm = |v: &[C64]| v.iter().map(|z| z.norm()).fold(0.0, f64::max);
+        let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+        let mut f = vec![C64::new(0.0, 0.0); system.num_equations()];
+        let mut max_residual: f64 = 0.0;
+        for x in &self.solutions {
+            system.evaluate(x, &parameters, &mut work, &mut f);
+            max_residual = max_residual.max(max_norm(&f));
+        }
+        let mut min_separation = f64::INFINITY;
+        for (i, x) in self.solutions.iter().enumerate() {
+            for y in &self.solutions[i + 1..] {
+                let scale = 1.0 + max_norm(x).max(max_norm(y));
+                let distance = x
+                    .iter()
+                    .zip(y)
+                    .map(|(a, b)| (a - b).norm())
+                    .fold(0.0, f64::max);
+                min_separation = min_separation.min(distance / scale);
+            }
+        }
+        Ok(StoredMeasures {
+            parameters,
+            max_residual,
+            min_separation,
+        })
+    }
+
     /// The parameter vector in the order of `names`; `None` names the first missing one.
     pub fn parameter_vector(&self, names: &[String]) -> Result<Vec<C64>, String> {
         names
