@@ -45,6 +45,7 @@ use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polyn
 use crate::metric::Metric;
 use crate::problem::{LagrangeProblem, ProblemError, ProblemId, subproblems_of};
 use crate::random;
+use crate::system::Evaluator;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -552,25 +553,25 @@ fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
         .collect()
 }
 
-/// Tracks `starts` along `path(0)` (the reference route); if paths fail, re-tracks the
-/// failed ones with the safer settings, then (if some still fail) every path along the
+/// Tracks `starts` (solutions of `system` at `path(k)`'s start) along `path(0)` (the
+/// reference route, tracker options `tracker`); if paths fail, re-tracks the
+/// failed ones with `retry_tracker`, then (if some still fail) every path along the
 /// detours `path(1)`, … `path(attempts)`, whose endpoints are merged (deduplicated). Returns the merged finite endpoints, the best attempt's number of
 /// accounted paths ([`accounted`]) and the number of paths tracked.
-fn track_with_retries<P: ParameterPath>(
-    problem: &LagrangeProblem,
+pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
+    system: &E,
     starts: &[Vec<C64>],
     path: impl Fn(usize) -> P,
     attempts: usize,
-    options: &CurveOptions,
+    (tracker, retry_tracker): (&TrackerOptions, &TrackerOptions),
 ) -> (Vec<Vec<C64>>, usize, usize) {
-    let system = problem.evaluator();
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
-    let mut paths = track_all(&reference, starts, &options.tracker);
+    let mut paths = track_all(&reference, starts, tracker);
     let mut tracked = starts.len();
     if accounted(&paths) < expected {
         // First re-run: only the failed paths, same homotopy, safer settings.
-        let mut careful = Tracker::new(&reference, options.retry_tracker.clone());
+        let mut careful = Tracker::new(&reference, retry_tracker.clone());
         for (i, path) in paths.iter_mut().enumerate() {
             if matches!(path.status, PathStatus::Failed(_)) {
                 *path = careful.track(&starts[i], i);
@@ -589,7 +590,7 @@ fn track_with_retries<P: ParameterPath>(
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
-        let paths = track_all(&detour, starts, &options.tracker);
+        let paths = track_all(&detour, starts, tracker);
         tracked += starts.len();
         best = best.max(accounted(&paths));
         for x in finite_solutions(&paths) {
@@ -687,7 +688,7 @@ pub fn seed_stage(
             let expected = starts.len();
             let stream = (index as u64) << 32;
             let (solutions, best, tracked) = track_with_retries(
-                &problem,
+                problem.evaluator(),
                 &starts,
                 |attempt| {
                     let mut points = vec![source.clone()];
@@ -699,7 +700,7 @@ pub fn seed_stage(
                     PolylinePath::new(points)
                 },
                 options.seed_retry_attempts,
-                options,
+                (&options.tracker, &options.retry_tracker),
             );
             let failure = (best < expected).then(|| PathFailure {
                 pose_index: None,
@@ -794,7 +795,7 @@ pub fn solve_pose(
                 normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
             let stream = ((index as u64 + 1) << 32) | problem_index as u64;
             let (endpoints, best, tracked) = track_with_retries(
-                &seeded.problem,
+                seeded.problem.evaluator(),
                 &seeded.seed_solutions,
                 |attempt| {
                     let mut waypoints = vec![stage.seed.point];
@@ -815,7 +816,7 @@ pub fn solve_pose(
                     )
                 },
                 options.retry_attempts,
-                options,
+                (&options.tracker, &options.retry_tracker),
             );
             let failure = (best < seeded.start_count).then(|| PathFailure {
                 pose_index: Some(index),
