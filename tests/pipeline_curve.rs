@@ -284,3 +284,43 @@ fn scaling_the_design_and_motion_scales_every_distance() {
         }
     }
 }
+
+/// Regression test of adaptive precision (tracker `extended_after_rejections`): on the
+/// built-in example, `plate/rigid` poses 20–29 (τ ≈ 0.24–0.79) lost 1–2 of 80 paths
+/// each with double-precision residuals — critical points escaping along isotropic
+/// directions, κ ≈ 10¹⁰–10¹², where rounding noise exceeds the corrector tolerance.
+/// With double-double residuals every path is accounted for, at the seed and there.
+#[test]
+fn extended_precision_accounts_for_every_plate_rigid_path_mid_motion() {
+    use singdist::pipeline::curve::{seed_stage, solve_pose};
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric("plate/rigid")];
+    let options = CurveOptions::default();
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &metrics,
+        &options,
+        &default_start_solutions,
+    )
+    .expect("seed stage");
+    assert!(stage.failures.is_empty(), "seed: {:?}", stage.failures);
+    let samples = sample_motion(&motion, 90).expect("samples");
+    for index in [20, 24, 28] {
+        let result = solve_pose(
+            &stage,
+            &design,
+            &motion,
+            &metrics,
+            index,
+            samples[index],
+            &options,
+        );
+        assert!(
+            result.failures.is_empty(),
+            "pose {index}: {:?}",
+            result.failures
+        );
+    }
+}

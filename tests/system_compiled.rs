@@ -40,6 +40,13 @@ fn check_compiled_equals_naive(system: &System, seed: u64, points: usize) {
         compiled.evaluate(&x, &p, &mut work, &mut f);
         assert!(relative_error(&f, &naive_f) < 1e-12, "F");
 
+        let mut f_extended = vec![C64::new(0.0, 0.0); k];
+        compiled.evaluate_extended(&x, &p, &mut work, &mut f_extended);
+        assert!(
+            relative_error(&f_extended, &naive_f) < 1e-12,
+            "F in double-double"
+        );
+
         let mut f2 = vec![C64::new(0.0, 0.0); k];
         let mut jx = vec![C64::new(0.0, 0.0); k * n];
         compiled.evaluate_with_jacobian(&x, &p, &mut work, &mut f2, &mut jx);
@@ -120,4 +127,33 @@ fn compiled_system_is_shareable_between_threads() {
             });
         }
     });
+}
+
+/// `(x − 1)⁴` expanded, at `x = 1 + 2⁻²⁰`: the exact value `2⁻⁸⁰` is lost under the
+/// rounding noise (~10⁻¹⁶) of the double-precision terms, but the double-double
+/// evaluation (the tracker's extended-precision residual) keeps it.
+#[test]
+fn extended_evaluation_survives_catastrophic_cancellation() {
+    let x = Expr::variable("x");
+    let expanded = x.pow(4) - x.pow(3) * 4.0 + x.pow(2) * 6.0 - &x * 4.0 + 1.0;
+    let system = System::new(["x"], [""; 0], vec![expanded]).unwrap();
+    let compiled = system.compile();
+    let mut work = compiled.new_workspace();
+    let point = [C64::new(1.0 + 2f64.powi(-20), 0.0)];
+    let exact = 2f64.powi(-80);
+    let mut extended = [C64::new(0.0, 0.0)];
+    compiled.evaluate_extended(&point, &[], &mut work, &mut extended);
+    let mut double = [C64::new(0.0, 0.0)];
+    compiled.evaluate(&point, &[], &mut work, &mut double);
+    let extended_error = (extended[0] - exact).norm() / exact;
+    let double_error = (double[0] - exact).norm() / exact;
+    assert!(
+        extended_error < 1e-12,
+        "double-double error {extended_error:e}"
+    );
+    assert!(
+        double_error >= 0.5,
+        "double precision resolved 2^-80: {:e}",
+        double[0]
+    );
 }

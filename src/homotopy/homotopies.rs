@@ -28,6 +28,12 @@ pub trait Homotopy: Send + Sync {
     fn workspace_len(&self) -> usize;
     /// `h ← H(x, t)`.
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]);
+    /// `h ← H(x, t)` with the system evaluated in double-double arithmetic where the
+    /// homotopy supports it ([`Evaluator::evaluate_extended`]): the Newton residual of
+    /// the tracker's extended-precision mode. The default evaluates in double precision.
+    fn evaluate_extended(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
+        self.evaluate(x, t, work, h);
+    }
     /// `h ← H(x, t)`, `jac ← ∂H/∂x (x, t)`.
     fn evaluate_with_jacobian(
         &self,
@@ -318,6 +324,13 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
         let (p, rest) = work.split_at_mut(m);
         self.path.point(t, p);
         self.system.evaluate(x, p, &mut rest[m..], h);
+    }
+
+    fn evaluate_extended(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
+        let m = self.path.len();
+        let (p, rest) = work.split_at_mut(m);
+        self.path.point(t, p);
+        self.system.evaluate_extended(x, p, &mut rest[m..], h);
     }
 
     fn evaluate_with_jacobian(

@@ -22,6 +22,7 @@
 //! Nothing here allocates after [`LuWorkspace::new`].
 
 use crate::C64;
+use crate::system::double_double::DoubleDouble;
 
 /// Preallocated LU factorisation `P A = L U` of an n × n complex matrix (row-major).
 #[derive(Clone, Debug)]
@@ -247,8 +248,8 @@ impl LuWorkspace {
         let n = self.n;
         let mut r = std::mem::take(&mut self.scratch_b);
         for i in 0..n {
-            let mut re = DoubleDouble::from(b[i].re);
-            let mut im = DoubleDouble::from(b[i].im);
+            let mut re = DoubleDouble::from_f64(b[i].re);
+            let mut im = DoubleDouble::from_f64(b[i].im);
             let row = &self.matrix[i * n..i * n + n];
             for (a, xj) in row.iter().zip(x.iter()) {
                 re.add_product(-a.re, xj.re);
@@ -263,40 +264,6 @@ impl LuWorkspace {
             *xi += ri;
         }
         self.scratch_b = r;
-    }
-}
-
-/// Unevaluated sum `hi + lo` with `|lo| ≤ ulp(hi)/2`: about 106 bits of precision.
-#[derive(Clone, Copy, Debug)]
-struct DoubleDouble {
-    hi: f64,
-    lo: f64,
-}
-
-impl From<f64> for DoubleDouble {
-    fn from(value: f64) -> Self {
-        DoubleDouble { hi: value, lo: 0.0 }
-    }
-}
-
-impl DoubleDouble {
-    /// `self ← self + a·b` with the product formed exactly by a fused multiply-add
-    /// (`TwoProduct`) and the sum by Knuth's `TwoSum`.
-    #[inline]
-    fn add_product(&mut self, a: f64, b: f64) {
-        let product = a * b;
-        let product_error = a.mul_add(b, -product);
-        let sum = self.hi + product;
-        let bb = sum - self.hi;
-        let sum_error = (self.hi - (sum - bb)) + (product - bb);
-        let lo = self.lo + sum_error + product_error;
-        let hi = sum + lo;
-        self.lo = lo - (hi - sum);
-        self.hi = hi;
-    }
-
-    fn value(self) -> f64 {
-        self.hi + self.lo
     }
 }
 

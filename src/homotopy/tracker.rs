@@ -18,14 +18,25 @@
 //!    `≈ C h⁵`; the next step is `h·(ε_pred/‖Δ₀‖)^{1/5}` (clamped to `[½, 2]`), so
 //!    the prediction error stays near `prediction_tolerance` (relative). A rejected step
 //!    halves `h`.
-//! 4. **Extended precision**: when steps collapse on an ill-conditioned stretch the
-//!    tracker switches to double-double residual refinement of every linear solve
-//!    (see [`crate::homotopy::linalg`]) before it gives up.
+//! 4. **Adaptive precision** (in the spirit of Bates, Hauenstein, Sommese & Wampler's
+//!    adaptive multiprecision): after `extended_after_rejections` consecutive rejected
+//!    steps the corrector evaluates its residual `H(x, t)` in double-double arithmetic
+//!    ([`Homotopy::evaluate_extended`], compiled tapes run in
+//!    [`crate::system::double_double`]) with the Jacobian and LU in double. A
+//!    double-precision residual carries rounding noise `≈ ε·Σ|terms|`, amplified by
+//!    κ(J) into the update; once `κ·ε` exceeds the corrector tolerance no step is
+//!    accepted. With an accurate residual, Newton's iteration is mixed-precision
+//!    iterative refinement and converges whenever `κ·ε < 1`. After
+//!    `extended_accepted_steps` accepted steps the tracker tries double again.
+//!    Consecutive accepted steps shorter than `stall_step_fraction` of the segment
+//!    (`stall_steps` of them) end a path that crawls towards a near-pole.
 //!
 //! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
 //! - estimates the valuations `v_i = Re(s ẋ_i(s) / x_i)` (`x_i ~ s^{v_i}`): a stable
 //!   negative valuation or a norm beyond `at_infinity_norm` means the path diverges
-//!   (solution at infinity, Huber & Verschelde's power-series test);
+//!   (solution at infinity, Huber & Verschelde's power-series test); while large
+//!   coordinates (‖x‖ ≥ 10) still have negative valuations no Cauchy loop is run (it
+//!   could not close on a finite estimate, and is costly that far out);
 //! - if the Jacobian is well conditioned, tracks straight to `t = 1` and refines the
 //!   endpoint by Newton (finite nonsingular);
 //! - otherwise runs the **Cauchy endgame** (Morgan, Sommese & Wampler 1991): it tracks
@@ -65,6 +76,34 @@ pub struct TrackerOptions {
     /// Newton's updates stagnate at rounding level and would otherwise reject every
     /// step until the step size underflows.
     pub corrector_noise_tolerance: f64,
+    /// Adaptive precision: after this many consecutive rejected steps the tracker
+    /// switches to extended precision (Newton residuals in double-double arithmetic,
+    /// [`Homotopy::evaluate_extended`], and refined linear solves). At condition
+    /// numbers κ with `κ·ε` above the corrector tolerance — e.g. critical points far
+    /// out along an isotropic direction — double-precision residuals are noise and no
+    /// step size is accepted; with an accurate residual Newton converges whenever
+    /// `κ·ε < 1`. 0 switches only when the step underflows `min_step_fraction`.
+    #[serde(default = "default_extended_after_rejections")]
+    pub extended_after_rejections: usize,
+    /// Whether extended precision evaluates the Newton residual in double-double
+    /// (`true`, the default); `false` keeps double-precision residuals, so extended
+    /// mode only changes the step control (for comparisons).
+    #[serde(default = "default_extended_residual")]
+    pub extended_residual: bool,
+    /// Accepted steps in extended precision after which the tracker tries double
+    /// precision again (it switches back after `extended_after_rejections` rejections).
+    #[serde(default = "default_extended_accepted_steps")]
+    pub extended_accepted_steps: usize,
+    /// A path stalls when this many consecutive accepted steps are shorter than
+    /// `stall_step_fraction` of their segment; it then fails with
+    /// [`FailureReason::StepSizeTooSmall`] instead of crawling to `max_steps` (a path
+    /// creeping towards a near-pole in the parameter plane, e.g. a critical point
+    /// escaping along an isotropic direction). 0 disables the test.
+    #[serde(default = "default_stall_steps")]
+    pub stall_steps: usize,
+    /// See `stall_steps`.
+    #[serde(default = "default_stall_step_fraction")]
+    pub stall_step_fraction: f64,
     /// Endgame zone starts at `s = 1 − t = endgame_start`.
     pub endgame_start: f64,
     /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
@@ -92,6 +131,26 @@ pub struct TrackerOptions {
     pub endpoint_residual: f64,
 }
 
+fn default_extended_after_rejections() -> usize {
+    3
+}
+
+fn default_extended_residual() -> bool {
+    true
+}
+
+fn default_extended_accepted_steps() -> usize {
+    16
+}
+
+fn default_stall_steps() -> usize {
+    200
+}
+
+fn default_stall_step_fraction() -> f64 {
+    1e-5
+}
+
 impl Default for TrackerOptions {
     /// Balanced preset: reliable on the katsura/cyclic benchmarks and singdist's systems.
     fn default() -> Self {
@@ -105,6 +164,11 @@ impl Default for TrackerOptions {
             max_corrector_iterations: 3,
             max_contraction: 0.25,
             corrector_noise_tolerance: 1e-8,
+            extended_after_rejections: default_extended_after_rejections(),
+            extended_accepted_steps: default_extended_accepted_steps(),
+            extended_residual: default_extended_residual(),
+            stall_steps: default_stall_steps(),
+            stall_step_fraction: default_stall_step_fraction(),
             endgame_start: 0.1,
             endgame_ratio: 0.25,
             endgame_min_radius: 1e-13,
@@ -147,6 +211,7 @@ impl TrackerOptions {
             endgame_ratio: 0.3,
             endgame_min_radius: 1e-15,
             max_winding_number: 32,
+            stall_steps: 1000,
             ..Self::default()
         }
     }
@@ -238,6 +303,8 @@ struct Evaluation {
     dh: Vec<C64>,
     rhs: Vec<C64>,
     lu: LuWorkspace,
+    /// [`TrackerOptions::extended_residual`].
+    extended_residual: bool,
 }
 
 /// Result of a Newton update.
@@ -247,9 +314,10 @@ enum NewtonUpdate {
 }
 
 impl Evaluation {
-    fn new(n: usize, work_len: usize) -> Self {
+    fn new(n: usize, work_len: usize, extended_residual: bool) -> Self {
         let z = C64::new(0.0, 0.0);
         Evaluation {
+            extended_residual,
             work: vec![z; work_len],
             h: vec![z; n],
             jac: vec![z; n * n],
@@ -266,7 +334,6 @@ impl Evaluation {
         x: &[C64],
         t: C64,
         dt: C64,
-        extended: bool,
         out: &mut [C64],
     ) -> bool {
         homotopy.evaluate_with_jacobian_and_time_derivative(
@@ -280,21 +347,17 @@ impl Evaluation {
         if !self.lu.factor(&self.jac) {
             return false;
         }
-        self.solve_velocity(dt, extended, out)
+        self.solve_velocity(dt, out)
     }
 
     /// `out ← −J⁻¹ dh · dt` with the current factorisation and `self.dh`.
-    fn solve_velocity(&mut self, dt: C64, extended: bool, out: &mut [C64]) -> bool {
+    fn solve_velocity(&mut self, dt: C64, out: &mut [C64]) -> bool {
         for (o, d) in out.iter_mut().zip(&self.dh) {
             *o = -d * dt;
         }
-        if extended {
-            self.rhs.copy_from_slice(out);
-            self.lu.solve_in_place(out);
-            self.lu.refine(&self.rhs, out);
-        } else {
-            self.lu.solve_in_place(out);
-        }
+        // No refinement in extended mode: the corrector's Newton iteration with an
+        // extended-precision residual corrects the predictor's error.
+        self.lu.solve_in_place(out);
         out.iter().all(|v| v.re.is_finite() && v.im.is_finite())
     }
 
@@ -307,17 +370,21 @@ impl Evaluation {
         extended: bool,
     ) -> NewtonUpdate {
         homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
+        if extended && self.extended_residual {
+            // Residual beyond double precision: the update is then limited by κ·ε of
+            // the linear solve, not by the rounding noise of H.
+            homotopy.evaluate_extended(x, t, &mut self.work, &mut self.h);
+        }
         if !self.lu.factor(&self.jac) {
             return NewtonUpdate::Singular;
         }
         for (r, h) in self.rhs.iter_mut().zip(&self.h) {
             *r = -h;
         }
+        // With an extended-precision residual Newton's iteration is itself the
+        // iterative refinement: no extra refinement of the linear solve.
         self.dh.copy_from_slice(&self.rhs);
         self.lu.solve_in_place(&mut self.dh);
-        if extended {
-            self.lu.refine(&self.rhs, &mut self.dh);
-        }
         let mut norm: f64 = 0.0;
         for (xi, d) in x.iter_mut().zip(&self.dh) {
             *xi += d;
@@ -369,6 +436,10 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     rejected: usize,
     extended: bool,
     used_extended: bool,
+    /// Rejected steps since the last accepted one.
+    consecutive_rejections: usize,
+    /// Accepted steps since extended precision was switched on.
+    extended_streak: usize,
     winding: usize,
     /// `eval.lu` holds J at (≈ x, t) of the current point (set after an accepted step).
     factorization_current: bool,
@@ -381,7 +452,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let z = C64::new(0.0, 0.0);
         Tracker {
             homotopy,
-            eval: Evaluation::new(n, homotopy.workspace_len()),
+            eval: Evaluation::new(n, homotopy.workspace_len(), options.extended_residual),
             options,
             n,
             x: vec![z; n],
@@ -408,6 +479,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             rejected: 0,
             extended: false,
             used_extended: false,
+            consecutive_rejections: 0,
+            extended_streak: 0,
             winding: 1,
             factorization_current: false,
         }
@@ -425,6 +498,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.rejected = 0;
         self.extended = false;
         self.used_extended = false;
+        self.consecutive_rejections = 0;
+        self.extended_streak = 0;
         self.winding = 1;
     }
 
@@ -577,6 +652,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             return Ok(());
         }
         let mut u = 0.0f64;
+        let mut short_steps = 0;
         self.factorization_current = false;
         while u < 1.0 {
             if self.steps >= self.options.max_steps {
@@ -597,6 +673,14 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             };
             match accepted {
                 Some(first_update) => {
+                    if h < self.options.stall_step_fraction && h < 1.0 - u {
+                        short_steps += 1;
+                        if self.options.stall_steps > 0 && short_steps >= self.options.stall_steps {
+                            return Err(SegmentError::Failure(FailureReason::StepSizeTooSmall));
+                        }
+                    } else {
+                        short_steps = 0;
+                    }
                     self.x.copy_from_slice(&self.x_predicted);
                     self.factorization_current = true;
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
@@ -612,14 +696,31 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         2.0
                     };
                     self.step = (h * length * factor).min(self.options.max_step);
+                    self.consecutive_rejections = 0;
+                    if self.extended {
+                        self.extended_streak += 1;
+                        if self.extended_streak >= self.options.extended_accepted_steps
+                            && self.options.extended_after_rejections > 0
+                        {
+                            // The ill-conditioned stretch may be behind: try double
+                            // precision again (it comes back after a few rejections).
+                            self.extended = false;
+                        }
+                    }
                 }
                 None => {
                     self.rejected += 1;
+                    self.consecutive_rejections += 1;
                     h *= 0.5;
+                    if !self.extended
+                        && self.options.extended_after_rejections > 0
+                        && self.consecutive_rejections >= self.options.extended_after_rejections
+                    {
+                        self.switch_to_extended();
+                    }
                     if h < self.options.min_step_fraction {
                         if !self.extended {
-                            self.extended = true;
-                            self.used_extended = true;
+                            self.switch_to_extended();
                             h *= 4.0;
                         } else {
                             let bad = self
@@ -638,6 +739,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             }
         }
         Ok(())
+    }
+
+    fn switch_to_extended(&mut self) {
+        self.extended = true;
+        self.used_extended = true;
+        self.extended_streak = 0;
     }
 
     /// The endgame from `t = 1 − s0` (see the module documentation).
@@ -661,19 +768,15 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 return PathStatus::AtInfinity;
             }
             // Valuations from dx/ds (dt/ds = −1).
-            let ok = self.eval.velocity(
-                self.homotopy,
-                &self.x,
-                t,
-                C64::new(-1.0, 0.0),
-                self.extended,
-                &mut self.k1,
-            );
+            let ok =
+                self.eval
+                    .velocity(self.homotopy, &self.x, t, C64::new(-1.0, 0.0), &mut self.k1);
             let condition = if ok {
                 self.eval.lu.condition_estimate()
             } else {
                 f64::INFINITY
             };
+            let mut diverging = false;
             if ok {
                 for i in 0..n {
                     self.valuations[i] = if self.x[i].norm() > 0.0 {
@@ -682,25 +785,24 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         0.0
                     };
                 }
-                if have_valuations {
-                    let mut stable = true;
-                    let mut smallest = f64::INFINITY;
-                    for i in 0..n {
-                        if self.x[i].norm() >= 1.0 {
-                            if (self.valuations[i] - self.previous_valuations[i]).abs() > 0.01 {
-                                stable = false;
-                            }
-                            smallest = smallest.min(self.valuations[i]);
+                let mut stable = have_valuations;
+                let mut smallest = f64::INFINITY;
+                for i in 0..n {
+                    if self.x[i].norm() >= 1.0 {
+                        if (self.valuations[i] - self.previous_valuations[i]).abs() > 0.01 {
+                            stable = false;
                         }
+                        smallest = smallest.min(self.valuations[i]);
                     }
-                    if stable && smallest < -self.options.valuation_threshold {
-                        stable_divergence += 1;
-                        if stable_divergence >= 2 {
-                            return PathStatus::AtInfinity;
-                        }
-                    } else {
-                        stable_divergence = 0;
+                }
+                diverging = smallest < -self.options.valuation_threshold && scale >= 10.0;
+                if stable && smallest < -self.options.valuation_threshold {
+                    stable_divergence += 1;
+                    if stable_divergence >= 2 {
+                        return PathStatus::AtInfinity;
                     }
+                } else {
+                    stable_divergence = 0;
                 }
                 self.previous_valuations.copy_from_slice(&self.valuations);
                 have_valuations = true;
@@ -734,7 +836,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 self.step = saved_step;
                 direct_failed = true;
             }
-            if direct_failed || condition >= self.options.direct_finish_condition {
+            // While the large coordinates still grow (negative valuations), the path is
+            // heading to infinity or has not reached the endgame's asymptotic regime:
+            // a Cauchy loop (costly far out, where the Jacobian is ill-conditioned)
+            // would not close on a finite estimate; the next radius is cheaper and the
+            // valuation test above classifies a divergent path.
+            if !diverging && (direct_failed || condition >= self.options.direct_finish_condition) {
                 match self.cauchy_loop(s) {
                     Ok(c) => {
                         if loops_done >= 1 {
@@ -892,35 +999,34 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// RK4 prediction from `(x, t)` to `t_new` into `x_predicted`.
     fn predict(&mut self, t: C64, t_mid: C64, t_new: C64, dt: C64, h: f64) -> Option<()> {
         let hom = self.homotopy;
-        let ext = self.extended;
         let e = &mut self.eval;
         if self.factorization_current {
             // The corrector's last factorisation is of J at a point within the corrector
             // tolerance of (x, t): reuse it, only ∂H/∂t is new.
             hom.evaluate_time_derivative(&self.x, t, &mut e.work, &mut e.dh);
-            if !e.solve_velocity(dt, ext, &mut self.k1) {
+            if !e.solve_velocity(dt, &mut self.k1) {
                 return None;
             }
-        } else if !e.velocity(hom, &self.x, t, dt, ext, &mut self.k1) {
+        } else if !e.velocity(hom, &self.x, t, dt, &mut self.k1) {
             return None;
         }
         self.factorization_current = false;
         for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k1) {
             *s = x + k * (0.5 * h);
         }
-        if !e.velocity(hom, &self.x_stage, t_mid, dt, ext, &mut self.k2) {
+        if !e.velocity(hom, &self.x_stage, t_mid, dt, &mut self.k2) {
             return None;
         }
         for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k2) {
             *s = x + k * (0.5 * h);
         }
-        if !e.velocity(hom, &self.x_stage, t_mid, dt, ext, &mut self.k3) {
+        if !e.velocity(hom, &self.x_stage, t_mid, dt, &mut self.k3) {
             return None;
         }
         for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k3) {
             *s = x + k * h;
         }
-        if !e.velocity(hom, &self.x_stage, t_new, dt, ext, &mut self.k4) {
+        if !e.velocity(hom, &self.x_stage, t_new, dt, &mut self.k4) {
             return None;
         }
         let w = h / 6.0;

@@ -24,6 +24,7 @@
 
 use super::{Evaluator, System};
 use crate::C64;
+use crate::system::double_double::ComplexDd;
 use crate::system::expr::{Expr, Kind};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -100,6 +101,29 @@ enum TapeOp {
     Scale,
 }
 
+/// The arithmetic a tape runs in: complex doubles, or complex double-doubles for
+/// extended-precision residuals.
+trait TapeScalar:
+    Copy + std::ops::Add<Output = Self> + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
+{
+    /// `self · Re(b)` (two real products instead of four).
+    fn scale_by_real_part(self, b: Self) -> Self;
+}
+
+impl TapeScalar for C64 {
+    #[inline]
+    fn scale_by_real_part(self, b: Self) -> Self {
+        self * b.re
+    }
+}
+
+impl TapeScalar for ComplexDd {
+    #[inline]
+    fn scale_by_real_part(self, b: Self) -> Self {
+        self.scale(b)
+    }
+}
+
 /// A finished straight-line program.
 #[derive(Clone, Debug)]
 struct Tape {
@@ -137,13 +161,25 @@ impl Tape {
             "workspace shorter than workspace_len()"
         );
         work[constants_start..temporaries_start].copy_from_slice(&self.constants);
-        let registers = work.as_mut_ptr();
+        self.execute(work);
+    }
+
+    /// Runs the instructions on `registers` (inputs and constants already loaded),
+    /// block by block so the inner loops do not branch on the operation.
+    #[inline]
+    fn execute<T: TapeScalar>(&self, registers: &mut [T]) {
+        let temporaries_start = self.num_inputs + self.constants.len();
+        assert!(
+            registers.len() >= self.workspace_len(),
+            "workspace shorter than workspace_len()"
+        );
+        let registers = registers.as_mut_ptr();
         let instructions = self.instructions.as_slice();
         // SAFETY (all blocks): `TapeBuilder::finish` checks that every operand of
         // instruction k is an input, a constant or a temporary computed before k, so
         // `a, b < temporaries_start + k`, that the blocks cover `0..instructions.len()`,
-        // and the destination `temporaries_start + k < workspace_len() <= work.len()`
-        // (asserted above). The pointer comes from a live `&mut [C64]`.
+        // and the destination `temporaries_start + k < workspace_len() <= len`
+        // (asserted above). The pointer comes from a live `&mut [T]`.
         macro_rules! run_block {
             ($block:expr, |$a:ident, $b:ident, $c:ident| $value:expr) => {
                 for k in $block.start as usize..$block.end as usize {
@@ -165,9 +201,34 @@ impl Tape {
                 TapeOp::MulAdd => run_block!(block, |a, b, c| c + a * b),
                 TapeOp::MulSubtractedFrom => run_block!(block, |a, b, c| c - a * b),
                 TapeOp::MulMinus => run_block!(block, |a, b, c| a * b - c),
-                TapeOp::Scale => run_block!(block, |a, b, _c| a * b.re),
+                TapeOp::Scale => run_block!(block, |a, b, _c| a.scale_by_real_part(b)),
             }
         }
+    }
+
+    /// Runs the tape in double-double arithmetic on `inputs` (the first `num_inputs`
+    /// registers) and writes the first `out.len()` outputs, rounded to double. The
+    /// registers live in a per-thread buffer that grows once.
+    fn run_extended(&self, inputs: &[C64], out: &mut [C64]) {
+        thread_local! {
+            static REGISTERS: std::cell::RefCell<Vec<ComplexDd>> =
+                const { std::cell::RefCell::new(Vec::new()) };
+        }
+        REGISTERS.with(|cell| {
+            let mut registers = cell.borrow_mut();
+            let len = self.workspace_len();
+            if registers.len() < len {
+                registers.resize(len, ComplexDd::default());
+            }
+            let loaded = inputs[..self.num_inputs].iter().chain(&self.constants);
+            for (r, v) in registers.iter_mut().zip(loaded) {
+                *r = ComplexDd::from_c64(*v);
+            }
+            self.execute(&mut registers);
+            for (target, &(register, sign)) in out.iter_mut().zip(&self.outputs) {
+                *target = registers[register as usize].to_c64() * sign;
+            }
+        });
     }
 
     /// Copies outputs `first..first + out.len()` into `out`.
@@ -705,6 +766,13 @@ impl Evaluator for CompiledSystem {
         let tape = &self.parts.values;
         tape.run(work);
         tape.write_outputs(work, 0, f);
+    }
+
+    fn evaluate_extended(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.load(x, p, work);
+        // The tape's input registers are the workspace's first ones (x, p, then inputs
+        // only other tapes read).
+        self.parts.values.run_extended(work, f);
     }
 
     fn evaluate_with_jacobian(

@@ -37,6 +37,7 @@ use crate::C64;
 pub mod bertini;
 pub mod builder;
 pub mod compile;
+pub mod double_double;
 pub mod expr;
 pub mod parse;
 pub mod phc;
@@ -69,6 +70,12 @@ pub trait Evaluator: Send + Sync {
 
     /// `f ← F(x; p)`.
     fn evaluate(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]);
+    /// `f ← F(x; p)` evaluated in double-double arithmetic and rounded (see
+    /// [`double_double`]): the residual for Newton steps at ill-conditioned points.
+    /// The default evaluates in double precision.
+    fn evaluate_extended(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.evaluate(x, p, work, f);
+    }
 
     /// `f ← F(x; p)` and `jac ← ∂F/∂x (x; p)`.
     fn evaluate_with_jacobian(

@@ -1,0 +1,190 @@
+//! Double-double ("DD") complex arithmetic for residuals evaluated beyond double
+//! precision: a value is an unevaluated sum `hi + lo` with `|lo| ≤ ulp(hi)/2`, about
+//! 106 significant bits (Dekker 1971; Hida, Li & Bailey, *Algorithms for quad-double
+//! precision floating point arithmetic*, 2001: `two_sum`, FMA-based `two_prod`).
+//!
+//! Used by [`super::Evaluator::evaluate_extended`]: Newton with an accurate residual
+//! and a double-precision Jacobian converges to full double accuracy whenever
+//! `κ(J)·ε < 1`, whereas a double-precision residual stalls at a relative noise floor
+//! of about `κ(J)·ε·Σ|terms|/|F|`.
+
+use crate::C64;
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A real double-double number `hi + lo`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DoubleDouble {
+    /// Leading part (the double nearest the value).
+    pub hi: f64,
+    /// Trailing part.
+    pub lo: f64,
+}
+
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+#[inline]
+fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+impl DoubleDouble {
+    /// The exact value of a double.
+    #[inline]
+    pub fn from_f64(value: f64) -> Self {
+        DoubleDouble { hi: value, lo: 0.0 }
+    }
+
+    /// `self ← self + a·b` for doubles `a, b`: the product formed exactly by a fused
+    /// multiply-add (`TwoProduct`), the sum by Knuth's `TwoSum` (dot products of
+    /// mixed-precision iterative refinement).
+    #[inline]
+    pub fn add_product(&mut self, a: f64, b: f64) {
+        let product = a * b;
+        let product_error = a.mul_add(b, -product);
+        let (sum, sum_error) = two_sum(self.hi, product);
+        let lo = self.lo + sum_error + product_error;
+        let (hi, lo) = quick_two_sum(sum, lo);
+        self.hi = hi;
+        self.lo = lo;
+    }
+
+    /// Rounded to the nearest double.
+    #[inline]
+    pub fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+}
+
+impl Add for DoubleDouble {
+    type Output = Self;
+    /// Sum, correctly rounded to about 106 bits.
+    #[inline]
+    fn add(self, other: Self) -> Self {
+        let (s, e) = two_sum(self.hi, other.hi);
+        let (t, f) = two_sum(self.lo, other.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Neg for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        DoubleDouble {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Mul for DoubleDouble {
+    type Output = Self;
+    /// Product (FMA for the exact error of `hi·hi`).
+    #[inline]
+    fn mul(self, other: Self) -> Self {
+        let p = self.hi * other.hi;
+        let e = self.hi.mul_add(other.hi, -p) + (self.hi * other.lo + self.lo * other.hi);
+        let (hi, lo) = quick_two_sum(p, e);
+        DoubleDouble { hi, lo }
+    }
+}
+
+/// A complex double-double number.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ComplexDd {
+    /// Real part.
+    pub re: DoubleDouble,
+    /// Imaginary part.
+    pub im: DoubleDouble,
+}
+
+impl ComplexDd {
+    /// The exact value of a complex double.
+    #[inline]
+    pub fn from_c64(value: C64) -> Self {
+        ComplexDd {
+            re: DoubleDouble::from_f64(value.re),
+            im: DoubleDouble::from_f64(value.im),
+        }
+    }
+
+    /// Rounded to the nearest complex double.
+    #[inline]
+    pub fn to_c64(self) -> C64 {
+        C64::new(self.re.hi + self.re.lo, self.im.hi + self.im.lo)
+    }
+
+    /// Product with the real part of `other` only.
+    #[inline]
+    pub fn scale(self, other: Self) -> Self {
+        ComplexDd {
+            re: self.re * other.re,
+            im: self.im * other.re,
+        }
+    }
+}
+
+impl Add for ComplexDd {
+    type Output = Self;
+    #[inline]
+    fn add(self, other: Self) -> Self {
+        ComplexDd {
+            re: self.re + other.re,
+            im: self.im + other.im,
+        }
+    }
+}
+
+impl Sub for ComplexDd {
+    type Output = Self;
+    #[inline]
+    fn sub(self, other: Self) -> Self {
+        ComplexDd {
+            re: self.re + -other.re,
+            im: self.im + -other.im,
+        }
+    }
+}
+
+impl Mul for ComplexDd {
+    type Output = Self;
+    /// `(a + ib)(c + id) = (ac − bd) + i(ad + bc)`.
+    #[inline]
+    fn mul(self, other: Self) -> Self {
+        ComplexDd {
+            re: self.re * other.re + -(self.im * other.im),
+            im: self.re * other.im + self.im * other.re,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `(1 + 2⁻⁶⁰) − 1` is lost in double precision but exact in double-double, and
+    /// `(1 + 2⁻³⁰)²` keeps its `2⁻⁶⁰` term.
+    #[test]
+    fn keeps_the_bits_double_precision_loses() {
+        let tiny = 2f64.powi(-60);
+        let one = DoubleDouble::from_f64(1.0);
+        let sum = one + DoubleDouble::from_f64(tiny);
+        let back = sum + -one;
+        assert_eq!(back.hi + back.lo, tiny);
+        let x = DoubleDouble::from_f64(1.0 + 2f64.powi(-30));
+        let square = x * x;
+        let rest = square + DoubleDouble::from_f64(-1.0 - 2f64.powi(-29));
+        assert_eq!(rest.hi + rest.lo, tiny);
+        let z =
+            ComplexDd::from_c64(C64::new(1.0, 2.0)).mul(ComplexDd::from_c64(C64::new(3.0, -1.0)));
+        assert_eq!(z.to_c64(), C64::new(5.0, 5.0));
+    }
+}
