@@ -15,7 +15,7 @@ use singdist::io::rrr::load_rrr_design;
 use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
-    verify_rrr_start_solutions,
+    trace_certificate, verify_rrr_start_solutions,
 };
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, RrrCurveResult, compute_rrr_curve, default_rrr_start_solutions,
@@ -81,6 +81,11 @@ pub struct RrrAbInitioArgs {
     /// Verify the embedded files instead of computing.
     #[arg(long)]
     verify: bool,
+    /// With `--verify`: re-run the trace test on the embedded solutions (witness loops:
+    /// `--stagnant-loops`, slices from `--seed`); with `--out-dir`, write the files with
+    /// the new certificate.
+    #[arg(long, requires = "verify")]
+    retrace: bool,
     /// Skip the trace test (measure the monodromy count only; certificate `none`).
     #[arg(long)]
     no_trace_test: bool,
@@ -309,13 +314,28 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
             .map(|s| s.parse().context("--problem"))
             .collect::<Result<_>>()?
     };
+    let mut options = RrrAbInitioOptions {
+        seed: args.seed,
+        ..RrrAbInitioOptions::default()
+    };
+    options.monodromy.trace_test = !args.no_trace_test;
+    options.monodromy.max_stagnant_loops = args.stagnant_loops;
     for kind in kinds {
         let problem = RrrProblem::new(kind)?;
         if args.verify {
             let Some(file) = embedded_rrr_start_solutions(kind) else {
                 bail!("{}: no embedded start-solution file", kind.name());
             };
-            let report = verify_rrr_start_solutions(&problem, &file?)?;
+            let mut file = file?;
+            if args.retrace {
+                let started = std::time::Instant::now();
+                file.certificate = trace_certificate(&problem, &file, &options)?;
+                print_summary(&file, started);
+                if let Some(dir) = &args.out_dir {
+                    write_start_file(dir, kind, &file)?;
+                }
+            }
+            let report = verify_rrr_start_solutions(&problem, &file)?;
             println!(
                 "{}: {} solutions, max residual {:.2e}, min separation {:.2e}, min σ ratio {:.2e}: {}",
                 report.problem,
@@ -328,30 +348,41 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
             continue;
         }
         let started = std::time::Instant::now();
-        let mut options = RrrAbInitioOptions {
-            seed: args.seed,
-            ..RrrAbInitioOptions::default()
-        };
-        options.monodromy.trace_test = !args.no_trace_test;
-        options.monodromy.max_stagnant_loops = args.stagnant_loops;
         let file = compute_rrr_start_solutions(&problem, &options)?;
-        println!(
-            "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {:?}, {} loops, {} failed paths) in {:.1} s",
-            kind.name(),
-            file.solutions.len(),
-            file.max_residual,
-            file.certificate.kind,
-            file.certificate.trace_residual,
-            file.certificate.loops,
-            file.certificate.failed_paths,
-            started.elapsed().as_secs_f64()
-        );
+        print_summary(&file, started);
         if let Some(dir) = &args.out_dir {
-            let path = dir.join(format!("{}.json", kind.file_stem()));
-            let text = serde_json::to_string(&file).context("serialising start solutions")?;
-            std::fs::write(&path, text)
-                .with_context(|| format!("--out-dir: {}: cannot write", path.display()))?;
+            write_start_file(dir, kind, &file)?;
         }
     }
     Ok(())
+}
+
+/// One line: count, residual, certificate, time.
+fn print_summary(
+    file: &singdist::pipeline::start_file::StartSolutions,
+    started: std::time::Instant,
+) {
+    println!(
+        "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {:?}, {} loops, {} failed paths, passed {}) in {:.1} s",
+        file.problem,
+        file.solutions.len(),
+        file.max_residual,
+        file.certificate.kind,
+        file.certificate.trace_residual,
+        file.certificate.loops,
+        file.certificate.failed_paths,
+        file.certificate.passed,
+        started.elapsed().as_secs_f64()
+    );
+}
+
+fn write_start_file(
+    dir: &Path,
+    kind: RrrSubProblem,
+    file: &singdist::pipeline::start_file::StartSolutions,
+) -> Result<()> {
+    let path = dir.join(format!("{}.json", kind.file_stem()));
+    let text = serde_json::to_string(file).context("serialising start solutions")?;
+    std::fs::write(&path, text)
+        .with_context(|| format!("--out-dir: {}: cannot write", path.display()))
 }

@@ -52,6 +52,14 @@ pub struct MonodromyOptions {
     pub trace_tolerance: f64,
     /// Rounds of witness-set monodromy + trace evaluation while the trace fails.
     pub trace_rounds: usize,
+    /// `Some(k)`: the trace test slices and sums only the first `k` unknowns (and `μ`),
+    /// i.e. it certifies the projection of the incidence curve to those coordinates.
+    /// For Lagrange systems whose multipliers (the last unknowns) diverge along the
+    /// curve while the coordinates stay finite: those branches have points at infinity
+    /// on every slice involving the multipliers, inflating the witness set, but finite
+    /// ends in the projection. `None`: every unknown (the default).
+    #[serde(default)]
+    pub trace_slice_unknowns: Option<usize>,
 }
 
 impl Default for MonodromyOptions {
@@ -65,6 +73,7 @@ impl Default for MonodromyOptions {
             trace_test: true,
             trace_tolerance: 1e-8,
             trace_rounds: 4,
+            trace_slice_unknowns: None,
         }
     }
 }
@@ -117,10 +126,11 @@ fn parameter_scale(p: &[C64]) -> f64 {
 }
 
 /// Tracks every point of `solutions` over `system` around random triangles based at
-/// `base`, adding new endpoints, until stagnation. Returns (loops, failed paths).
+/// `base` (the parameters `pinned` keep their base values), adding new endpoints, until
+/// stagnation. Returns (loops, failed paths).
 fn populate<F: Evaluator + ?Sized>(
     system: &F,
-    base: &[C64],
+    (base, pinned): (&[C64], std::ops::Range<usize>),
     solutions: &mut Vec<Vec<C64>>,
     options: &MonodromyOptions,
     target: Option<usize>,
@@ -135,8 +145,12 @@ fn populate<F: Evaluator + ?Sized>(
         && loops < options.max_loops
         && target.is_none_or(|t| solutions.len() < t)
     {
-        let p1 = random_point(rng, m, scale);
-        let p2 = random_point(rng, m, scale);
+        let mut p1 = random_point(rng, m, scale);
+        let mut p2 = random_point(rng, m, scale);
+        for i in pinned.clone() {
+            p1[i] = base[i];
+            p2[i] = base[i];
+        }
         let homotopy =
             PolylineParameterHomotopy::through(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
         let results: Vec<_> = solutions
@@ -220,7 +234,7 @@ pub fn monodromy_solve<F: Evaluator + ?Sized>(
     let mut solutions = vec![start_solution.to_vec()];
     let (loops, mut failed) = populate(
         system,
-        start_parameters,
+        (start_parameters, 0..0),
         &mut solutions,
         options,
         options.target_solution_count,
@@ -297,7 +311,12 @@ pub fn trace_test<F: Evaluator + ?Sized>(
         direction,
     };
     let special = vec![C64::new(0.0, 0.0); n + 1];
-    let generic = random_point(rng, n + 1, 1.0);
+    let mut generic = random_point(rng, n + 1, 1.0);
+    // Slice coefficients of the unknowns left out of the slice stay zero.
+    let sliced = options.trace_slice_unknowns.unwrap_or(n).min(n);
+    for a in &mut generic[sliced..n] {
+        *a = C64::new(0.0, 0.0);
+    }
     let track = |from: &[C64], to: &[C64], starts: &[Vec<C64>], endgame: bool| {
         let homotopy = ParameterHomotopy::segment(&curve, from, to);
         starts
@@ -350,11 +369,17 @@ pub fn trace_test<F: Evaluator + ?Sized>(
             max_stagnant_loops: options.max_stagnant_loops << round.min(8),
             ..options.clone()
         };
-        let (loops, witness_failed) =
-            populate(&curve, &generic, &mut witness, &round_options, None, rng);
+        let (loops, witness_failed) = populate(
+            &curve,
+            (&generic, sliced..n),
+            &mut witness,
+            &round_options,
+            None,
+            rng,
+        );
         witness_loops += loops;
         failed += witness_failed;
-        match trace_residual(&witness, &generic, delta, &track) {
+        match trace_residual(&witness, (&generic, sliced), delta, &track) {
             Some(r) => residual = r,
             None => {
                 failed += 1;
@@ -387,8 +412,14 @@ pub fn trace_test<F: Evaluator + ?Sized>(
 }
 
 /// `‖s(c+δ) − 2 s(c) + s(c−δ)‖∞ / (1 + Σ‖w‖∞)` for the witness set on the slice
-/// `generic` (last coordinate c); `None` if a path fails.
-fn trace_residual<T>(witness: &[Vec<C64>], generic: &[C64], delta: C64, track: &T) -> Option<f64>
+/// `generic` (last coordinate c), over the first `sliced` unknowns and `μ`; `None` if a
+/// path fails.
+fn trace_residual<T>(
+    witness: &[Vec<C64>],
+    (generic, sliced): (&[C64], usize),
+    delta: C64,
+    track: &T,
+) -> Option<f64>
 where
     T: Fn(&[C64], &[C64], &[Vec<C64>], bool) -> Vec<super::tracker::PathResult>,
 {
@@ -409,15 +440,16 @@ where
             }
         }
     }
+    let traced = || (0..sliced).chain(std::iter::once(last));
     let mut magnitude = 1.0;
     let mut center = vec![C64::new(0.0, 0.0); generic.len()];
     for w in witness {
-        magnitude += w.iter().fold(0.0f64, |a, v| a.max(v.norm()));
+        magnitude += traced().fold(0.0f64, |a, i| a.max(w[i].norm()));
         for (s, v) in center.iter_mut().zip(w) {
             *s += v;
         }
     }
-    let second_difference = (0..generic.len())
+    let second_difference = traced()
         .map(|i| (sums[0][i] - 2.0 * center[i] + sums[1][i]).norm())
         .fold(0.0f64, f64::max);
     Some(second_difference / magnitude)

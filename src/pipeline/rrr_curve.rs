@@ -13,22 +13,25 @@
 //! 2. **Parameter homotopy** (paper §5.3): seed solutions → the real configuration of
 //!    every pose, all (pose, sub-problem) pairs in parallel (rayon); each path is a pure
 //!    function of its inputs, so results do not depend on the thread count.
-//! 3. **No silent losses**: a (pose, sub-problem) that ends with fewer finite endpoints
-//!    than start solutions re-tracks the lost paths with conservative settings, then all
-//!    paths along a random complex detour; what is still missing is reported as an
-//!    [`RrrPathFailure`].
+//! 3. **No silent losses** (the 3-RPR machinery, [`super::curve`]): a (pose,
+//!    sub-problem) with failed paths re-tracks them with conservative settings, then
+//!    every path along polylines through a random complex detour point near the target
+//!    ([`PolylinePath`]); finite endpoints of all attempts are merged. A path counts as
+//!    accounted for only with a finite endpoint or when the endgame classifies it
+//!    [`crate::homotopy::PathStatus::AtInfinity`] (e.g. `λ → ∞` with `K′` finite: `K′`
+//!    tends to a singular point of the constraint variety); what is still missing is
+//!    reported as an [`RrrPathFailure`].
 //! 4. **Post-processing**: real critical points (`max |Im| ≤ tol·(1+‖x‖∞)`), `D(K, K′)`
 //!    recomputed in f64 ([`distance`]), minimum per sub-problem; the signed distance
 //!    carries the sign of the sub-problem's determinant at K (parallel determinant, or
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (paper Remark 11).
 
+use super::curve::track_with_retries;
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::start_file::StartSolutions;
 use crate::C64;
-use crate::homotopy::{
-    Homotopy, ParameterHomotopy, PathResult, PolylineParameterHomotopy, Tracker, TrackerOptions,
-};
+use crate::homotopy::{PolylinePath, TrackerOptions};
 use crate::mechanism::rrr::{
     CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
 };
@@ -81,6 +84,10 @@ pub struct RrrCurveOptions {
     pub retry_tracker: TrackerOptions,
     /// Detour re-runs of a (pose, sub-problem) that lost paths.
     pub retry_attempts: usize,
+    /// Detour re-runs of the source → seed homotopy of a sub-problem that lost paths (it
+    /// runs once per curve and every pose inherits what it misses).
+    #[serde(default = "default_seed_retry_attempts")]
+    pub seed_retry_attempts: usize,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
 }
@@ -92,25 +99,20 @@ impl Default for RrrCurveOptions {
             tracker: TrackerOptions::default(),
             retry_tracker: TrackerOptions::conservative(),
             retry_attempts: 2,
+            seed_retry_attempts: default_seed_retry_attempts(),
             real_tolerance: 1e-8,
         }
     }
 }
 
-/// Paths lost at some pose (or at the seed), reported instead of dropped.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RrrPathFailure {
-    /// Pose index (`None` for the seed stage).
-    pub pose_index: Option<usize>,
-    /// τ of the pose.
-    pub tau: Option<f64>,
-    /// Problem name, e.g. `rrr:leg2`.
-    pub problem: String,
-    /// Start-solution count.
-    pub expected: usize,
-    /// Finite endpoints reached (best attempt).
-    pub finite: usize,
+fn default_seed_retry_attempts() -> usize {
+    6
 }
+
+/// Paths lost at some pose (or at the seed), reported instead of dropped: the 3-RPR
+/// record ([`super::curve::PathFailure`]); `problem` is e.g. `rrr:leg2`, `accounted` the
+/// paths with a finite endpoint or classified at infinity.
+pub type RrrPathFailure = super::curve::PathFailure;
 
 /// One sub-problem prepared at the seed.
 pub struct RrrSeededProblem {
@@ -120,7 +122,9 @@ pub struct RrrSeededProblem {
     pub seed_parameters: Vec<C64>,
     /// Finite solutions at the seed.
     pub seed_solutions: Vec<Vec<C64>>,
-    /// Number of generic start solutions.
+    /// Number of paths tracked from the seed to every pose: the seed's finite solutions
+    /// (the generic count unless the source → seed homotopy lost paths, which is then
+    /// reported in [`RrrSeedStage::failures`]).
     pub start_count: usize,
 }
 
@@ -149,10 +153,13 @@ pub struct RrrSubproblemResult {
     pub real_critical_points: usize,
     /// Finite endpoints (all attempts merged).
     pub finite_endpoints: usize,
-    /// Lost paths with `K′` finite and `λ → ∞` ([`MULTIPLIER_DIVERGENCE_RATIO`]): `K′`
-    /// tends to a singular point of the constraint variety (not a critical point).
-    pub multiplier_divergent_paths: usize,
-    /// Start-solution count (generic root count).
+    /// Paths accounted for: finite endpoint or classified at infinity by the endgame (best
+    /// attempt, or the attempts' merged finite endpoints plus the reference route's paths
+    /// at infinity). Fewer than `expected_endpoints` means lost paths (an entry in
+    /// `failures`).
+    pub accounted_paths: usize,
+    /// Paths tracked from the seed (the seed's finite solutions, normally the generic
+    /// root count).
     pub expected_endpoints: usize,
 }
 
@@ -215,126 +222,27 @@ pub struct RrrCurveResult {
     pub paths_tracked: usize,
 }
 
-fn track_all<H: Homotopy + ?Sized>(
-    homotopy: &H,
-    starts: &[Vec<C64>],
-    options: &TrackerOptions,
-) -> Vec<PathResult> {
-    let mut tracker = Tracker::new(homotopy, options.clone());
-    starts
+/// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal
+/// per coordinate, `ε = 0.1·(1 + ‖target‖∞)`.
+fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
+    let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
+    target
         .iter()
-        .enumerate()
-        .map(|(i, x)| tracker.track(x, i))
+        .map(|v| v + random::complex_normal(rng) * scale)
         .collect()
 }
 
-fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
-    paths
-        .iter()
-        .filter(|p| p.status.is_finite())
-        .map(|p| p.solution.clone())
-        .collect()
-}
-
-fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
-    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-    a.iter()
-        .zip(b)
-        .all(|(x, y)| (x - y).norm() <= tolerance * scale)
-}
-
-/// A lost path whose multiplier λ (last unknown) exceeds this multiple of
-/// `1 + max |K′ coordinate|` at its last point is *multiplier-divergent*: `K′` stays finite
-/// while `λ → ∞`, i.e. `K′` tends to a singular point of the constraint variety
-/// (`∇C(K′) = 0`), where the Lagrange conditions do not apply (cf. SPEC A.6.3 for the
-/// 3-RPR). Such paths carry no finite critical point and are counted, not reported lost.
-/// (Measured on the example: every lost parallel path ends with `|K′|∞ ≤ 1.6` and
-/// `|λ|` between 15 and 300 when the tracker gives up.)
-pub const MULTIPLIER_DIVERGENCE_RATIO: f64 = 5.0;
-
-fn multiplier_divergent(x: &[C64]) -> bool {
-    let Some((lambda, coordinates)) = x.split_last() else {
-        return false;
-    };
-    let scale = 1.0 + coordinates.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-    lambda.norm() > MULTIPLIER_DIVERGENCE_RATIO * scale
-}
-
-/// Endpoints of [`track_with_retries`].
-struct Tracked {
-    /// Finite endpoints, merged over attempts.
-    endpoints: Vec<Vec<C64>>,
-    /// Finite endpoints of the best attempt.
-    best: usize,
-    /// Lost paths of the straight attempt that are multiplier-divergent.
-    divergent: usize,
-    /// Paths tracked.
-    tracked: usize,
-}
-
-/// Tracks `starts` from `from` to `to`; re-tracks lost paths conservatively, then (if
-/// still short of `expected`, not counting multiplier-divergent paths) all paths along
-/// random complex detours.
-fn track_with_retries(
-    problem: &RrrProblem,
-    starts: &[Vec<C64>],
-    from: &[C64],
-    to: &[C64],
-    expected: usize,
-    options: &RrrCurveOptions,
-    stream: u64,
-) -> Tracked {
-    let system = problem.evaluator();
-    let straight = ParameterHomotopy::segment(system, from, to);
-    let mut paths = track_all(&straight, starts, &options.tracker);
-    let mut tracked = starts.len();
-    if paths.iter().filter(|p| p.status.is_finite()).count() < expected {
-        let mut careful = Tracker::new(&straight, options.retry_tracker.clone());
-        for (i, path) in paths.iter_mut().enumerate() {
-            // Multiplier-divergent paths are structural (no finite endpoint): not re-run.
-            if !path.status.is_finite() && !multiplier_divergent(&path.solution) {
-                *path = careful.track(&starts[i], i);
-                tracked += 1;
-            }
-        }
+/// The route of attempt `attempt` from `from` to `to`: the straight segment for attempt
+/// 0, else the polyline through a random complex detour point near `to` (seeded by
+/// `(seed, stream, attempt)`).
+fn route(from: &[C64], to: &[C64], seed: u64, stream: u64, attempt: usize) -> PolylinePath {
+    let mut points = vec![from.to_vec()];
+    if attempt > 0 {
+        let mut rng = random::stream(seed, stream.wrapping_mul(16).wrapping_add(attempt as u64));
+        points.push(detour_point(to, &mut rng));
     }
-    let mut endpoints = finite_solutions(&paths);
-    let mut best = endpoints.len();
-    let divergent = paths
-        .iter()
-        .filter(|p| !p.status.is_finite() && multiplier_divergent(&p.solution))
-        .count();
-    for attempt in 0..options.retry_attempts {
-        if best + divergent >= expected {
-            break;
-        }
-        let mut rng = random::stream(
-            options.seed,
-            stream.wrapping_mul(16).wrapping_add(attempt as u64 + 1),
-        );
-        let scale = 0.1 * (1.0 + to.iter().fold(0.0f64, |m, v| m.max(v.norm())));
-        let via: Vec<C64> = to
-            .iter()
-            .map(|v| v + random::complex_normal(&mut rng) * scale)
-            .collect();
-        let polyline =
-            PolylineParameterHomotopy::through(system, vec![from.to_vec(), via, to.to_vec()]);
-        let paths = track_all(&polyline, starts, &options.retry_tracker);
-        tracked += starts.len();
-        let found = finite_solutions(&paths);
-        best = best.max(found.len());
-        for x in found {
-            if !endpoints.iter().any(|y| same_point(y, &x, 1e-8)) {
-                endpoints.push(x);
-            }
-        }
-    }
-    Tracked {
-        endpoints,
-        best,
-        divergent,
-        tracked,
-    }
+    points.push(to.to_vec());
+    PolylinePath::new(points)
 }
 
 /// Characteristic length of the design: largest base-joint or moving-frame platform-joint
@@ -424,33 +332,37 @@ pub fn rrr_seed_stage(
         .enumerate()
         .map(|(index, (problem, source, starts))| {
             let expected = starts.len();
-            let Tracked {
-                endpoints: solutions,
-                best,
-                tracked,
-                ..
-            } = track_with_retries(
-                &problem,
+            let (solutions, accounted, tracked) = track_with_retries(
+                problem.evaluator(),
                 &starts,
-                &source,
-                &seed_parameters,
-                expected,
-                options,
-                (index as u64) << 32,
+                |attempt| {
+                    route(
+                        &source,
+                        &seed_parameters,
+                        options.seed,
+                        (index as u64) << 32,
+                        attempt,
+                    )
+                },
+                options.seed_retry_attempts,
+                (&options.tracker, &options.retry_tracker),
             );
-            let failure = (best < expected).then(|| RrrPathFailure {
+            let failure = (accounted < expected).then(|| RrrPathFailure {
                 pose_index: None,
                 tau: None,
                 problem: problem.kind().name(),
                 expected,
-                finite: best,
+                accounted,
             });
+            // The seed is generic (all 18 coordinates perturbed): every path should end
+            // finite there; the poses expect the seed's finite solutions.
+            let start_count = solutions.len();
             (
                 RrrSeededProblem {
                     problem,
                     seed_parameters: seed_parameters.clone(),
                     seed_solutions: solutions,
-                    start_count: expected,
+                    start_count,
                 },
                 failure,
                 tracked,
@@ -487,27 +399,28 @@ fn solve_subproblem(
 ) -> Entry {
     let target: Vec<C64> = k.iter().map(|&v| C64::new(v, 0.0)).collect();
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-    let Tracked {
-        endpoints,
-        best,
-        divergent,
-        tracked,
-    } = track_with_retries(
-        &seeded.problem,
+    let (endpoints, accounted, tracked) = track_with_retries(
+        seeded.problem.evaluator(),
         &seeded.seed_solutions,
-        &seeded.seed_parameters,
-        &target,
-        seeded.start_count,
-        options,
-        stream,
+        |attempt| {
+            route(
+                &seeded.seed_parameters,
+                &target,
+                options.seed,
+                stream,
+                attempt,
+            )
+        },
+        options.retry_attempts,
+        (&options.tracker, &options.retry_tracker),
     );
     let kind = seeded.problem.kind();
-    let failure = (best + divergent < seeded.start_count).then(|| RrrPathFailure {
+    let failure = (accounted < seeded.start_count).then(|| RrrPathFailure {
         pose_index: Some(index),
         tau: Some(tau),
         problem: kind.name(),
         expected: seeded.start_count,
-        finite: best,
+        accounted,
     });
     let mut best_candidate: Option<(f64, [f64; CONFIGURATION_LEN])> = None;
     let mut real = 0;
@@ -530,7 +443,7 @@ fn solve_subproblem(
             determinant,
             real_critical_points: real,
             finite_endpoints: endpoints.len(),
-            multiplier_divergent_paths: divergent,
+            accounted_paths: accounted,
             expected_endpoints: seeded.start_count,
         },
         failure,
