@@ -625,6 +625,22 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     (endpoints, best, tracked)
 }
 
+/// Splits the per-problem results of a seed stage into the seeded problems, their
+/// failures and the total number of paths tracked.
+pub(crate) fn split_seed_results<T>(
+    tracked: Vec<(T, Option<PathFailure>, usize)>,
+) -> (Vec<T>, Vec<PathFailure>, usize) {
+    let mut problems = Vec::new();
+    let mut failures = Vec::new();
+    let mut paths_tracked = 0;
+    for (problem, failure, count) in tracked {
+        problems.push(problem);
+        failures.extend(failure);
+        paths_tracked += count;
+    }
+    (problems, failures, paths_tracked)
+}
+
 /// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
 /// solutions from `provider` and tracks them to the common seed (in parallel).
 pub fn seed_stage(
@@ -740,14 +756,7 @@ pub fn seed_stage(
             )
         })
         .collect();
-    let mut problems = Vec::new();
-    let mut failures = Vec::new();
-    let mut paths_tracked = 0;
-    for (problem, failure, count) in tracked {
-        problems.push(problem);
-        failures.extend(failure);
-        paths_tracked += count;
-    }
+    let (problems, failures, paths_tracked) = split_seed_results(tracked);
     Ok(SeedStage {
         problems,
         not_applicable,

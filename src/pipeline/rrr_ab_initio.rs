@@ -21,9 +21,9 @@
 //! points, and the witness set of the parallel problem has 134 points (residual ≈ 5e-15).
 
 use super::start_file::{Certificate, StartSolutions};
-use super::start_pair::{StartPairError, find_start_pair};
+use super::start_pair::find_start_pair;
 use crate::C64;
-use crate::homotopy::{HomotopyError, MonodromyOptions, TrackerOptions, monodromy_solve};
+use crate::homotopy::{MonodromyOptions, TrackerOptions, monodromy_solve};
 use crate::mechanism::rrr::CONFIGURATION_LEN;
 use crate::problem::rrr::{RRR_METRIC_NAME, RrrProblem, RrrSubProblem};
 use crate::system::Evaluator;
@@ -31,34 +31,9 @@ use crate::system::Evaluator;
 /// Default seed of the 3-RRR ab-initio stage (the stored files were made with it).
 pub const RRR_DEFAULT_SEED: u64 = 20_260_201;
 
-/// Errors of the 3-RRR ab-initio stage.
-#[derive(Debug, thiserror::Error)]
-pub enum RrrAbInitioError {
-    /// No start pair.
-    #[error("{problem}: {source}")]
-    StartPair {
-        /// Problem name.
-        problem: String,
-        /// Cause.
-        source: StartPairError,
-    },
-    /// The monodromy solver failed.
-    #[error("{problem}: {source}")]
-    Homotopy {
-        /// Problem name.
-        problem: String,
-        /// Cause.
-        source: HomotopyError,
-    },
-    /// A start-solution file is unreadable or does not belong to its problem.
-    #[error("start-solution file of {problem}: {message}")]
-    File {
-        /// Problem name.
-        problem: String,
-        /// What is wrong, naming the field.
-        message: String,
-    },
-}
+/// Errors of the 3-RRR ab-initio stage: those of the 3-RPR stage (start pair, monodromy,
+/// start-solution file; never `Problem`, the 3-RRR systems are built infallibly here).
+pub type RrrAbInitioError = super::ab_initio::AbInitioError;
 
 /// Options of the 3-RRR ab-initio stage.
 #[derive(Clone, Debug)]

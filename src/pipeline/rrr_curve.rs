@@ -27,7 +27,7 @@
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (paper Remark 11).
 
-use super::curve::track_with_retries;
+use super::curve::{split_seed_results, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::start_file::StartSolutions;
 use crate::C64;
@@ -369,14 +369,7 @@ pub fn rrr_seed_stage(
             )
         })
         .collect();
-    let mut problems = Vec::new();
-    let mut failures = Vec::new();
-    let mut paths_tracked = 0;
-    for (problem, failure, count) in tracked {
-        problems.push(problem);
-        failures.extend(failure);
-        paths_tracked += count;
-    }
+    let (problems, failures, paths_tracked) = split_seed_results(tracked);
     Ok(RrrSeedStage {
         problems,
         tau_star,
