@@ -28,8 +28,6 @@
 //!    accepted. With an accurate residual, Newton's iteration is mixed-precision
 //!    iterative refinement and converges whenever `κ·ε < 1`. After
 //!    `extended_accepted_steps` accepted steps the tracker tries double again.
-//!    Consecutive accepted steps shorter than `stall_step_fraction` of the segment
-//!    (`stall_steps` of them) end a path that crawls towards a near-pole.
 //!
 //! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
 //! - estimates the valuations `v_i = Re(s ẋ_i(s) / x_i)` (`x_i ~ s^{v_i}`): a stable
@@ -78,7 +76,7 @@ pub struct TrackerOptions {
     pub corrector_noise_tolerance: f64,
     /// Adaptive precision: after this many consecutive rejected steps the tracker
     /// switches to extended precision (Newton residuals in double-double arithmetic,
-    /// [`Homotopy::evaluate_extended`], and refined linear solves). At condition
+    /// [`Homotopy::evaluate_extended`]). At condition
     /// numbers κ with `κ·ε` above the corrector tolerance — e.g. critical points far
     /// out along an isotropic direction — double-precision residuals are noise and no
     /// step size is accepted; with an accurate residual Newton converges whenever
@@ -94,16 +92,6 @@ pub struct TrackerOptions {
     /// precision again (it switches back after `extended_after_rejections` rejections).
     #[serde(default = "default_extended_accepted_steps")]
     pub extended_accepted_steps: usize,
-    /// A path stalls when this many consecutive accepted steps are shorter than
-    /// `stall_step_fraction` of their segment; it then fails with
-    /// [`FailureReason::StepSizeTooSmall`] instead of crawling to `max_steps` (a path
-    /// creeping towards a near-pole in the parameter plane, e.g. a critical point
-    /// escaping along an isotropic direction). 0 disables the test.
-    #[serde(default = "default_stall_steps")]
-    pub stall_steps: usize,
-    /// See `stall_steps`.
-    #[serde(default = "default_stall_step_fraction")]
-    pub stall_step_fraction: f64,
     /// Endgame zone starts at `s = 1 − t = endgame_start`.
     pub endgame_start: f64,
     /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
@@ -143,14 +131,6 @@ fn default_extended_accepted_steps() -> usize {
     16
 }
 
-fn default_stall_steps() -> usize {
-    200
-}
-
-fn default_stall_step_fraction() -> f64 {
-    1e-5
-}
-
 impl Default for TrackerOptions {
     /// Balanced preset: reliable on the katsura/cyclic benchmarks and singdist's systems.
     fn default() -> Self {
@@ -167,8 +147,6 @@ impl Default for TrackerOptions {
             extended_after_rejections: default_extended_after_rejections(),
             extended_accepted_steps: default_extended_accepted_steps(),
             extended_residual: default_extended_residual(),
-            stall_steps: default_stall_steps(),
-            stall_step_fraction: default_stall_step_fraction(),
             endgame_start: 0.1,
             endgame_ratio: 0.25,
             endgame_min_radius: 1e-13,
@@ -211,7 +189,6 @@ impl TrackerOptions {
             endgame_ratio: 0.3,
             endgame_min_radius: 1e-15,
             max_winding_number: 32,
-            stall_steps: 1000,
             ..Self::default()
         }
     }
@@ -652,7 +629,6 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             return Ok(());
         }
         let mut u = 0.0f64;
-        let mut short_steps = 0;
         self.factorization_current = false;
         while u < 1.0 {
             if self.steps >= self.options.max_steps {
@@ -673,14 +649,6 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             };
             match accepted {
                 Some(first_update) => {
-                    if h < self.options.stall_step_fraction && h < 1.0 - u {
-                        short_steps += 1;
-                        if self.options.stall_steps > 0 && short_steps >= self.options.stall_steps {
-                            return Err(SegmentError::Failure(FailureReason::StepSizeTooSmall));
-                        }
-                    } else {
-                        short_steps = 0;
-                    }
                     self.x.copy_from_slice(&self.x_predicted);
                     self.factorization_current = true;
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
