@@ -60,6 +60,36 @@ pub trait Homotopy: Send + Sync {
         self.evaluate_with_jacobian(x, t, work, h, jac);
         self.evaluate_time_derivative(x, t, work, dh);
     }
+    /// [`Homotopy::evaluate_with_jacobian_and_time_derivative`] in double-double
+    /// arithmetic where supported (the predictor's velocities in extended-precision
+    /// mode). The default evaluates in double precision.
+    /// `h ← H`, `jac + jac_low ← ∂H/∂x` in double-double arithmetic where supported
+    /// ([`Evaluator::evaluate_with_jacobian_extended`]). The default evaluates in double
+    /// precision (`jac_low = 0`).
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        (jac, jac_low): (&mut [C64], &mut [C64]),
+    ) {
+        self.evaluate_with_jacobian(x, t, work, h, jac);
+        jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate_with_jacobian_and_time_derivative_extended(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        (jac, jac_low): (&mut [C64], &mut [C64]),
+        dh: &mut [C64],
+    ) {
+        self.evaluate_with_jacobian_and_time_derivative(x, t, work, h, jac, dh);
+        jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
     /// Values of `t` in `(0, 1)` where `H` is only piecewise smooth (the tracker stops
     /// there so no predictor step straddles a kink). Empty by default.
     fn breakpoints(&self) -> &[f64] {
@@ -355,6 +385,40 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
         self.path.point_and_velocity(t, p, dp);
         self.system
             .evaluate_parameter_derivative(x, p, dp, rest, dh);
+    }
+
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        (jac, jac_low): (&mut [C64], &mut [C64]),
+    ) {
+        let m = self.path.len();
+        let (p, rest) = work.split_at_mut(m);
+        self.path.point(t, p);
+        self.system
+            .evaluate_with_jacobian_extended(x, p, &mut rest[m..], h, jac, jac_low);
+    }
+
+    fn evaluate_with_jacobian_and_time_derivative_extended(
+        &self,
+        x: &[C64],
+        t: C64,
+        work: &mut [C64],
+        h: &mut [C64],
+        (jac, jac_low): (&mut [C64], &mut [C64]),
+        dh: &mut [C64],
+    ) {
+        let m = self.path.len();
+        let (p, rest) = work.split_at_mut(m);
+        let (dp, rest) = rest.split_at_mut(m);
+        self.path.point_and_velocity(t, p, dp);
+        self.system
+            .evaluate_with_jacobian_extended(x, p, rest, h, jac, jac_low);
+        self.system
+            .evaluate_parameter_derivative_extended(x, p, dp, rest, dh);
     }
 
     fn breakpoints(&self) -> &[f64] {

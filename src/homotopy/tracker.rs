@@ -20,13 +20,19 @@
 //!    halves `h`.
 //! 4. **Adaptive precision** (in the spirit of Bates, Hauenstein, Sommese & Wampler's
 //!    adaptive multiprecision): after `extended_after_rejections` consecutive rejected
-//!    steps the corrector evaluates its residual `H(x, t)` in double-double arithmetic
-//!    ([`Homotopy::evaluate_extended`], compiled tapes run in
-//!    [`crate::system::double_double`]) with the Jacobian and LU in double. A
-//!    double-precision residual carries rounding noise `≈ ε·Σ|terms|`, amplified by
-//!    κ(J) into the update; once `κ·ε` exceeds the corrector tolerance no step is
-//!    accepted. With an accurate residual, Newton's iteration is mixed-precision
-//!    iterative refinement and converges whenever `κ·ε < 1`. After
+//!    steps the tracker switches to double-double arithmetic
+//!    ([`crate::system::double_double`]): residuals `H`, Jacobians `∂H/∂x` and `∂H/∂t`
+//!    come from the compiled tapes run in double-double
+//!    ([`Homotopy::evaluate_extended`],
+//!    [`Homotopy::evaluate_with_jacobian_and_time_derivative_extended`]) and every
+//!    linear solve (predictor velocities, Newton updates) is a double-double LU
+//!    ([`super::linalg::DdLuWorkspace`]). In double precision a solve at condition κ
+//!    loses `κ·ε` of relative accuracy: once `κ·ε` exceeds the corrector tolerance
+//!    Newton's updates are noise, and well before that the velocities are, which caps
+//!    the step size (the predictor error grows like `κ·ε·‖ẋ‖h` instead of `h⁵`). Rounding
+//!    the Jacobian to double costs the same `κ·ε` even with an exact residual, hence
+//!    the double-double Jacobian and LU; they hold up to `κ ≈ 10²⁵`, e.g. along
+//!    critical points that run out to `‖x‖ ~ 10⁴–10⁶` in an isotropic direction. After
 //!    `extended_accepted_steps` accepted steps the tracker tries double again.
 //!
 //! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
@@ -44,7 +50,7 @@
 //!   accurate). Two successive estimates agreeing gives a finite singular endpoint.
 
 use super::homotopies::Homotopy;
-use super::linalg::LuWorkspace;
+use super::linalg::{DdLuWorkspace, LuWorkspace};
 use crate::C64;
 use serde::{Deserialize, Serialize};
 
@@ -75,23 +81,27 @@ pub struct TrackerOptions {
     /// step until the step size underflows.
     pub corrector_noise_tolerance: f64,
     /// Adaptive precision: after this many consecutive rejected steps the tracker
-    /// switches to extended precision (Newton residuals in double-double arithmetic,
-    /// [`Homotopy::evaluate_extended`]). At condition
-    /// numbers κ with `κ·ε` above the corrector tolerance — e.g. critical points far
-    /// out along an isotropic direction — double-precision residuals are noise and no
-    /// step size is accepted; with an accurate residual Newton converges whenever
-    /// `κ·ε < 1`. 0 switches only when the step underflows `min_step_fraction`.
+    /// switches to extended precision (residuals, Jacobians and LU solves in
+    /// double-double, see the module documentation). At condition numbers κ with
+    /// `κ·ε` near or above the corrector tolerance — e.g. critical points far out along
+    /// an isotropic direction — double-precision velocities and Newton updates are
+    /// noise and no useful step size is accepted. 0 switches only when the step
+    /// underflows `min_step_fraction`.
     #[serde(default = "default_extended_after_rejections")]
     pub extended_after_rejections: usize,
-    /// Whether extended precision evaluates the Newton residual in double-double
-    /// (`true`, the default); `false` keeps double-precision residuals, so extended
-    /// mode only changes the step control (for comparisons).
+    /// Whether extended precision computes in double-double (`true`, the default):
+    /// residuals, Jacobians and linear solves. `false` keeps double precision, so
+    /// extended mode only changes the step control (for comparisons).
     #[serde(default = "default_extended_residual")]
     pub extended_residual: bool,
     /// Accepted steps in extended precision after which the tracker tries double
     /// precision again (it switches back after `extended_after_rejections` rejections).
     #[serde(default = "default_extended_accepted_steps")]
     pub extended_accepted_steps: usize,
+    /// Step budget in extended precision (each such step costs about ten double
+    /// steps): a path that needs more fails with [`FailureReason::TooManySteps`].
+    #[serde(default = "default_max_extended_steps")]
+    pub max_extended_steps: usize,
     /// Endgame zone starts at `s = 1 − t = endgame_start`.
     pub endgame_start: f64,
     /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
@@ -127,6 +137,10 @@ fn default_extended_residual() -> bool {
     true
 }
 
+fn default_max_extended_steps() -> usize {
+    1000
+}
+
 fn default_extended_accepted_steps() -> usize {
     16
 }
@@ -146,6 +160,7 @@ impl Default for TrackerOptions {
             corrector_noise_tolerance: 1e-8,
             extended_after_rejections: default_extended_after_rejections(),
             extended_accepted_steps: default_extended_accepted_steps(),
+            max_extended_steps: default_max_extended_steps(),
             extended_residual: default_extended_residual(),
             endgame_start: 0.1,
             endgame_ratio: 0.25,
@@ -256,6 +271,10 @@ pub struct PathResult {
     pub rejected_steps: usize,
     /// Whether double-double refinement was switched on along the path.
     pub used_extended_precision: bool,
+    /// The value of `t` at the last accepted point (`1` for a finished path; for a
+    /// failed one, where it stopped, possibly on an endgame loop around `t = 1`).
+    #[serde(default)]
+    pub last_t: C64,
 }
 
 impl PathResult {
@@ -278,10 +297,16 @@ struct Evaluation {
     h: Vec<C64>,
     jac: Vec<C64>,
     dh: Vec<C64>,
-    rhs: Vec<C64>,
     lu: LuWorkspace,
     /// [`TrackerOptions::extended_residual`].
     extended_residual: bool,
+    /// Extended mode: Jacobians in double-double, solves by `dd_lu`.
+    extended: bool,
+    /// Trailing parts of the double-double Jacobian in `jac`.
+    jac_low: Vec<C64>,
+    dd_lu: DdLuWorkspace,
+    /// The current factorisation is `dd_lu`'s (else `lu`'s).
+    dd_current: bool,
 }
 
 /// Result of a Newton update.
@@ -295,16 +320,21 @@ impl Evaluation {
         let z = C64::new(0.0, 0.0);
         Evaluation {
             extended_residual,
+            extended: false,
+            jac_low: vec![z; n * n],
+            dd_lu: DdLuWorkspace::new(n),
+            dd_current: false,
             work: vec![z; work_len],
             h: vec![z; n],
             jac: vec![z; n * n],
             dh: vec![z; n],
-            rhs: vec![z; n],
             lu: LuWorkspace::new(n),
         }
     }
 
-    /// `out ← dx/du = −J⁻¹ ∂H/∂t · dt` at `(x, t)`.
+    /// `out ← dx/du = −J⁻¹ ∂H/∂t · dt` at `(x, t)`. In extended mode (`self.extended`)
+    /// `J` and `∂H/∂t` are evaluated in double-double and the solve is the
+    /// double-double LU: velocities keep their accuracy up to κ ≈ 10²⁵.
     fn velocity<H: Homotopy + ?Sized>(
         &mut self,
         homotopy: &H,
@@ -313,16 +343,33 @@ impl Evaluation {
         dt: C64,
         out: &mut [C64],
     ) -> bool {
-        homotopy.evaluate_with_jacobian_and_time_derivative(
-            x,
-            t,
-            &mut self.work,
-            &mut self.h,
-            &mut self.jac,
-            &mut self.dh,
-        );
-        if !self.lu.factor(&self.jac) {
-            return false;
+        if self.extended && self.extended_residual {
+            homotopy.evaluate_with_jacobian_and_time_derivative_extended(
+                x,
+                t,
+                &mut self.work,
+                &mut self.h,
+                (&mut self.jac, &mut self.jac_low),
+                &mut self.dh,
+            );
+            // The double LU is kept current for condition estimates.
+            if !self.lu.factor(&self.jac) || !self.dd_lu.factor(&self.jac, &self.jac_low) {
+                return false;
+            }
+            self.dd_current = true;
+        } else {
+            homotopy.evaluate_with_jacobian_and_time_derivative(
+                x,
+                t,
+                &mut self.work,
+                &mut self.h,
+                &mut self.jac,
+                &mut self.dh,
+            );
+            if !self.lu.factor(&self.jac) {
+                return false;
+            }
+            self.dd_current = false;
         }
         self.solve_velocity(dt, out)
     }
@@ -332,13 +379,17 @@ impl Evaluation {
         for (o, d) in out.iter_mut().zip(&self.dh) {
             *o = -d * dt;
         }
-        // No refinement in extended mode: the corrector's Newton iteration with an
-        // extended-precision residual corrects the predictor's error.
-        self.lu.solve_in_place(out);
+        if self.dd_current {
+            self.dd_lu.solve_in_place(out);
+        } else {
+            self.lu.solve_in_place(out);
+        }
         out.iter().all(|v| v.re.is_finite() && v.im.is_finite())
     }
 
-    /// One Newton update `x ← x − J⁻¹ H(x, t)`; returns `‖Δ‖∞`.
+    /// One Newton update `x ← x − J⁻¹ H(x, t)`; returns `‖Δ‖∞`. In extended mode the
+    /// residual is evaluated in double-double, and with the double-double LU also the
+    /// Jacobian and the solve.
     fn newton<H: Homotopy + ?Sized>(
         &mut self,
         homotopy: &H,
@@ -346,22 +397,37 @@ impl Evaluation {
         t: C64,
         extended: bool,
     ) -> NewtonUpdate {
-        homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
-        if extended && self.extended_residual {
-            // Residual beyond double precision: the update is then limited by κ·ε of
-            // the linear solve, not by the rounding noise of H.
-            homotopy.evaluate_extended(x, t, &mut self.work, &mut self.h);
-        }
-        if !self.lu.factor(&self.jac) {
+        let factored = if extended && self.extended_residual {
+            homotopy.evaluate_with_jacobian_extended(
+                x,
+                t,
+                &mut self.work,
+                &mut self.h,
+                (&mut self.jac, &mut self.jac_low),
+            );
+            self.dd_current = true;
+            self.dd_lu.factor(&self.jac, &self.jac_low)
+        } else {
+            homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
+            if extended && self.extended_residual {
+                // Residual beyond double precision: the update is then limited by κ·ε
+                // of the linear solve, not by the rounding noise of H.
+                homotopy.evaluate_extended(x, t, &mut self.work, &mut self.h);
+            }
+            self.dd_current = false;
+            self.lu.factor(&self.jac)
+        };
+        if !factored {
             return NewtonUpdate::Singular;
         }
-        for (r, h) in self.rhs.iter_mut().zip(&self.h) {
-            *r = -h;
+        for (d, h) in self.dh.iter_mut().zip(&self.h) {
+            *d = -h;
         }
-        // With an extended-precision residual Newton's iteration is itself the
-        // iterative refinement: no extra refinement of the linear solve.
-        self.dh.copy_from_slice(&self.rhs);
-        self.lu.solve_in_place(&mut self.dh);
+        if self.dd_current {
+            self.dd_lu.solve_in_place(&mut self.dh);
+        } else {
+            self.lu.solve_in_place(&mut self.dh);
+        }
         let mut norm: f64 = 0.0;
         for (xi, d) in x.iter_mut().zip(&self.dh) {
             *xi += d;
@@ -410,6 +476,8 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     previous_loop_valuations: Vec<f64>,
     step: f64,
     steps: usize,
+    /// Steps taken in extended precision.
+    extended_steps: usize,
     rejected: usize,
     extended: bool,
     used_extended: bool,
@@ -420,6 +488,8 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     winding: usize,
     /// `eval.lu` holds J at (≈ x, t) of the current point (set after an accepted step).
     factorization_current: bool,
+    /// `t` of the last accepted point.
+    t: C64,
 }
 
 impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
@@ -453,6 +523,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             previous_loop_valuations: vec![0.0; n],
             step: 0.0,
             steps: 0,
+            extended_steps: 0,
             rejected: 0,
             extended: false,
             used_extended: false,
@@ -460,6 +531,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             extended_streak: 0,
             winding: 1,
             factorization_current: false,
+            t: C64::new(0.0, 0.0),
         }
     }
 
@@ -468,12 +540,15 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         &self.options
     }
 
-    fn reset(&mut self, start: &[C64]) {
+    fn reset(&mut self, start: &[C64], t0: f64) {
         self.x.copy_from_slice(start);
+        self.t = C64::new(t0, 0.0);
         self.step = self.options.initial_step;
         self.steps = 0;
+        self.extended_steps = 0;
         self.rejected = 0;
         self.extended = false;
+        self.eval.extended = false;
         self.used_extended = false;
         self.consecutive_rejections = 0;
         self.extended_streak = 0;
@@ -483,7 +558,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// Tracks `start` (a solution of `H(x, 0) = 0`) to `t = 1`, runs the endgame and
     /// classifies and refines the endpoint.
     pub fn track(&mut self, start: &[C64], path_index: usize) -> PathResult {
-        self.reset(start);
+        self.reset(start, 0.0);
         let endgame_start = {
             let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
             self.options.endgame_start.min(0.5 * (1.0 - last))
@@ -507,7 +582,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         t1: f64,
         path_index: usize,
     ) -> PathResult {
-        self.reset(start);
+        self.reset(start, t0);
         let status = match self.track_real_interval(t0, t1) {
             Ok(()) => {
                 let (converged, _) = self.refine_at(C64::new(t1, 0.0));
@@ -550,6 +625,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             steps: self.steps,
             rejected_steps: self.rejected,
             used_extended_precision: self.used_extended,
+            last_t: self.t,
         }
     }
 
@@ -631,7 +707,9 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let mut u = 0.0f64;
         self.factorization_current = false;
         while u < 1.0 {
-            if self.steps >= self.options.max_steps {
+            if self.steps >= self.options.max_steps
+                || self.extended_steps >= self.options.max_extended_steps
+            {
                 return Err(SegmentError::Failure(FailureReason::TooManySteps));
             }
             let mut h = (self.step.min(self.options.max_step) / length).min(1.0 - u);
@@ -642,6 +720,9 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             let t_mid = ta + dt * (u + 0.5 * h);
             let t_new = ta + dt * (u + h);
             self.steps += 1;
+            if self.extended {
+                self.extended_steps += 1;
+            }
             let accepted = if self.predict(t, t_mid, t_new, dt, h).is_some() {
                 self.correct(t_new)
             } else {
@@ -652,6 +733,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     self.x.copy_from_slice(&self.x_predicted);
                     self.factorization_current = true;
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
+                    self.t = ta + dt * u;
                     let scale = 1.0 + max_norm(&self.x);
                     if scale > self.options.at_infinity_norm {
                         return Err(SegmentError::Diverged);
@@ -673,6 +755,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                             // The ill-conditioned stretch may be behind: try double
                             // precision again (it comes back after a few rejections).
                             self.extended = false;
+                            self.eval.extended = false;
                         }
                     }
                 }
@@ -711,6 +794,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
 
     fn switch_to_extended(&mut self) {
         self.extended = true;
+        self.eval.extended = true;
         self.used_extended = true;
         self.extended_streak = 0;
     }
@@ -801,6 +885,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     }
                 }
                 self.x.copy_from_slice(&self.x_checkpoint);
+                self.t = t;
                 self.step = saved_step;
                 direct_failed = true;
             }
@@ -901,6 +986,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// refined by Newton and are nonsingular if well conditioned).
     fn classify_estimate(&mut self, winding: usize) -> PathStatus {
         self.x.copy_from_slice(&self.estimate);
+        self.t = C64::new(1.0, 0.0);
         if winding == 1 {
             let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
             if converged && self.condition_at(C64::new(1.0, 0.0)) < self.options.singular_condition

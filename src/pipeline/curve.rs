@@ -28,7 +28,13 @@
 //!    random complex motion point near the pose (seeded per pose, sub-problem and
 //!    attempt; at the seed, through random complex parameters near `p*`, more
 //!    attempts); finite endpoints of all attempts are merged. Paths classified at
-//!    infinity are accounted for; what still fails is reported as a [`PathFailure`].
+//!    infinity are accounted for.
+//!    **Rescue from neighbours**: once every pose is done, each run of consecutive
+//!    poses at which a sub-problem still lost paths is re-solved pose by pose from the
+//!    complete finite solution set of the pose before the run (forward), then of the
+//!    pose after it (backward), through a random complex midpoint between the two
+//!    poses; a re-solved pose whose set is complete seeds the next one. What still
+//!    fails is reported as a [`PathFailure`].
 //! 4. **Post-processing** ([`super::postprocess`]).
 
 use super::postprocess::{self, Candidate, MetricDistance};
@@ -332,6 +338,17 @@ impl MotionPoint {
             MotionPoint::Pose(p) => {
                 MotionPoint::Pose(p.map(|v| v + random::complex_normal(rng) * epsilon))
             }
+        }
+    }
+
+    /// The midpoint of `self` and `other` (same kind).
+    fn midpoint(&self, other: &Self) -> Self {
+        match (*self, *other) {
+            (MotionPoint::Tau(a), MotionPoint::Tau(b)) => MotionPoint::Tau((a + b) * 0.5),
+            (MotionPoint::Pose(a), MotionPoint::Pose(b)) => {
+                MotionPoint::Pose(std::array::from_fn(|i| (a[i] + b[i]) * 0.5))
+            }
+            _ => *self,
         }
     }
 
@@ -794,6 +811,113 @@ fn candidates(
         .collect()
 }
 
+/// Where the paths of a (pose, sub-problem) start.
+#[derive(Clone, Copy)]
+enum Route<'a> {
+    /// From the seed solutions at the seed (stage 2).
+    Seed,
+    /// From the complete finite solution set of a neighbouring pose (the rescue pass).
+    Neighbour {
+        /// The neighbour's point of the motion.
+        from: MotionPoint,
+        /// Its finite critical points (normalised frame), one per start solution.
+        solutions: &'a [Vec<C64>],
+    },
+}
+
+/// One (pose, sub-problem) after tracking: what post-processing needs, and the finite
+/// endpoints when they form a complete set (every path accounted for, all of them
+/// finite), from which neighbouring poses can be re-solved.
+struct ProblemAtPose {
+    entry: PoseEntry,
+    complete: Option<Vec<Vec<C64>>>,
+}
+
+/// Tracks one sub-problem to pose `index` along `route`, with re-runs and detours.
+#[allow(clippy::too_many_arguments)]
+fn track_problem(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    (index, sample): (usize, SampledPose),
+    problem_index: usize,
+    route: Route<'_>,
+    options: &CurveOptions,
+) -> ProblemAtPose {
+    let seeded = &stage.problems[problem_index];
+    let k = design.configuration(sample.pose).to_array();
+    let target = MotionPoint::target(motion, &sample);
+    let k_normalized = stage.normalization.apply(&to_real(&k));
+    let parameters =
+        normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
+    let (starts, origin, perturbation, salt) = match route {
+        Route::Seed => (
+            seeded.seed_solutions.as_slice(),
+            stage.seed.point,
+            stage.seed.perturbation,
+            0,
+        ),
+        Route::Neighbour { from, solutions } => (solutions, from, [C64::new(0.0, 0.0); 12], 8),
+    };
+    let stream = ((index as u64 + 1) << 32) | problem_index as u64;
+    let (endpoints, best, tracked) = track_with_retries(
+        seeded.problem.evaluator(),
+        starts,
+        |attempt| {
+            let mut rng = random::stream(
+                options.seed,
+                stream.wrapping_mul(16) + salt + attempt as u64,
+            );
+            let mut waypoints = vec![origin];
+            match route {
+                Route::Seed if attempt > 0 => {
+                    let epsilon = 0.3 * origin.distance(&target) + 0.05;
+                    waypoints.push(target.perturbed(epsilon, &mut rng));
+                }
+                Route::Seed => {}
+                // Between two real poses the straight segment may meet a real branch
+                // point (two real critical points merging into a complex pair), so
+                // every route passes through a random complex midpoint.
+                Route::Neighbour { .. } => {
+                    let epsilon = 0.5 * origin.distance(&target);
+                    waypoints.push(origin.midpoint(&target).perturbed(epsilon, &mut rng));
+                }
+            }
+            waypoints.push(target);
+            MotionPath::new(
+                design,
+                motion,
+                waypoints,
+                perturbation,
+                stage.normalization,
+                parameters[12..].to_vec(),
+            )
+        },
+        options.retry_attempts,
+        (&options.tracker, &options.retry_tracker),
+    );
+    let failure = (best < seeded.start_count).then(|| PathFailure {
+        pose_index: Some(index),
+        tau: Some(sample.tau),
+        problem: seeded.id.name(),
+        expected: seeded.start_count,
+        accounted: best,
+    });
+    let list = candidates(
+        &seeded.problem,
+        seeded.id.metric,
+        &endpoints,
+        (&parameters, stage.normalization),
+        &k,
+        options.real_tolerance,
+    );
+    let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
+    ProblemAtPose {
+        entry: (list, best, failure, tracked),
+        complete,
+    }
+}
+
 /// Stages 2–4 at one pose: parameter homotopy from the seed along the complexified
 /// motion (`MotionPath`) for every sub-problem (in parallel), re-runs of failed paths
 /// (detours through a random complex point near the pose), post-processing.
@@ -806,60 +930,154 @@ pub fn solve_pose(
     sample: SampledPose,
     options: &CurveOptions,
 ) -> PoseResult {
-    let k = design.configuration(sample.pose).to_array();
-    let target = MotionPoint::target(motion, &sample);
-    let k_normalized = stage.normalization.apply(&to_real(&k));
-    let per_problem: Vec<PoseEntry> = stage
-        .problems
-        .par_iter()
-        .enumerate()
-        .map(|(problem_index, seeded)| {
-            let parameters =
-                normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
-            let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-            let (endpoints, best, tracked) = track_with_retries(
-                seeded.problem.evaluator(),
-                &seeded.seed_solutions,
-                |attempt| {
-                    let mut waypoints = vec![stage.seed.point];
-                    if attempt > 0 {
-                        let mut rng =
-                            random::stream(options.seed, stream.wrapping_mul(16) + attempt as u64);
-                        let epsilon = 0.3 * stage.seed.point.distance(&target) + 0.05;
-                        waypoints.push(target.perturbed(epsilon, &mut rng));
-                    }
-                    waypoints.push(target);
-                    MotionPath::new(
-                        design,
-                        motion,
-                        waypoints,
-                        stage.seed.perturbation,
-                        stage.normalization,
-                        parameters[12..].to_vec(),
-                    )
-                },
-                options.retry_attempts,
-                (&options.tracker, &options.retry_tracker),
-            );
-            let failure = (best < seeded.start_count).then(|| PathFailure {
-                pose_index: Some(index),
-                tau: Some(sample.tau),
-                problem: seeded.id.name(),
-                expected: seeded.start_count,
-                accounted: best,
-            });
-            let list = candidates(
-                &seeded.problem,
-                seeded.id.metric,
-                &endpoints,
-                (&parameters, stage.normalization),
-                &k,
-                options.real_tolerance,
-            );
-            (list, best, failure, tracked)
+    let (result, _) = solve_pose_from_seed(stage, design, motion, metrics, index, sample, options);
+    result
+}
+
+fn solve_pose_from_seed(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    index: usize,
+    sample: SampledPose,
+    options: &CurveOptions,
+) -> (PoseResult, Vec<ProblemAtPose>) {
+    let per_problem: Vec<ProblemAtPose> = (0..stage.problems.len())
+        .into_par_iter()
+        .map(|problem_index| {
+            track_problem(
+                stage,
+                design,
+                motion,
+                (index, sample),
+                problem_index,
+                Route::Seed,
+                options,
+            )
         })
         .collect();
-    assemble_pose(stage, metrics, index, sample, &k, per_problem, options)
+    let k = design.configuration(sample.pose).to_array();
+    let entries = per_problem.iter().map(|p| p.entry.clone()).collect();
+    (
+        assemble_pose(stage, metrics, index, sample, &k, entries, options),
+        per_problem,
+    )
+}
+
+/// The rescue pass (stage 3b): every run of consecutive poses at which a sub-problem
+/// lost paths is re-solved pose by pose from a neighbouring pose whose finite solution
+/// set is complete — first forward from the pose before the run, then backward from the
+/// pose after it for what is still incomplete. Near a pose the critical points move
+/// little, so short pose-to-pose paths (through a complex midpoint) follow critical
+/// points that the long seed → pose paths lose, e.g. huge ill-conditioned ones.
+/// Returns the indices of the poses whose entries changed.
+fn rescue_from_neighbours(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    samples: &[SampledPose],
+    work: &mut [Vec<ProblemAtPose>],
+    options: &CurveOptions,
+) -> Vec<usize> {
+    let n = samples.len();
+    let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.2.is_some();
+    // (sub-problem, first pose, last pose) of every run of failing poses.
+    let mut runs = Vec::new();
+    for p in 0..stage.problems.len() {
+        let mut j = 0;
+        while j < n {
+            if lost(work, j, p) {
+                let first = j;
+                while j + 1 < n && lost(work, j + 1, p) {
+                    j += 1;
+                }
+                runs.push((p, first, j));
+            }
+            j += 1;
+        }
+    }
+    let view: &[Vec<ProblemAtPose>] = work;
+    // Per run: the improved (pose, result) pairs and the paths tracked per pose.
+    type RunOutcome = (BTreeMap<usize, ProblemAtPose>, BTreeMap<usize, usize>);
+    let outcomes: Vec<(usize, RunOutcome)> = runs
+        .par_iter()
+        .map(|&(p, first, last)| {
+            let mut improved: BTreeMap<usize, ProblemAtPose> = BTreeMap::new();
+            let mut tracked: BTreeMap<usize, usize> = BTreeMap::new();
+            // Solves pose `to` from the complete set at pose `from`; keeps the result
+            // if it accounts for more paths than the best so far. Returns the
+            // complete set at `to`, if reached.
+            let mut step = |from: usize, to: usize, solutions: &[Vec<C64>]| {
+                let result = track_problem(
+                    stage,
+                    design,
+                    motion,
+                    (to, samples[to]),
+                    p,
+                    Route::Neighbour {
+                        from: MotionPoint::target(motion, &samples[from]),
+                        solutions,
+                    },
+                    options,
+                );
+                *tracked.entry(to).or_default() += result.entry.3;
+                let best = improved.get(&to).map_or(view[to][p].entry.1, |r| r.entry.1);
+                let complete = result.complete.clone();
+                if result.entry.1 > best {
+                    improved.insert(to, result);
+                }
+                complete
+            };
+            // Forward from the pose before the run.
+            let mut reached = first;
+            if first > 0
+                && let Some(mut solutions) = view[first - 1][p].complete.clone()
+            {
+                while reached <= last {
+                    match step(reached - 1, reached, &solutions) {
+                        Some(next) => {
+                            solutions = next;
+                            reached += 1;
+                        }
+                        None => break,
+                    }
+                }
+            }
+            // Backward from the pose after the run, down to where forward stopped.
+            if reached <= last
+                && last + 1 < n
+                && let Some(mut solutions) = view[last + 1][p].complete.clone()
+            {
+                let mut j = last;
+                while j >= reached {
+                    match step(j + 1, j, &solutions) {
+                        Some(next) if j > reached => {
+                            solutions = next;
+                            j -= 1;
+                        }
+                        _ => break,
+                    }
+                }
+            }
+            (p, (improved, tracked))
+        })
+        .collect();
+    let mut changed = Vec::new();
+    for (p, (improved, tracked)) in outcomes {
+        for (j, count) in tracked {
+            work[j][p].entry.3 += count;
+            changed.push(j);
+        }
+        for (j, mut result) in improved {
+            // Every path tracked counts: the seed route's and the rescue's.
+            result.entry.3 = work[j][p].entry.3;
+            work[j][p] = result;
+        }
+    }
+    changed.sort_unstable();
+    changed.dedup();
+    changed
 }
 
 fn assemble_pose(
@@ -934,15 +1152,22 @@ pub fn compute_curve(
 ) -> Result<CurveResult, PipelineError> {
     let samples = sample_motion(motion, poses)?;
     let stage = seed_stage(design, motion, metrics, options, provider)?;
-    let results: Vec<PoseResult> = samples
+    let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = samples
         .par_iter()
         .enumerate()
         .map(|(j, sample)| {
-            let result = solve_pose(&stage, design, motion, metrics, j, *sample, options);
+            let (result, work) =
+                solve_pose_from_seed(&stage, design, motion, metrics, j, *sample, options);
             on_pose(&result);
-            result
+            (result, work)
         })
-        .collect();
+        .unzip();
+    for j in rescue_from_neighbours(&stage, design, motion, &samples, &mut work, options) {
+        let k = design.configuration(samples[j].pose).to_array();
+        let entries = work[j].iter().map(|p| p.entry.clone()).collect();
+        results[j] = assemble_pose(&stage, metrics, j, samples[j], &k, entries, options);
+        on_pose(&results[j]);
+    }
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
     let paths_tracked =
@@ -1019,4 +1244,58 @@ pub fn singular_parameters(design: &Design, motion: &Motion, samples: &[SampledP
 /// else monodromy on the fly, cached per process).
 pub fn default_start_solutions(id: ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> {
     super::ab_initio::start_solutions(id).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanism::rpr::{example_design, example_motion};
+
+    /// `MotionPath::point_and_velocity` is the derivative of `MotionPath::point`
+    /// (central differences in complex t), on every segment of a detoured path.
+    #[test]
+    fn motion_path_velocity_matches_finite_differences() {
+        let design = example_design();
+        let motion = example_motion();
+        let seed = seed_point(&design, &motion, 3);
+        let k0 = design
+            .configuration(motion.pose(0.3).expect("pose"))
+            .to_array();
+        let normalization = Normalization::of(&to_real(&k0));
+        let target = MotionPoint::Tau(C64::new(1.7, 0.0));
+        let mut rng = random::stream(3, 99);
+        let waypoints = vec![seed.point, target.perturbed(0.5, &mut rng), target];
+        let path = MotionPath::new(
+            &design,
+            &motion,
+            waypoints,
+            seed.perturbation,
+            normalization,
+            vec![C64::new(0.4, 0.1); 6],
+        );
+        let m = path.len();
+        let (mut p, mut dp, mut plus, mut minus) = (
+            vec![C64::new(0.0, 0.0); m],
+            vec![C64::new(0.0, 0.0); m],
+            vec![C64::new(0.0, 0.0); m],
+            vec![C64::new(0.0, 0.0); m],
+        );
+        for t in [0.1, 0.37, 0.62, 0.9] {
+            for direction in [C64::new(1.0, 0.0), C64::new(0.0, 1.0)] {
+                let t = C64::new(t, 0.0);
+                let h = direction * 1e-6;
+                path.point_and_velocity(t, &mut p, &mut dp);
+                path.point(t + h, &mut plus);
+                path.point(t - h, &mut minus);
+                for i in 0..m {
+                    let fd = (plus[i] - minus[i]) / (h * 2.0);
+                    assert!(
+                        (fd - dp[i]).norm() <= 1e-6 * (1.0 + dp[i].norm()),
+                        "t = {t}, i = {i}: {fd} vs {}",
+                        dp[i]
+                    );
+                }
+            }
+        }
+    }
 }

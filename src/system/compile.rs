@@ -210,6 +210,19 @@ impl Tape {
     /// registers) and writes the first `out.len()` outputs, rounded to double. The
     /// registers live in a per-thread buffer that grows once.
     fn run_extended(&self, inputs: &[C64], out: &mut [C64]) {
+        self.run_extended_split(inputs, out, &mut [], &mut []);
+    }
+
+    /// [`Tape::run_extended`] with the outputs split: the first `first.len()` into
+    /// `first`, the next `rest.len()` into `rest` (rounded) and their trailing parts
+    /// (value − rounded) into `rest_low` (if not empty).
+    fn run_extended_split(
+        &self,
+        inputs: &[C64],
+        first: &mut [C64],
+        rest: &mut [C64],
+        rest_low: &mut [C64],
+    ) {
         thread_local! {
             static REGISTERS: std::cell::RefCell<Vec<ComplexDd>> =
                 const { std::cell::RefCell::new(Vec::new()) };
@@ -225,8 +238,16 @@ impl Tape {
                 *r = ComplexDd::from_c64(*v);
             }
             self.execute(&mut registers);
-            for (target, &(register, sign)) in out.iter_mut().zip(&self.outputs) {
+            let (head, tail) = self.outputs.split_at(first.len().min(self.outputs.len()));
+            for (target, &(register, sign)) in first.iter_mut().zip(head) {
                 *target = registers[register as usize].to_c64() * sign;
+            }
+            for (k, (target, &(register, sign))) in rest.iter_mut().zip(tail).enumerate() {
+                let value = registers[register as usize];
+                *target = value.to_c64() * sign;
+                if let Some(low) = rest_low.get_mut(k) {
+                    *low = C64::new(value.re.lo, value.im.lo) * sign;
+                }
             }
         });
     }
@@ -773,6 +794,36 @@ impl Evaluator for CompiledSystem {
         // The tape's input registers are the workspace's first ones (x, p, then inputs
         // only other tapes read).
         self.parts.values.run_extended(work, f);
+    }
+
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        self.load(x, p, work);
+        self.parts
+            .values_and_jacobian
+            .run_extended_split(work, f, jac, jac_low);
+    }
+
+    fn evaluate_parameter_derivative_extended(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        dp: &[C64],
+        work: &mut [C64],
+        out: &mut [C64],
+    ) {
+        self.load(x, p, work);
+        let n = self.parts.variables.len();
+        let m = self.parts.parameters.len();
+        work[n + m..n + 2 * m].copy_from_slice(dp);
+        self.parts.parameter_derivative.run_extended(work, out);
     }
 
     fn evaluate_with_jacobian(

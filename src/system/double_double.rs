@@ -54,6 +54,17 @@ impl DoubleDouble {
         self.lo = lo;
     }
 
+    /// `1 / self` to about 106 bits (one Newton correction of the double reciprocal).
+    #[inline]
+    pub fn recip(self) -> Self {
+        let q1 = 1.0 / self.hi;
+        // r = 1 − q1·self, exactly enough: q1·self is within ε of 1.
+        let r = DoubleDouble::from_f64(1.0) + -(self * DoubleDouble::from_f64(q1));
+        let q2 = r.hi * q1;
+        let (hi, lo) = quick_two_sum(q1, q2);
+        DoubleDouble { hi, lo }
+    }
+
     /// Rounded to the nearest double.
     #[inline]
     pub fn value(self) -> f64 {
@@ -113,6 +124,23 @@ impl ComplexDd {
         ComplexDd {
             re: DoubleDouble::from_f64(value.re),
             im: DoubleDouble::from_f64(value.im),
+        }
+    }
+
+    /// `hi + lo` for complex doubles (a value known beyond double precision as a
+    /// rounded part and its trailing part).
+    #[inline]
+    pub fn from_parts(hi: C64, lo: C64) -> Self {
+        ComplexDd::from_c64(hi) + ComplexDd::from_c64(lo)
+    }
+
+    /// `1 / self = conj(self) / |self|²`.
+    #[inline]
+    pub fn recip(self) -> Self {
+        let inverse_norm = (self.re * self.re + self.im * self.im).recip();
+        ComplexDd {
+            re: self.re * inverse_norm,
+            im: -(self.im * inverse_norm),
         }
     }
 

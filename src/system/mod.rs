@@ -87,6 +87,37 @@ pub trait Evaluator: Send + Sync {
         jac: &mut [C64],
     );
 
+    /// [`Evaluator::evaluate_with_jacobian`] in double-double arithmetic: `f` and
+    /// `jac` rounded, `jac_low` the Jacobian's trailing parts (`∂F/∂x = jac + jac_low`
+    /// to about 32 digits), for velocities at ill-conditioned points where a Jacobian
+    /// rounded to double would cost κ·ε of relative accuracy. The default evaluates in
+    /// double precision (`jac_low = 0`).
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        self.evaluate_with_jacobian(x, p, work, f, jac);
+        jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
+
+    /// [`Evaluator::evaluate_parameter_derivative`] in double-double arithmetic,
+    /// rounded. The default evaluates in double precision.
+    fn evaluate_parameter_derivative_extended(
+        &self,
+        x: &[C64],
+        p: &[C64],
+        dp: &[C64],
+        work: &mut [C64],
+        out: &mut [C64],
+    ) {
+        self.evaluate_parameter_derivative(x, p, dp, work, out);
+    }
+
     /// `out ← (∂F/∂p)(x; p) · dp`, the derivative of F along the parameter direction
     /// `dp` (what a parameter homotopy `p(t) = p₀ + t (p₁ − p₀)` needs as `∂H/∂t`).
     fn evaluate_parameter_derivative(
