@@ -329,8 +329,8 @@ impl DdLuWorkspace {
                 let multiplier = self.factors[i * n + k] * inverse;
                 self.factors[i * n + k] = multiplier;
                 for j in k + 1..n {
-                    let update = multiplier * self.factors[k * n + j];
-                    self.factors[i * n + j] = self.factors[i * n + j] - update;
+                    self.factors[i * n + j] =
+                        self.factors[i * n + j].minus_product(multiplier, self.factors[k * n + j]);
                 }
             }
         }
@@ -346,14 +346,14 @@ impl DdLuWorkspace {
         for i in 0..n {
             let mut sum = self.scratch[i];
             for j in 0..i {
-                sum = sum - self.factors[i * n + j] * self.scratch[j];
+                sum = sum.minus_product(self.factors[i * n + j], self.scratch[j]);
             }
             self.scratch[i] = sum;
         }
         for i in (0..n).rev() {
             let mut sum = self.scratch[i];
             for j in i + 1..n {
-                sum = sum - self.factors[i * n + j] * self.scratch[j];
+                sum = sum.minus_product(self.factors[i * n + j], self.scratch[j]);
             }
             self.scratch[i] = sum * self.inverse_diagonal[i];
         }

@@ -32,8 +32,10 @@
 //!    the step size (the predictor error grows like `κ·ε·‖ẋ‖h` instead of `h⁵`). Rounding
 //!    the Jacobian to double costs the same `κ·ε` even with an exact residual, hence
 //!    the double-double Jacobian and LU; they hold up to `κ ≈ 10²⁵`, e.g. along
-//!    critical points that run out to `‖x‖ ~ 10⁴–10⁶` in an isotropic direction. After
-//!    `extended_accepted_steps` accepted steps the tracker tries double again.
+//!    critical points that run out to `‖x‖ ~ 10⁴–10⁶` in an isotropic direction. Every
+//!    `extended_accepted_steps` accepted steps it returns to double if `κ ≤ 10⁶`; steps
+//!    in extended precision cost about ten double ones and have their own budget
+//!    (`max_extended_steps`).
 //!
 //! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
 //! - estimates the valuations `v_i = Re(s ẋ_i(s) / x_i)` (`x_i ~ s^{v_i}`): a stable
@@ -94,8 +96,9 @@ pub struct TrackerOptions {
     /// extended mode only changes the step control (for comparisons).
     #[serde(default = "default_extended_residual")]
     pub extended_residual: bool,
-    /// Accepted steps in extended precision after which the tracker tries double
-    /// precision again (it switches back after `extended_after_rejections` rejections).
+    /// Every this many accepted steps in extended precision the tracker checks the
+    /// condition number and returns to double precision if `κ ≤ 10⁶` (it switches
+    /// again after `extended_after_rejections` rejections).
     #[serde(default = "default_extended_accepted_steps")]
     pub extended_accepted_steps: usize,
     /// Step budget in extended precision (each such step costs about ten double
@@ -287,6 +290,10 @@ impl PathResult {
     }
 }
 
+/// Condition number below which extended mode returns to double precision
+/// (κ·ε ≈ 2·10⁻¹⁰, well under the corrector tolerance).
+const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
+
 fn max_norm(x: &[C64]) -> f64 {
     x.iter().fold(0.0, |m, v| m.max(v.norm()))
 }
@@ -307,6 +314,9 @@ struct Evaluation {
     dd_lu: DdLuWorkspace,
     /// The current factorisation is `dd_lu`'s (else `lu`'s).
     dd_current: bool,
+    /// `lu` does not hold the factorisation of `jac` (extended mode factors only
+    /// `dd_lu`; [`Evaluation::condition_estimate`] factors `lu` on demand).
+    lu_stale: bool,
 }
 
 /// Result of a Newton update.
@@ -324,6 +334,7 @@ impl Evaluation {
             jac_low: vec![z; n * n],
             dd_lu: DdLuWorkspace::new(n),
             dd_current: false,
+            lu_stale: false,
             work: vec![z; work_len],
             h: vec![z; n],
             jac: vec![z; n * n],
@@ -352,11 +363,11 @@ impl Evaluation {
                 (&mut self.jac, &mut self.jac_low),
                 &mut self.dh,
             );
-            // The double LU is kept current for condition estimates.
-            if !self.lu.factor(&self.jac) || !self.dd_lu.factor(&self.jac, &self.jac_low) {
+            if !self.dd_lu.factor(&self.jac, &self.jac_low) {
                 return false;
             }
             self.dd_current = true;
+            self.lu_stale = true;
         } else {
             homotopy.evaluate_with_jacobian_and_time_derivative(
                 x,
@@ -370,8 +381,22 @@ impl Evaluation {
                 return false;
             }
             self.dd_current = false;
+            self.lu_stale = false;
         }
         self.solve_velocity(dt, out)
+    }
+
+    /// 1-norm condition estimate of the last Jacobian (`jac`, rounded to double where
+    /// it was evaluated in double-double); factors it in double if only the
+    /// double-double factorisation is current.
+    fn condition_estimate(&mut self) -> f64 {
+        if self.lu_stale {
+            if !self.lu.factor(&self.jac) {
+                return f64::INFINITY;
+            }
+            self.lu_stale = false;
+        }
+        self.lu.condition_estimate()
     }
 
     /// `out ← −J⁻¹ dh · dt` with the current factorisation and `self.dh`.
@@ -406,6 +431,7 @@ impl Evaluation {
                 (&mut self.jac, &mut self.jac_low),
             );
             self.dd_current = true;
+            self.lu_stale = true;
             self.dd_lu.factor(&self.jac, &self.jac_low)
         } else {
             homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
@@ -415,6 +441,7 @@ impl Evaluation {
                 homotopy.evaluate_extended(x, t, &mut self.work, &mut self.h);
             }
             self.dd_current = false;
+            self.lu_stale = false;
             self.lu.factor(&self.jac)
         };
         if !factored {
@@ -752,10 +779,14 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         if self.extended_streak >= self.options.extended_accepted_steps
                             && self.options.extended_after_rejections > 0
                         {
-                            // The ill-conditioned stretch may be behind: try double
-                            // precision again (it comes back after a few rejections).
-                            self.extended = false;
-                            self.eval.extended = false;
+                            // Back to double precision once the ill-conditioned stretch
+                            // is behind (κ·ε ≤ 1e-10): switching back inside it costs
+                            // rejected steps and an 8-fold smaller step each time.
+                            self.extended_streak = 0;
+                            if self.eval.condition_estimate() <= RETURN_TO_DOUBLE_CONDITION {
+                                self.extended = false;
+                                self.eval.extended = false;
+                            }
                         }
                     }
                 }
@@ -824,7 +855,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 self.eval
                     .velocity(self.homotopy, &self.x, t, C64::new(-1.0, 0.0), &mut self.k1);
             let condition = if ok {
-                self.eval.lu.condition_estimate()
+                self.eval.condition_estimate()
             } else {
                 f64::INFINITY
             };

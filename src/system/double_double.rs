@@ -27,6 +27,34 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - (s - bb)) + (b - bb))
 }
 
+/// `(p, e)` with `p = fl(a·b)` and `p + e = a·b` exactly (`TwoProduct`). With a
+/// hardware FMA (compiled with `target-feature=+fma`) one fused multiply-add; otherwise
+/// Dekker's splitting into 26-bit halves (Veltkamp), all in ordinary double
+/// arithmetic — `f64::mul_add` without the target feature is a library call that
+/// emulates the fused operation, several times slower.
+#[inline]
+pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    #[cfg(target_feature = "fma")]
+    {
+        (p, a.mul_add(b, -p))
+    }
+    #[cfg(not(target_feature = "fma"))]
+    {
+        #[inline]
+        fn split(x: f64) -> (f64, f64) {
+            const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
+            let t = SPLITTER * x;
+            let hi = t - (t - x);
+            (hi, x - hi)
+        }
+        let (a_hi, a_lo) = split(a);
+        let (b_hi, b_lo) = split(b);
+        let e = ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
+        (p, e)
+    }
+}
+
 #[inline]
 fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
@@ -45,8 +73,7 @@ impl DoubleDouble {
     /// mixed-precision iterative refinement).
     #[inline]
     pub fn add_product(&mut self, a: f64, b: f64) {
-        let product = a * b;
-        let product_error = a.mul_add(b, -product);
+        let (product, product_error) = two_prod(a, b);
         let (sum, sum_error) = two_sum(self.hi, product);
         let lo = self.lo + sum_error + product_error;
         let (hi, lo) = quick_two_sum(sum, lo);
@@ -62,6 +89,17 @@ impl DoubleDouble {
         let r = DoubleDouble::from_f64(1.0) + -(self * DoubleDouble::from_f64(q1));
         let q2 = r.hi * q1;
         let (hi, lo) = quick_two_sum(q1, q2);
+        DoubleDouble { hi, lo }
+    }
+
+    /// `self − x·y`, the product's trailing terms folded into one renormalisation (the
+    /// inner update of the double-double LU: about half the work of `self + -(x * y)`).
+    #[inline]
+    pub fn minus_product(self, x: Self, y: Self) -> Self {
+        let (p, e) = two_prod(x.hi, y.hi);
+        let e = e + (x.hi * y.lo + x.lo * y.hi);
+        let (s, s_error) = two_sum(self.hi, -p);
+        let (hi, lo) = quick_two_sum(s, s_error + (self.lo - e));
         DoubleDouble { hi, lo }
     }
 
@@ -101,8 +139,8 @@ impl Mul for DoubleDouble {
     /// Product (FMA for the exact error of `hi·hi`).
     #[inline]
     fn mul(self, other: Self) -> Self {
-        let p = self.hi * other.hi;
-        let e = self.hi.mul_add(other.hi, -p) + (self.hi * other.lo + self.lo * other.hi);
+        let (p, e) = two_prod(self.hi, other.hi);
+        let e = e + (self.hi * other.lo + self.lo * other.hi);
         let (hi, lo) = quick_two_sum(p, e);
         DoubleDouble { hi, lo }
     }
@@ -141,6 +179,16 @@ impl ComplexDd {
         ComplexDd {
             re: self.re * inverse_norm,
             im: -(self.im * inverse_norm),
+        }
+    }
+
+    /// `self − x·y` for complex double-double numbers
+    /// (`(a − Re(xy)) + i(b − Im(xy))` with [`DoubleDouble::minus_product`]).
+    #[inline]
+    pub fn minus_product(self, x: Self, y: Self) -> Self {
+        ComplexDd {
+            re: self.re.minus_product(x.re, y.re).minus_product(-x.im, y.im),
+            im: self.im.minus_product(x.re, y.im).minus_product(x.im, y.re),
         }
     }
 
@@ -214,5 +262,28 @@ mod tests {
         let z =
             ComplexDd::from_c64(C64::new(1.0, 2.0)).mul(ComplexDd::from_c64(C64::new(3.0, -1.0)));
         assert_eq!(z.to_c64(), C64::new(5.0, 5.0));
+    }
+
+    /// `two_prod` is exact (both branches agree with exact integer arithmetic on
+    /// 40-bit operands), and `minus_product` and `recip` keep about 32 digits.
+    #[test]
+    fn products_differences_and_reciprocals_are_double_double_accurate() {
+        let a = (1u64 << 40) as f64 + 12345.0;
+        let b = (1u64 << 39) as f64 + 6789.0;
+        let (p, e) = two_prod(a, b);
+        let exact = ((1u128 << 40) + 12345) * ((1u128 << 39) + 6789);
+        assert_eq!(p as u128 as i128 + e as i128, exact as i128);
+        // (1 + 2⁻³⁰)(1 − 2⁻³⁰) = 1 − 2⁻⁶⁰; minus 1 leaves −2⁻⁶⁰ only in DD.
+        let x = DoubleDouble::from_f64(1.0 + 2f64.powi(-30));
+        let y = DoubleDouble::from_f64(1.0 - 2f64.powi(-30));
+        let d = DoubleDouble::from_f64(1.0).minus_product(x, y);
+        assert_eq!(d.value(), 2f64.powi(-60));
+        let three = DoubleDouble::from_f64(3.0);
+        let third = three.recip();
+        let back = DoubleDouble::from_f64(1.0).minus_product(three, third);
+        assert!(back.value().abs() < 1e-31, "{:e}", back.value());
+        let z = ComplexDd::from_c64(C64::new(3.0, -4.0));
+        let w = ComplexDd::from_c64(C64::new(1.0, 0.0)).minus_product(z, z.recip());
+        assert!(w.to_c64().norm() < 1e-31, "{}", w.to_c64());
     }
 }
