@@ -384,3 +384,87 @@ fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start(
         "double precision alone should lose paths here (else this test no longer tests anything)"
     );
 }
+
+/// The rescue pass: with a step budget too small for some of the long seed → pose
+/// paths, poses lose paths; re-solved from a complete neighbouring pose (short paths)
+/// they recover. Every recovered pose then reports the same distance as a run with
+/// default options. (The budget is the smallest of a fixed list at which the seed
+/// stage still loses nothing and some, not all, poses lose paths.)
+#[test]
+fn rescue_pass_recovers_poses_from_complete_neighbours() {
+    use singdist::pipeline::curve::{seed_stage, solve_pose};
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric("plate/plate")];
+    let poses = 30;
+    let samples = sample_motion(&motion, poses).expect("samples");
+    let starved_with = |budget: usize| {
+        let mut options = CurveOptions::default();
+        options.tracker.max_steps = budget;
+        options.retry_tracker.max_steps = budget;
+        options.retry_attempts = 0;
+        options
+    };
+    let (starved, sweep_lost) = [40, 60, 80, 120, 160, 240, 320]
+        .into_iter()
+        .find_map(|budget| {
+            let options = starved_with(budget);
+            let stage = seed_stage(
+                &design,
+                &motion,
+                &metrics,
+                &options,
+                &default_start_solutions,
+            )
+            .expect("seed stage");
+            if !stage.failures.is_empty() {
+                return None;
+            }
+            let lost: Vec<usize> = samples
+                .iter()
+                .enumerate()
+                .filter(|(j, sample)| {
+                    !solve_pose(&stage, &design, &motion, &metrics, *j, **sample, &options)
+                        .failures
+                        .is_empty()
+                })
+                .map(|(j, _)| j)
+                .collect();
+            (!lost.is_empty() && lost.len() < poses).then_some((options, lost))
+        })
+        .expect("a budget at which some poses lose paths");
+    let run = |options: &CurveOptions| {
+        compute_curve(
+            &design,
+            &motion,
+            poses,
+            &metrics,
+            options,
+            &default_start_solutions,
+            &|_| {},
+        )
+        .expect("curve")
+    };
+    let rescued = run(&starved);
+    let still_lost: Vec<usize> = rescued
+        .poses
+        .iter()
+        .filter(|p| !p.failures.is_empty())
+        .map(|p| p.index)
+        .collect();
+    assert!(
+        still_lost.len() < sweep_lost.len(),
+        "rescue recovered nothing: {still_lost:?} vs {sweep_lost:?}"
+    );
+    let reference = run(&CurveOptions::default());
+    for j in sweep_lost.iter().filter(|j| !still_lost.contains(j)) {
+        let a = &rescued.poses[*j].metrics["plate/plate"];
+        let b = &reference.poses[*j].metrics["plate/plate"];
+        assert!(
+            (a.distance - b.distance).abs() <= 1e-9 * (1.0 + b.distance),
+            "pose {j}: {} vs {}",
+            a.distance,
+            b.distance
+        );
+    }
+}
