@@ -1,13 +1,14 @@
 //! The tracker's hot linear solve `J Δ = b` (LU with partial pivoting, then one solve)
 //! for n = 11..19: singdist's preallocated `LuWorkspace` against nalgebra (heap
 //! `DMatrix` and stack `SMatrix` for n = 13) and faer (high-level `partial_piv_lu` and
-//! the allocation-free `lu_in_place` with a preallocated stack).
+//! the allocation-free `lu_in_place` with a preallocated stack), and singdist's
+//! double-double LU (`DdLuWorkspace`, the tracker's extended-precision mode).
 //!
 //! `cargo bench --bench tracker_linalg -- --warm-up-time 1 --measurement-time 3`
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use singdist::C64;
-use singdist::homotopy::LuWorkspace;
+use singdist::homotopy::{DdLuWorkspace, LuWorkspace};
 use singdist::random::{complex_normal, seeded};
 use std::hint::black_box;
 
@@ -32,6 +33,23 @@ fn bench(c: &mut Criterion) {
                 black_box(&x);
             })
         });
+
+        // The extended-precision mode's solve: double-double LU of a double-double
+        // matrix (here with zero trailing parts), what one extended step pays per solve.
+        let low = vec![C64::new(0.0, 0.0); n * n];
+        let mut dd = DdLuWorkspace::new(n);
+        group.bench_with_input(
+            BenchmarkId::new("singdist_double_double", n),
+            &n,
+            |bench, _| {
+                bench.iter(|| {
+                    dd.factor(black_box(&a), &low);
+                    x.copy_from_slice(&b);
+                    dd.solve_in_place(&mut x);
+                    black_box(&x);
+                })
+            },
+        );
 
         let na = nalgebra::DMatrix::from_row_slice(n, n, &a);
         let nb = nalgebra::DVector::from_column_slice(&b);

@@ -19,7 +19,7 @@ pub use homotopies::{
     Homotopy, ParameterHomotopy, ParameterPath, PathParameterHomotopy, PolylineParameterHomotopy,
     PolylinePath, StraightLineHomotopy,
 };
-pub use linalg::LuWorkspace;
+pub use linalg::{DdLuWorkspace, LuWorkspace};
 pub use monodromy::{
     ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
     monodromy_solve, solve_by_monodromy, trace_test,
