@@ -543,30 +543,90 @@ fn track_all<H: Homotopy + ?Sized>(
     starts: &[Vec<C64>],
     options: &TrackerOptions,
 ) -> Vec<PathResult> {
-    let mut tracker = Tracker::new(homotopy, options.clone());
-    starts
-        .iter()
+    // In parallel over chunks of paths too (nested in the parallel poses ×
+    // sub-problems), so a stage with few groups — the seed stage, a rescue chain — uses
+    // every core; one tracker (workspace) per chunk. Per path instead of per chunk was
+    // 30 % slower on the example. Each path is a pure function of its start, so the
+    // results do not depend on the thread count.
+    const CHUNK: usize = 16;
+    let chunks: Vec<Vec<PathResult>> = starts
+        .par_chunks(CHUNK)
         .enumerate()
-        .map(|(i, x)| tracker.track(x, i))
-        .collect()
+        .map(|(c, chunk)| {
+            let mut tracker = Tracker::new(homotopy, options.clone());
+            chunk
+                .iter()
+                .enumerate()
+                .map(|(i, x)| tracker.track(x, c * CHUNK + i))
+                .collect()
+        })
+        .collect();
+    chunks.into_iter().flatten().collect()
+}
+
+/// Relative distance under which two endpoints are the same point.
+const SAME_ENDPOINT: f64 = 1e-8;
+
+fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    a.iter()
+        .zip(b)
+        .all(|(u, v)| (u - v).norm() <= SAME_ENDPOINT * scale)
+}
+
+/// For every path, whether it is a *path crossing*: its endpoint is nonsingular and
+/// another path ends at the same point. A nonsingular solution is the endpoint of
+/// exactly one path of a parameter homotopy, so one of them jumped (and missed a
+/// critical point); singular endpoints may legitimately be shared (multiplicity).
+fn crossings(paths: &[PathResult]) -> Vec<bool> {
+    let nonsingular: Vec<usize> = (0..paths.len())
+        .filter(|&i| paths[i].status == PathStatus::Nonsingular)
+        .collect();
+    let mut crossed = vec![false; paths.len()];
+    for (k, &i) in nonsingular.iter().enumerate() {
+        for &j in &nonsingular[k + 1..] {
+            if same_endpoint(&paths[i].solution, &paths[j].solution) {
+                crossed[i] = true;
+                crossed[j] = true;
+            }
+        }
+    }
+    crossed
 }
 
 /// Paths whose fate is known: a finite endpoint, or an endpoint at infinity (a
-/// critical point that does not exist at these parameters, classified by the endgame).
-/// Only [`PathStatus::Failed`] paths may hide a missed critical point.
+/// critical point that does not exist at these parameters, classified by the endgame),
+/// less one per extra path on a shared nonsingular endpoint (a path crossing hides a
+/// missed critical point just as a failed path does).
 fn accounted(paths: &[PathResult]) -> usize {
-    paths
+    let classified = paths
         .iter()
         .filter(|p| !matches!(p.status, PathStatus::Failed(_)))
-        .count()
+        .count();
+    let crossed = crossings(paths);
+    let crossing_paths = crossed.iter().filter(|&&c| c).count();
+    let crossing_points = finite_solutions(paths).len()
+        - paths
+            .iter()
+            .zip(&crossed)
+            .filter(|(p, c)| p.status.is_finite() && !**c)
+            .count();
+    classified - (crossing_paths - crossing_points)
 }
 
+/// The distinct finite endpoints: every singular endpoint (shared ones count with
+/// their multiplicity of paths, as the start count does) and each nonsingular point
+/// once.
 fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
-    paths
-        .iter()
-        .filter(|p| p.status.is_finite())
-        .map(|p| p.solution.clone())
-        .collect()
+    let mut out: Vec<Vec<C64>> = Vec::new();
+    for p in paths.iter().filter(|p| p.status.is_finite()) {
+        let duplicate = p.status == PathStatus::Nonsingular
+            && out.iter().any(|x| same_endpoint(x, &p.solution));
+        if !duplicate {
+            out.push(p.solution.clone());
+        }
+    }
+    out
 }
 
 /// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal,
@@ -587,8 +647,9 @@ fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
 }
 
 /// Tracks `starts` (solutions of `system` at `path(k)`'s start) along `path(0)` (the
-/// reference route, tracker options `tracker`); if paths fail, re-tracks the
-/// failed ones with `retry_tracker`, then (if some still fail) every path along the
+/// reference route, tracker options `tracker`); if paths fail or cross (two paths on
+/// one nonsingular endpoint), re-tracks those with `retry_tracker`, then (if some are
+/// still unaccounted for) every path along the
 /// detours `path(1)`, … `path(attempts)`, whose endpoints are merged (deduplicated). Returns the merged finite endpoints, the best attempt's number of
 /// accounted paths ([`accounted`]) and the number of paths tracked.
 pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
@@ -603,10 +664,12 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     let mut paths = track_all(&reference, starts, tracker);
     let mut tracked = starts.len();
     if accounted(&paths) < expected {
-        // First re-run: only the failed paths, same homotopy, safer settings.
+        // First re-run: only the failed paths and path crossings, same homotopy, safer
+        // settings.
+        let crossed = crossings(&paths);
         let mut careful = Tracker::new(&reference, retry_tracker.clone());
         for (i, path) in paths.iter_mut().enumerate() {
-            if matches!(path.status, PathStatus::Failed(_)) {
+            if matches!(path.status, PathStatus::Failed(_)) || crossed[i] {
                 *path = careful.track(&starts[i], i);
                 tracked += 1;
             }
@@ -614,10 +677,13 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     }
     let mut endpoints = finite_solutions(&paths);
     let mut best = accounted(&paths);
-    let at_infinity = paths
-        .iter()
-        .filter(|p| p.status == PathStatus::AtInfinity)
-        .count();
+    let count_at_infinity = |paths: &[PathResult]| {
+        paths
+            .iter()
+            .filter(|p| p.status == PathStatus::AtInfinity)
+            .count()
+    };
+    let mut at_infinity = count_at_infinity(&paths);
     for attempt in 1..=attempts {
         if best >= expected {
             break;
@@ -626,19 +692,16 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         let paths = track_all(&detour, starts, tracker);
         tracked += starts.len();
         best = best.max(accounted(&paths));
+        at_infinity = at_infinity.max(count_at_infinity(&paths));
         for x in finite_solutions(&paths) {
-            let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-            let known = endpoints.iter().any(|y| {
-                y.iter()
-                    .zip(&x)
-                    .all(|(a, b)| (a - b).norm() <= 1e-8 * scale)
-            });
+            let known = endpoints.iter().any(|y| same_endpoint(y, &x));
             if !known {
                 endpoints.push(x);
             }
         }
-        // The union of the attempts' distinct finite endpoints, plus the reference
-        // route's paths to infinity, may account for more than any single attempt.
+        // The union of the attempts' distinct finite endpoints, plus the most paths
+        // any one attempt classified at infinity, may account for more than any
+        // single attempt.
         best = best.max(endpoints.len() + at_infinity);
     }
     (endpoints, best, tracked)
@@ -1252,6 +1315,50 @@ pub fn default_start_solutions(id: ProblemId) -> Result<std::sync::Arc<StartSolu
 mod tests {
     use super::*;
     use crate::mechanism::rpr::{example_design, example_motion};
+
+    fn path(index: usize, status: PathStatus, point: [f64; 2]) -> PathResult {
+        PathResult {
+            path_index: index,
+            solution: point.iter().map(|&v| C64::new(v, 0.5)).collect(),
+            status,
+            residual: 0.0,
+            condition: 1.0,
+            winding_number: 1,
+            multiplicity: 1,
+            steps: 10,
+            rejected_steps: 0,
+            used_extended_precision: false,
+            last_t: C64::new(1.0, 0.0),
+        }
+    }
+
+    /// Two paths on one nonsingular endpoint are a crossing (one critical point
+    /// missed): both are flagged, one is unaccounted for and the point is listed once;
+    /// two paths on one singular endpoint are a double root (both accounted for).
+    #[test]
+    fn path_crossings_are_unaccounted_and_shared_singular_endpoints_are_not() {
+        use PathStatus::{AtInfinity, Failed, Nonsingular, Singular};
+        let paths = vec![
+            path(0, Nonsingular, [1.0, 2.0]),
+            path(1, Nonsingular, [1.0, 2.0 + 1e-12]),
+            path(2, Nonsingular, [3.0, 4.0]),
+            path(3, Singular, [5.0, 6.0]),
+            path(4, Singular, [5.0, 6.0]),
+            path(5, AtInfinity, [1e9, 0.0]),
+            path(
+                6,
+                Failed(crate::homotopy::FailureReason::TooManySteps),
+                [7.0, 7.0],
+            ),
+        ];
+        assert_eq!(
+            crossings(&paths),
+            vec![true, true, false, false, false, false, false]
+        );
+        // 7 paths: one failed, one extra on the crossing.
+        assert_eq!(accounted(&paths), 5);
+        assert_eq!(finite_solutions(&paths).len(), 4);
+    }
 
     /// `MotionPath::point_and_velocity` is the derivative of `MotionPath::point`
     /// (central differences in complex t), on every segment of a detoured path.
