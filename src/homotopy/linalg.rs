@@ -296,7 +296,24 @@ impl DdLuWorkspace {
     }
 
     /// Factors `hi + lo` (row-major); `false` if a pivot is exactly zero or not finite.
+    /// (Runs a copy compiled with the `fma` target feature where the CPU has it.)
     pub fn factor(&mut self, hi: &[C64], lo: &[C64]) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if crate::system::double_double::has_fma() {
+            // SAFETY: the CPU supports FMA (checked at run time just above).
+            return unsafe { self.factor_with_fma(hi, lo) };
+        }
+        self.factor_generic(hi, lo)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "fma")]
+    fn factor_with_fma(&mut self, hi: &[C64], lo: &[C64]) -> bool {
+        self.factor_generic(hi, lo)
+    }
+
+    #[inline(always)]
+    fn factor_generic(&mut self, hi: &[C64], lo: &[C64]) -> bool {
         let n = self.n;
         for (f, (h, l)) in self.factors.iter_mut().zip(hi.iter().zip(lo)) {
             *f = ComplexDd::from_parts(*h, *l);
@@ -339,6 +356,23 @@ impl DdLuWorkspace {
 
     /// `x ← A⁻¹ b` with the last factorisation (`b` and the result in double).
     pub fn solve_in_place(&mut self, b: &mut [C64]) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::system::double_double::has_fma() {
+            // SAFETY: the CPU supports FMA (checked at run time just above).
+            unsafe { self.solve_with_fma(b) };
+            return;
+        }
+        self.solve_generic(b);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "fma")]
+    fn solve_with_fma(&mut self, b: &mut [C64]) {
+        self.solve_generic(b);
+    }
+
+    #[inline(always)]
+    fn solve_generic(&mut self, b: &mut [C64]) {
         let n = self.n;
         for (k, s) in self.scratch.iter_mut().enumerate() {
             *s = ComplexDd::from_c64(b[self.permutation[k]]);

@@ -118,7 +118,7 @@ impl TapeScalar for C64 {
 }
 
 impl TapeScalar for ComplexDd {
-    #[inline]
+    #[inline(always)]
     fn scale_by_real_part(self, b: Self) -> Self {
         self.scale(b)
     }
@@ -164,9 +164,29 @@ impl Tape {
         self.execute(work);
     }
 
+    /// [`Tape::execute`] in double-double, compiled a second time with the `fma`
+    /// target feature and chosen at run time where the CPU has it (the exact products
+    /// of double-double arithmetic are then one instruction each).
+    fn execute_double_double(&self, registers: &mut [ComplexDd]) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::system::double_double::has_fma() {
+            // SAFETY: the CPU supports FMA (checked at run time just above).
+            unsafe { self.execute_with_fma(registers) };
+            return;
+        }
+        self.execute(registers);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "fma")]
+    fn execute_with_fma(&self, registers: &mut [ComplexDd]) {
+        self.execute(registers);
+    }
+
     /// Runs the instructions on `registers` (inputs and constants already loaded),
-    /// block by block so the inner loops do not branch on the operation.
-    #[inline]
+    /// block by block so the inner loops do not branch on the operation. (Always
+    /// inlined, so [`Tape::execute_with_fma`] compiles it with the `fma` feature.)
+    #[inline(always)]
     fn execute<T: TapeScalar>(&self, registers: &mut [T]) {
         let temporaries_start = self.num_inputs + self.constants.len();
         assert!(
@@ -237,7 +257,7 @@ impl Tape {
             for (r, v) in registers.iter_mut().zip(loaded) {
                 *r = ComplexDd::from_c64(*v);
             }
-            self.execute(&mut registers);
+            self.execute_double_double(&mut registers);
             let (head, tail) = self.outputs.split_at(first.len().min(self.outputs.len()));
             for (target, &(register, sign)) in first.iter_mut().zip(head) {
                 *target = registers[register as usize].to_c64() * sign;

@@ -20,42 +20,72 @@ pub struct DoubleDouble {
     pub lo: f64,
 }
 
-#[inline]
+#[inline(always)]
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))
 }
 
-/// `(p, e)` with `p = fl(a·b)` and `p + e = a·b` exactly (`TwoProduct`). With a
-/// hardware FMA (compiled with `target-feature=+fma`) one fused multiply-add; otherwise
-/// Dekker's splitting into 26-bit halves (Veltkamp), all in ordinary double
-/// arithmetic — `f64::mul_add` without the target feature is a library call that
-/// emulates the fused operation, several times slower.
-#[inline]
-pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    #[cfg(target_feature = "fma")]
+/// Whether this CPU has fused multiply-add (x86-64: checked once at run time; other
+/// architectures: whether the crate was compiled with the feature).
+#[inline(always)]
+pub fn has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
     {
-        (p, a.mul_add(b, -p))
-    }
-    #[cfg(not(target_feature = "fma"))]
-    {
-        #[inline]
-        fn split(x: f64) -> (f64, f64) {
-            const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
-            let t = SPLITTER * x;
-            let hi = t - (t - x);
-            (hi, x - hi)
+        use std::sync::atomic::{AtomicU8, Ordering};
+        // 0 unknown, 1 no, 2 yes.
+        static STATE: AtomicU8 = AtomicU8::new(0);
+        match STATE.load(Ordering::Relaxed) {
+            2 => true,
+            1 => false,
+            _ => {
+                let yes = std::arch::is_x86_feature_detected!("fma");
+                STATE.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+                yes
+            }
         }
-        let (a_hi, a_lo) = split(a);
-        let (b_hi, b_lo) = split(b);
-        let e = ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
-        (p, e)
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        cfg!(target_feature = "fma")
     }
 }
 
-#[inline]
+/// `(p, e)` with `p = fl(a·b)` and `p + e = a·b` exactly (`TwoProduct`). With a
+/// hardware FMA one fused multiply-add: inside the double-double kernels compiled with
+/// the `fma` target feature ([`Tape`](super::compile) extended runs, the
+/// double-double LU) it is one instruction. Without FMA, Dekker's splitting into 26-bit
+/// halves (Veltkamp), in ordinary double arithmetic — `f64::mul_add` on a CPU without
+/// FMA is a software emulation, several times slower.
+#[inline(always)]
+pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    if cfg!(target_feature = "fma") || has_fma() {
+        let p = a * b;
+        (p, a.mul_add(b, -p))
+    } else {
+        two_prod_split(a, b)
+    }
+}
+
+/// [`two_prod`] without FMA: Dekker's product of Veltkamp-split 26-bit halves.
+#[inline(always)]
+fn two_prod_split(a: f64, b: f64) -> (f64, f64) {
+    #[inline(always)]
+    fn split(x: f64) -> (f64, f64) {
+        const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
+        let t = SPLITTER * x;
+        let hi = t - (t - x);
+        (hi, x - hi)
+    }
+    let p = a * b;
+    let (a_hi, a_lo) = split(a);
+    let (b_hi, b_lo) = split(b);
+    let e = ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
+    (p, e)
+}
+
+#[inline(always)]
 fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     (s, b - (s - a))
@@ -63,7 +93,7 @@ fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
 
 impl DoubleDouble {
     /// The exact value of a double.
-    #[inline]
+    #[inline(always)]
     pub fn from_f64(value: f64) -> Self {
         DoubleDouble { hi: value, lo: 0.0 }
     }
@@ -71,7 +101,7 @@ impl DoubleDouble {
     /// `self ← self + a·b` for doubles `a, b`: the product formed exactly by a fused
     /// multiply-add (`TwoProduct`), the sum by Knuth's `TwoSum` (dot products of
     /// mixed-precision iterative refinement).
-    #[inline]
+    #[inline(always)]
     pub fn add_product(&mut self, a: f64, b: f64) {
         let (product, product_error) = two_prod(a, b);
         let (sum, sum_error) = two_sum(self.hi, product);
@@ -82,7 +112,7 @@ impl DoubleDouble {
     }
 
     /// `1 / self` to about 106 bits (one Newton correction of the double reciprocal).
-    #[inline]
+    #[inline(always)]
     pub fn recip(self) -> Self {
         let q1 = 1.0 / self.hi;
         // r = 1 − q1·self, exactly enough: q1·self is within ε of 1.
@@ -94,7 +124,7 @@ impl DoubleDouble {
 
     /// `self − x·y`, the product's trailing terms folded into one renormalisation (the
     /// inner update of the double-double LU: about half the work of `self + -(x * y)`).
-    #[inline]
+    #[inline(always)]
     pub fn minus_product(self, x: Self, y: Self) -> Self {
         let (p, e) = two_prod(x.hi, y.hi);
         let e = e + (x.hi * y.lo + x.lo * y.hi);
@@ -104,7 +134,7 @@ impl DoubleDouble {
     }
 
     /// Rounded to the nearest double.
-    #[inline]
+    #[inline(always)]
     pub fn value(self) -> f64 {
         self.hi + self.lo
     }
@@ -113,7 +143,7 @@ impl DoubleDouble {
 impl Add for DoubleDouble {
     type Output = Self;
     /// Sum, correctly rounded to about 106 bits.
-    #[inline]
+    #[inline(always)]
     fn add(self, other: Self) -> Self {
         let (s, e) = two_sum(self.hi, other.hi);
         let (t, f) = two_sum(self.lo, other.lo);
@@ -125,7 +155,7 @@ impl Add for DoubleDouble {
 
 impl Neg for DoubleDouble {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn neg(self) -> Self {
         DoubleDouble {
             hi: -self.hi,
@@ -137,7 +167,7 @@ impl Neg for DoubleDouble {
 impl Mul for DoubleDouble {
     type Output = Self;
     /// Product (FMA for the exact error of `hi·hi`).
-    #[inline]
+    #[inline(always)]
     fn mul(self, other: Self) -> Self {
         let (p, e) = two_prod(self.hi, other.hi);
         let e = e + (self.hi * other.lo + self.lo * other.hi);
@@ -157,7 +187,7 @@ pub struct ComplexDd {
 
 impl ComplexDd {
     /// The exact value of a complex double.
-    #[inline]
+    #[inline(always)]
     pub fn from_c64(value: C64) -> Self {
         ComplexDd {
             re: DoubleDouble::from_f64(value.re),
@@ -167,13 +197,13 @@ impl ComplexDd {
 
     /// `hi + lo` for complex doubles (a value known beyond double precision as a
     /// rounded part and its trailing part).
-    #[inline]
+    #[inline(always)]
     pub fn from_parts(hi: C64, lo: C64) -> Self {
         ComplexDd::from_c64(hi) + ComplexDd::from_c64(lo)
     }
 
     /// `1 / self = conj(self) / |self|²`.
-    #[inline]
+    #[inline(always)]
     pub fn recip(self) -> Self {
         let inverse_norm = (self.re * self.re + self.im * self.im).recip();
         ComplexDd {
@@ -184,7 +214,7 @@ impl ComplexDd {
 
     /// `self − x·y` for complex double-double numbers
     /// (`(a − Re(xy)) + i(b − Im(xy))` with [`DoubleDouble::minus_product`]).
-    #[inline]
+    #[inline(always)]
     pub fn minus_product(self, x: Self, y: Self) -> Self {
         ComplexDd {
             re: self.re.minus_product(x.re, y.re).minus_product(-x.im, y.im),
@@ -193,13 +223,13 @@ impl ComplexDd {
     }
 
     /// Rounded to the nearest complex double.
-    #[inline]
+    #[inline(always)]
     pub fn to_c64(self) -> C64 {
         C64::new(self.re.hi + self.re.lo, self.im.hi + self.im.lo)
     }
 
     /// Product with the real part of `other` only.
-    #[inline]
+    #[inline(always)]
     pub fn scale(self, other: Self) -> Self {
         ComplexDd {
             re: self.re * other.re,
@@ -210,7 +240,7 @@ impl ComplexDd {
 
 impl Add for ComplexDd {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn add(self, other: Self) -> Self {
         ComplexDd {
             re: self.re + other.re,
@@ -221,7 +251,7 @@ impl Add for ComplexDd {
 
 impl Sub for ComplexDd {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn sub(self, other: Self) -> Self {
         ComplexDd {
             re: self.re + -other.re,
@@ -233,7 +263,7 @@ impl Sub for ComplexDd {
 impl Mul for ComplexDd {
     type Output = Self;
     /// `(a + ib)(c + id) = (ac − bd) + i(ad + bc)`.
-    #[inline]
+    #[inline(always)]
     fn mul(self, other: Self) -> Self {
         ComplexDd {
             re: self.re * other.re + -(self.im * other.im),
@@ -270,9 +300,15 @@ mod tests {
     fn products_differences_and_reciprocals_are_double_double_accurate() {
         let a = (1u64 << 40) as f64 + 12345.0;
         let b = (1u64 << 39) as f64 + 6789.0;
-        let (p, e) = two_prod(a, b);
         let exact = ((1u128 << 40) + 12345) * ((1u128 << 39) + 6789);
-        assert_eq!(p as u128 as i128 + e as i128, exact as i128);
+        // Both the dispatched product and the FMA-free split product are exact.
+        for (p, e) in [two_prod(a, b), two_prod_split(a, b)] {
+            assert_eq!(p as u128 as i128 + e as i128, exact as i128);
+        }
+        let (x, y) = (0.1f64, 3.0f64.sqrt());
+        let (p1, e1) = two_prod_split(x, y);
+        let (p2, e2) = (x * y, x.mul_add(y, -(x * y)));
+        assert_eq!((p1, e1), (p2, e2), "split and fused products agree");
         // (1 + 2⁻³⁰)(1 − 2⁻³⁰) = 1 − 2⁻⁶⁰; minus 1 leaves −2⁻⁶⁰ only in DD.
         let x = DoubleDouble::from_f64(1.0 + 2f64.powi(-30));
         let y = DoubleDouble::from_f64(1.0 - 2f64.powi(-30));
