@@ -285,6 +285,43 @@ fn scaling_the_design_and_motion_scales_every_distance() {
     }
 }
 
+/// Paths lost (expected − accounted) by the seed stage of the built-in example and by
+/// the seed → pose homotopies at `poses` (of 90), for one metric, without rescue pass.
+fn lost_on_example(name: &str, poses: &[usize], options: &CurveOptions) -> (usize, usize) {
+    use singdist::pipeline::curve::{seed_stage, solve_pose};
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric(name)];
+    let samples = sample_motion(&motion, 90).expect("samples");
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &metrics,
+        options,
+        &default_start_solutions,
+    )
+    .expect("seed stage");
+    let lost = |failures: &[singdist::pipeline::curve::PathFailure]| -> usize {
+        failures.iter().map(|f| f.expected - f.accounted).sum()
+    };
+    let at_poses = poses
+        .iter()
+        .map(|&index| {
+            let result = solve_pose(
+                &stage,
+                &design,
+                &motion,
+                &metrics,
+                index,
+                samples[index],
+                options,
+            );
+            lost(&result.failures)
+        })
+        .sum();
+    (lost(&stage.failures), at_poses)
+}
+
 /// Regression test of adaptive precision (tracker `extended_after_rejections`): on the
 /// built-in example, `plate/rigid` poses 20–29 (τ ≈ 0.24–0.79) lost 1–2 of 80 paths
 /// each with double-precision residuals — critical points escaping along isotropic
@@ -292,37 +329,8 @@ fn scaling_the_design_and_motion_scales_every_distance() {
 /// With double-double residuals every path is accounted for, at the seed and there.
 #[test]
 fn extended_precision_accounts_for_every_plate_rigid_path_mid_motion() {
-    use singdist::pipeline::curve::{seed_stage, solve_pose};
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("plate/rigid")];
-    let options = CurveOptions::default();
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &options,
-        &default_start_solutions,
-    )
-    .expect("seed stage");
-    assert!(stage.failures.is_empty(), "seed: {:?}", stage.failures);
-    let samples = sample_motion(&motion, 90).expect("samples");
-    for index in [20, 24, 28] {
-        let result = solve_pose(
-            &stage,
-            &design,
-            &motion,
-            &metrics,
-            index,
-            samples[index],
-            &options,
-        );
-        assert!(
-            result.failures.is_empty(),
-            "pose {index}: {:?}",
-            result.failures
-        );
-    }
+    let lost = lost_on_example("plate/rigid", &[20, 24, 28], &CurveOptions::default());
+    assert_eq!(lost, (0, 0), "(seed, poses)");
 }
 
 /// Adaptive precision with double-double Jacobians and LU (regression). On the
@@ -336,54 +344,15 @@ fn extended_precision_accounts_for_every_plate_rigid_path_mid_motion() {
 /// cross onto other paths' endpoints after long excursions, see the closing notes.)
 #[test]
 fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start() {
-    use singdist::pipeline::curve::{seed_stage, solve_pose};
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("rigid/rigid")];
-    let samples = sample_motion(&motion, 90).expect("samples");
-    // (paths lost at the seed, paths lost at poses 0, 6 and 12)
-    let lost = |options: &CurveOptions| -> (usize, usize) {
-        let stage = seed_stage(
-            &design,
-            &motion,
-            &metrics,
-            options,
-            &default_start_solutions,
-        )
-        .expect("seed stage");
-        let at_seed = stage
-            .failures
-            .iter()
-            .map(|f| f.expected - f.accounted)
-            .sum();
-        let at_poses = [0, 6, 12]
-            .into_iter()
-            .map(|index| {
-                solve_pose(
-                    &stage,
-                    &design,
-                    &motion,
-                    &metrics,
-                    index,
-                    samples[index],
-                    options,
-                )
-                .failures
-                .iter()
-                .map(|f| f.expected - f.accounted)
-                .sum::<usize>()
-            })
-            .sum();
-        (at_seed, at_poses)
-    };
+    let poses = [0, 6, 12];
     let options = CurveOptions::default();
-    let (seed_default, poses_default) = lost(&options);
+    let (seed_default, poses_default) = lost_on_example("rigid/rigid", &poses, &options);
     assert_eq!(poses_default, 0, "double-double extended mode");
     assert!(seed_default <= 2, "seed stage lost {seed_default}");
     let mut double_only = options.clone();
     double_only.tracker.extended_residual = false;
     double_only.retry_tracker.extended_residual = false;
-    let (seed_double, poses_double) = lost(&double_only);
+    let (seed_double, poses_double) = lost_on_example("rigid/rigid", &poses, &double_only);
     assert!(
         poses_double > 0 || seed_double > seed_default,
         "double precision alone should lose paths here (else this test no longer tests anything)"

@@ -1,12 +1,15 @@
-//! Double-double ("DD") complex arithmetic for residuals evaluated beyond double
-//! precision: a value is an unevaluated sum `hi + lo` with `|lo| ≤ ulp(hi)/2`, about
-//! 106 significant bits (Dekker 1971; Hida, Li & Bailey, *Algorithms for quad-double
-//! precision floating point arithmetic*, 2001: `two_sum`, FMA-based `two_prod`).
+//! Double-double ("DD") complex arithmetic for evaluations and linear solves beyond
+//! double precision: a value is an unevaluated sum `hi + lo` with `|lo| ≤ ulp(hi)/2`,
+//! about 106 significant bits (Dekker 1971; Hida, Li & Bailey, *Algorithms for
+//! quad-double precision floating point arithmetic*, 2001: `two_sum`, `two_prod` by
+//! FMA or by Dekker's splitting).
 //!
-//! Used by [`super::Evaluator::evaluate_extended`]: Newton with an accurate residual
-//! and a double-precision Jacobian converges to full double accuracy whenever
-//! `κ(J)·ε < 1`, whereas a double-precision residual stalls at a relative noise floor
-//! of about `κ(J)·ε·Σ|terms|/|F|`.
+//! Used by the tracker's extended-precision mode: residuals, Jacobians and `∂H/∂t` from
+//! the compiled tapes run in DD ([`super::Evaluator::evaluate_extended`],
+//! [`super::Evaluator::evaluate_with_jacobian_extended`]) and the DD LU
+//! ([`crate::homotopy::linalg::DdLuWorkspace`]). A double-precision residual stalls at
+//! a relative noise floor of about `κ(J)·ε·Σ|terms|/|F|`, and a Jacobian or LU in
+//! double costs `κ(J)·ε` of relative accuracy in every velocity and Newton update.
 
 use crate::C64;
 use std::ops::{Add, Mul, Neg, Sub};
