@@ -10,7 +10,7 @@ use singdist::pipeline::curve::{
     CurveOptions, CurveResult, compute_curve, default_start_solutions, sample_motion,
     singular_parameters,
 };
-use singdist::problem::{LagrangeProblem, ProblemId, SubProblem};
+use singdist::problem::{Coordinates, LagrangeProblem, ProblemId, SubProblem};
 use singdist::system::Evaluator;
 
 fn curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric]) -> CurveResult {
@@ -333,19 +333,20 @@ fn extended_precision_accounts_for_every_plate_rigid_path_mid_motion() {
     assert_eq!(lost, (0, 0), "(seed, poses)");
 }
 
-/// Adaptive precision with double-double Jacobians and LU (regression). On the
-/// built-in example `rigid/rigid` has critical points far out along isotropic
-/// directions (‖x‖ ~ 10³–10⁴ in the normalised frame, κ ~ 10¹³–10¹⁵) at the poses near
-/// τ = −1: with double-precision residuals poses 0, 6 and 12 lost 12, 8 and 6 of the
-/// seed → pose paths. With the whole extended mode in double-double every seed → pose
-/// path of these poses is accounted for (no rescue pass needed); with
+/// Adaptive precision with double-double Jacobians and LU (regression), in Cartesian
+/// coordinates. On the built-in example `rigid/rigid` has critical points far out
+/// along isotropic directions (‖x‖ ~ 10³–10⁴ in the normalised frame, κ ~ 10¹³–10¹⁵)
+/// at the poses near τ = −1: with double-precision residuals poses 0, 6 and 12 lost
+/// 12, 8 and 6 of the seed → pose paths. With the whole extended mode in double-double
+/// every seed → pose path of these poses is accounted for (no rescue pass needed); with
 /// `extended_residual = false` paths are lost again, at the seed or at these poses.
-/// (The seed stage itself leaves 2 of 88 source → seed paths unaccounted for: they
-/// cross onto other paths' endpoints after long excursions, see the closing notes.)
 #[test]
 fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start() {
     let poses = [0, 6, 12];
-    let options = CurveOptions::default();
+    let options = CurveOptions {
+        coordinates: Coordinates::Cartesian,
+        ..CurveOptions::default()
+    };
     let (seed_default, poses_default) = lost_on_example("rigid/rigid", &poses, &options);
     assert_eq!(poses_default, 0, "double-double extended mode");
     assert!(seed_default <= 2, "seed stage lost {seed_default}");
@@ -357,6 +358,76 @@ fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start(
         poses_double > 0 || seed_double > seed_default,
         "double precision alone should lose paths here (else this test no longer tests anything)"
     );
+}
+
+/// Isotropic coordinates (the default): at poses 2 and 3 of the built-in example the
+/// `rigid/rigid` critical points escape so far along isotropic lines (‖x‖ ≈ 2–5·10⁶)
+/// that even double-double tracking in Cartesian coordinates lost 6 of 80 paths at
+/// each, rescue pass included; in isotropic coordinates every path is accounted for.
+/// (The seed stage leaves at most 1 of 88 source → seed paths unaccounted for: a path
+/// that crosses onto another one's endpoint after a long excursion, see the notes.)
+#[test]
+fn isotropic_coordinates_account_for_the_far_out_rigid_rigid_critical_points() {
+    let poses = [2, 3];
+    let (seed_isotropic, poses_isotropic) =
+        lost_on_example("rigid/rigid", &poses, &CurveOptions::default());
+    assert_eq!(poses_isotropic, 0, "isotropic coordinates");
+    assert!(seed_isotropic <= 1, "seed stage lost {seed_isotropic}");
+    let cartesian = CurveOptions {
+        coordinates: Coordinates::Cartesian,
+        ..CurveOptions::default()
+    };
+    let (_, poses_cartesian) = lost_on_example("rigid/rigid", &poses, &cartesian);
+    assert!(
+        poses_cartesian > 0,
+        "Cartesian coordinates should lose paths here (else this test no longer tests anything)"
+    );
+}
+
+/// Pose-to-pose chains (the default, `chain_length` 10) give the distances of the
+/// reference route (every pose from the seed, `chain_length` 1), metric by metric.
+#[test]
+fn chained_poses_match_the_seed_route() {
+    let design = example_design();
+    let motion = example_motion();
+    let metrics = [metric("plate/rigid"), metric("bars/bars")];
+    let run = |chain_length: usize| {
+        let options = CurveOptions {
+            chain_length,
+            ..CurveOptions::default()
+        };
+        compute_curve(
+            &design,
+            &motion,
+            24,
+            &metrics,
+            &options,
+            &default_start_solutions,
+            &|_| {},
+        )
+        .expect("curve")
+    };
+    let (chained, reference) = (run(8), run(1));
+    assert!(chained.failures.is_empty() && reference.failures.is_empty());
+    assert!(
+        chained.paths_tracked < reference.paths_tracked,
+        "chains should track fewer paths: {} vs {}",
+        chained.paths_tracked,
+        reference.paths_tracked
+    );
+    for (a, b) in chained.poses.iter().zip(&reference.poses) {
+        for (name, da) in &a.metrics {
+            let db = &b.metrics[name];
+            assert!(
+                (da.distance - db.distance).abs() <= 1e-9 * (1.0 + db.distance),
+                "pose {} {name}: {} vs {}",
+                a.index,
+                da.distance,
+                db.distance
+            );
+            assert_eq!(da.subproblem, db.subproblem, "pose {} {name}", a.index);
+        }
+    }
 }
 
 /// The rescue pass: with a step budget too small for some of the long seed → pose
@@ -377,6 +448,8 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
         options.tracker.max_steps = budget;
         options.retry_tracker.max_steps = budget;
         options.retry_attempts = 0;
+        // Every pose from the seed: the rescue pass, not a chain, must recover them.
+        options.chain_length = 1;
         options
     };
     let (starved, sweep_lost) = [40, 60, 80, 120, 160, 240, 320]

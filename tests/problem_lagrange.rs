@@ -133,3 +133,101 @@ fn start_pairs_lie_on_their_constraint_variety() {
         }
     }
 }
+
+/// The isotropic formulation (`(u, v) = (x + i y, x − i y)` per point) is the Cartesian
+/// Lagrange system in other coordinates: at any point its equations are the chain rule
+/// `∂Λ/∂u = (∂Λ/∂x − i ∂Λ/∂y)/2`, `∂Λ/∂v = (∂Λ/∂x + i ∂Λ/∂y)/2` of the Cartesian
+/// ones (other equations equal), so every stored start solution converts to a solution,
+/// with the same configuration K′.
+#[test]
+fn isotropic_systems_are_the_cartesian_ones_in_other_coordinates() {
+    use singdist::pipeline::ab_initio::embedded_start_solutions;
+    use singdist::problem::Coordinates;
+    let half = C64::new(0.5, 0.0);
+    let half_i = C64::new(0.0, 0.5);
+    let mut checked_solutions = 0;
+    for id in ProblemId::all() {
+        let cartesian = LagrangeProblem::new(id).unwrap();
+        let isotropic = LagrangeProblem::new_in(id, Coordinates::Isotropic).unwrap();
+        assert_eq!(isotropic.coordinates(), Coordinates::Isotropic);
+        let n = cartesian.variable_names().len();
+        assert_eq!(isotropic.variable_names().len(), n, "{id}");
+        assert_eq!(
+            isotropic.parameter_names(),
+            cartesian.parameter_names(),
+            "{id}"
+        );
+        // Which variables are the first coordinate of a point.
+        let points: Vec<usize> = (0..n - 1)
+            .filter(|&i| {
+                let (a, b) = (
+                    &isotropic.variable_names()[i],
+                    &isotropic.variable_names()[i + 1],
+                );
+                a.ends_with('u') && b.ends_with('v') && a[..a.len() - 1] == b[..b.len() - 1]
+            })
+            .collect();
+        assert!(!points.is_empty(), "{id}: no point variables");
+        let m = cartesian.parameter_names().len();
+        let x: Vec<C64> = (0..n)
+            .map(|i| C64::new(0.3 + 0.17 * i as f64, -0.4 + 0.09 * (i * i) as f64))
+            .collect();
+        let p: Vec<C64> = (0..m)
+            .map(|i| C64::new(1.1 - 0.13 * i as f64, 0.05 * i as f64))
+            .collect();
+        let y = isotropic.from_cartesian(&x);
+        let back = isotropic.to_cartesian(&y);
+        assert!(
+            x.iter().zip(&back).all(|(a, b)| (a - b).norm() < 1e-14),
+            "{id}"
+        );
+        let mut work =
+            vec![C64::new(0.0, 0.0); cartesian.workspace_len().max(isotropic.workspace_len())];
+        let mut fc = vec![C64::new(0.0, 0.0); n];
+        let mut fi = vec![C64::new(0.0, 0.0); n];
+        cartesian.evaluator().evaluate(&x, &p, &mut work, &mut fc);
+        isotropic.evaluator().evaluate(&y, &p, &mut work, &mut fi);
+        let mut expected = fc.clone();
+        for &i in &points {
+            expected[i] = half * fc[i] - half_i * fc[i + 1];
+            expected[i + 1] = half * fc[i] + half_i * fc[i + 1];
+        }
+        let scale = 1.0 + fc.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        for (k, (a, b)) in fi.iter().zip(&expected).enumerate() {
+            assert!(
+                (a - b).norm() < 1e-12 * scale,
+                "{id} equation {k}: {a} vs {b}"
+            );
+        }
+        let kc = cartesian.configuration(&x, &p, &mut work);
+        let ki = isotropic.configuration(&y, &p, &mut work);
+        assert!(
+            kc.iter()
+                .zip(&ki)
+                .all(|(a, b)| (a - b).norm() < 1e-12 * (1.0 + a.norm())),
+            "{id}"
+        );
+        // Stored start solutions stay solutions.
+        let Some(file) = embedded_start_solutions(id) else {
+            continue;
+        };
+        let file = file.unwrap();
+        let p0 = file.parameter_vector(isotropic.parameter_names()).unwrap();
+        for solution in &file.solutions {
+            isotropic.evaluator().evaluate(
+                &isotropic.from_cartesian(solution),
+                &p0,
+                &mut work,
+                &mut fi,
+            );
+            let size = 1.0 + solution.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            let residual = fi.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            assert!(residual < 1e-9 * size, "{id}: residual {residual:e}");
+            checked_solutions += 1;
+        }
+    }
+    assert!(
+        checked_solutions > 600,
+        "only {checked_solutions} start solutions checked"
+    );
+}

@@ -50,6 +50,11 @@ pub struct CurveArgs {
     /// Seed of every random choice (results are identical for any thread count).
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
+    /// Poses per chain: the first pose of every block of N is solved from the seed,
+    /// the others from their predecessor (short pose-to-pose paths, falling back to the
+    /// seed route where they lose a critical point); 1 = every pose from the seed.
+    #[arg(long, value_name = "N", default_value_t = CurveOptions::default().chain_length)]
+    chain: usize,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -141,8 +146,12 @@ pub fn run(args: CurveArgs) -> Result<()> {
     let (design, motion) = load_inputs(args.design.as_deref(), args.motion.as_deref())?;
     let metrics = parse_metrics(&args.metric)?;
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
+    if args.chain == 0 {
+        bail!("--chain: must be at least 1");
+    }
     let options = CurveOptions {
         seed: args.seed,
+        chain_length: args.chain,
         ..CurveOptions::default()
     };
     let partial_path = args.out.as_ref().map(|p| {

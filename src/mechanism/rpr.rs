@@ -16,7 +16,7 @@
 //! homotopy is the motion at a random complex τ*).
 
 use crate::C64;
-use crate::algebra::{Point, Ring, cross, det3, difference, dot};
+use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -347,37 +347,50 @@ fn point<T: Ring>(k: &[T; 12], j: usize) -> Point<T> {
 /// coordinates of the leg lines). `S = 0` iff the three leg lines are concurrent or
 /// parallel; `S = l_1 l_2 l_3 det J` with J the inverse Jacobian of unit leg lines.
 pub fn singularity_polynomial<T: Ring>(k: &[T; 12]) -> T {
-    let row = |i: usize| {
-        let a = point(k, 2 * i);
-        let b = point(k, 6 + 2 * i);
-        let d = difference(&a, &b);
-        let m = cross(&a, &b);
-        let [dx, dy] = d;
-        [dx, dy, m]
-    };
-    det3(&[row(0), row(1), row(2)])
+    singularity_polynomial_in::<Cartesian, T>(k)
 }
 
-fn collinearity<T: Ring>(p: [Point<T>; 3]) -> T {
-    let one = T::from_f64(1.0);
+/// [`singularity_polynomial`] with the six points in the coordinates `P` (e.g.
+/// [`crate::algebra::Isotropic`]), expanded along the last column:
+/// `S = m_1 (d_2 × d_3) − m_2 (d_1 × d_3) + m_3 (d_1 × d_2)` with `d_i = b_i − a_i`,
+/// `m_i = a_i × b_i`.
+pub fn singularity_polynomial_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
+    let leg = |i: usize| {
+        let a = point(k, 2 * i);
+        let b = point(k, 6 + 2 * i);
+        (difference(&a, &b), P::cross(&a, &b))
+    };
+    let [(d1, m1), (d2, m2), (d3, m3)] = [leg(0), leg(1), leg(2)];
+    m1 * P::cross(&d2, &d3) - m2 * P::cross(&d1, &d3) + m3 * P::cross(&d1, &d2)
+}
+
+fn collinearity<P: Plane<T>, T: Ring>(p: [Point<T>; 3]) -> T {
     let [p1, p2, p3] = p;
-    let [x1, y1] = p1;
-    let [x2, y2] = p2;
-    let [x3, y3] = p3;
-    det3(&[[x1, y1, one.clone()], [x2, y2, one.clone()], [x3, y3, one]])
+    P::cross(&difference(&p1, &p2), &difference(&p1, &p3))
 }
 
 /// Collinearity polynomial of the platform (SPEC A.2, paper Eq. 31):
-/// `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]` (twice the signed
-/// area of the platform triangle).
+/// `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]
+/// = (b_2 − b_1) × (b_3 − b_1)` (twice the signed area of the platform triangle).
 pub fn collinearity_platform<T: Ring>(k: &[T; 12]) -> T {
-    collinearity([point(k, 6), point(k, 8), point(k, 10)])
+    collinearity_platform_in::<Cartesian, T>(k)
+}
+
+/// [`collinearity_platform`] with the points in the coordinates `P`.
+pub fn collinearity_platform_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
+    collinearity::<P, T>([point(k, 6), point(k, 8), point(k, 10)])
 }
 
 /// Collinearity polynomial of the base (SPEC A.2, paper Eq. 31):
-/// `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]`.
+/// `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]
+/// = (a_2 − a_1) × (a_3 − a_1)`.
 pub fn collinearity_base<T: Ring>(k: &[T; 12]) -> T {
-    collinearity([point(k, 0), point(k, 2), point(k, 4)])
+    collinearity_base_in::<Cartesian, T>(k)
+}
+
+/// [`collinearity_base`] with the points in the coordinates `P`.
+pub fn collinearity_base_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
+    collinearity::<P, T>([point(k, 0), point(k, 2), point(k, 4)])
 }
 
 /// Shape constants of a rigid triangle `p_1 p_2 p_3` (SPEC A.5, paper Eqs. 23–26):
@@ -409,14 +422,24 @@ pub fn rigid_shape(p1: &Point<f64>, p2: &Point<f64>, p3: &Point<f64>) -> RigidSh
 
 /// `E u`: rotation by +90°, `E = [[0, −1], [1, 0]]`.
 pub fn rotate_quarter<T: Ring>(u: &Point<T>) -> Point<T> {
-    [-u[1].clone(), u[0].clone()]
+    Cartesian::rotate_quarter(u)
 }
 
 /// Third point of a rigid triangle from the first two (SPEC A.5):
 /// `p_3 = p_1 + u (p_2 − p_1) + v E (p_2 − p_1)`.
 pub fn reconstruct_third_point<T: Ring>(p1: &Point<T>, p2: &Point<T>, u: T, v: T) -> Point<T> {
+    reconstruct_third_point_in::<Cartesian, T>(p1, p2, u, v)
+}
+
+/// [`reconstruct_third_point`] with the points in the coordinates `P`.
+pub fn reconstruct_third_point_in<P: Plane<T>, T: Ring>(
+    p1: &Point<T>,
+    p2: &Point<T>,
+    u: T,
+    v: T,
+) -> Point<T> {
     let e = difference(p1, p2);
-    let ee = rotate_quarter(&e);
+    let ee = P::rotate_quarter(&e);
     [
         p1[0].clone() + u.clone() * e[0].clone() + v.clone() * ee[0].clone(),
         p1[1].clone() + u * e[1].clone() + v * ee[1].clone(),
@@ -425,8 +448,13 @@ pub fn reconstruct_third_point<T: Ring>(p1: &Point<T>, p2: &Point<T>, u: T, v: T
 
 /// Rigidity constraint of SPEC A.5: `g(p_1, p_2) = |p_2 − p_1|² − r2`.
 pub fn rigidity_constraint<T: Ring>(p1: &Point<T>, p2: &Point<T>, r2: T) -> T {
+    rigidity_constraint_in::<Cartesian, T>(p1, p2, r2)
+}
+
+/// [`rigidity_constraint`] with the points in the coordinates `P`.
+pub fn rigidity_constraint_in<P: Plane<T>, T: Ring>(p1: &Point<T>, p2: &Point<T>, r2: T) -> T {
     let e = difference(p1, p2);
-    dot(&e, &e) - r2
+    P::dot(&e, &e) - r2
 }
 
 // ---------------------------------------------------------------------------------

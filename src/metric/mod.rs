@@ -5,7 +5,7 @@
 //! [`crate::algebra::Ring`], so the Lagrangians of the distance problems are built
 //! symbolically from exactly the code that evaluates distances numerically.
 
-use crate::algebra::{Point, Ring, difference, dot};
+use crate::algebra::{Cartesian, Plane, Point, Ring, difference};
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -33,9 +33,14 @@ pub enum MetricError {
 ///
 /// `seg² = (|d_1|² + |d_2|² + d_1·d_2) / 3`.
 pub fn segment_distance_sq<T: Ring>(p: [&Point<T>; 2], q: [&Point<T>; 2]) -> T {
+    segment_distance_sq_in::<Cartesian, T>(p, q)
+}
+
+/// [`segment_distance_sq`] with the points in the coordinates `P`.
+pub fn segment_distance_sq_in<P: Plane<T>, T: Ring>(p: [&Point<T>; 2], q: [&Point<T>; 2]) -> T {
     let d1 = difference(p[0], q[0]);
     let d2 = difference(p[1], q[1]);
-    (dot(&d1, &d1) + dot(&d2, &d2) + dot(&d1, &d2)) * T::from_f64(1.0 / 3.0)
+    (P::dot(&d1, &d1) + P::dot(&d2, &d2) + P::dot(&d1, &d2)) * T::from_f64(1.0 / 3.0)
 }
 
 /// Mean squared distance of corresponding points of two triangles under the affine
@@ -43,10 +48,20 @@ pub fn segment_distance_sq<T: Ring>(p: [&Point<T>; 2], q: [&Point<T>; 2]) -> T {
 ///
 /// `tri² = (|d_1|² + |d_2|² + |d_3|² + d_1·d_2 + d_1·d_3 + d_2·d_3) / 6`.
 pub fn triangle_distance_sq<T: Ring>(p: [&Point<T>; 3], q: [&Point<T>; 3]) -> T {
+    triangle_distance_sq_in::<Cartesian, T>(p, q)
+}
+
+/// [`triangle_distance_sq`] with the points in the coordinates `P`.
+pub fn triangle_distance_sq_in<P: Plane<T>, T: Ring>(p: [&Point<T>; 3], q: [&Point<T>; 3]) -> T {
     let d1 = difference(p[0], q[0]);
     let d2 = difference(p[1], q[1]);
     let d3 = difference(p[2], q[2]);
-    (dot(&d1, &d1) + dot(&d2, &d2) + dot(&d3, &d3) + dot(&d1, &d2) + dot(&d1, &d3) + dot(&d2, &d3))
+    (P::dot(&d1, &d1)
+        + P::dot(&d2, &d2)
+        + P::dot(&d3, &d3)
+        + P::dot(&d1, &d2)
+        + P::dot(&d1, &d3)
+        + P::dot(&d2, &d3))
         * T::from_f64(1.0 / 6.0)
 }
 
@@ -88,12 +103,17 @@ impl Part {
     }
 
     /// Calls `sink` with each summand of this part for points `p` (in K) and `q` (in K′).
-    fn each_summand<T: Ring>(self, p: [&Point<T>; 3], q: [&Point<T>; 3], sink: &mut impl FnMut(T)) {
+    fn each_summand<P: Plane<T>, T: Ring>(
+        self,
+        p: [&Point<T>; 3],
+        q: [&Point<T>; 3],
+        sink: &mut impl FnMut(T),
+    ) {
         match self {
-            Part::Plate => sink(triangle_distance_sq(p, q)),
+            Part::Plate => sink(triangle_distance_sq_in::<P, T>(p, q)),
             Part::Bars => {
                 for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-                    sink(segment_distance_sq([p[i], p[j]], [q[i], q[j]]));
+                    sink(segment_distance_sq_in::<P, T>([p[i], p[j]], [q[i], q[j]]));
                 }
             }
             Part::Rigid => {}
@@ -167,7 +187,13 @@ impl Metric {
     /// `b_1 b_2 b_3` for a plate, `seg²` of its edges 12, 23, 31 for bars), then the
     /// base's likewise. Rigid parts contribute nothing: the caller guarantees K′ moved
     /// them rigidly. `D² = (Σ summands) / n`. Allocation-free.
-    pub fn for_each_summand<T: Ring>(
+    pub fn for_each_summand<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12], sink: impl FnMut(T)) {
+        self.for_each_summand_in::<Cartesian, T>(k, k_prime, sink)
+    }
+
+    /// [`Metric::for_each_summand`] with the points of `k` and `k_prime` in the
+    /// coordinates `P`.
+    pub fn for_each_summand_in<P: Plane<T>, T: Ring>(
         &self,
         k: &[T; 12],
         k_prime: &[T; 12],
@@ -178,12 +204,18 @@ impl Metric {
         let a2: [Point<T>; 3] = [point(k_prime, 0), point(k_prime, 2), point(k_prime, 4)];
         let b2: [Point<T>; 3] = [point(k_prime, 6), point(k_prime, 8), point(k_prime, 10)];
         for i in 0..3 {
-            sink(segment_distance_sq([&a[i], &b[i]], [&a2[i], &b2[i]]));
+            sink(segment_distance_sq_in::<P, T>(
+                [&a[i], &b[i]],
+                [&a2[i], &b2[i]],
+            ));
         }
-        self.platform
-            .each_summand([&b[0], &b[1], &b[2]], [&b2[0], &b2[1], &b2[2]], &mut sink);
+        self.platform.each_summand::<P, T>(
+            [&b[0], &b[1], &b[2]],
+            [&b2[0], &b2[1], &b2[2]],
+            &mut sink,
+        );
         self.base
-            .each_summand([&a[0], &a[1], &a[2]], [&a2[0], &a2[1], &a2[2]], &mut sink);
+            .each_summand::<P, T>([&a[0], &a[1], &a[2]], [&a2[0], &a2[1], &a2[2]], &mut sink);
     }
 
     /// The unnormalised summands of D²(K, K′) as a vector (see
@@ -196,9 +228,15 @@ impl Metric {
 
     /// `D²(K, K′) = (Σ summands) / n` (SPEC A.4), generic over the ring; allocation-free.
     pub fn distance_sq<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> T {
+        self.distance_sq_in::<Cartesian, T>(k, k_prime)
+    }
+
+    /// [`Metric::distance_sq`] with the points of `k` and `k_prime` in the coordinates
+    /// `P`.
+    pub fn distance_sq_in<P: Plane<T>, T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> T {
         let n = self.number_of_summands() as f64;
         let mut total: Option<T> = None;
-        self.for_each_summand(k, k_prime, |t| {
+        self.for_each_summand_in::<P, T>(k, k_prime, |t| {
             total = Some(match total.take() {
                 Some(acc) => acc + t,
                 None => t,

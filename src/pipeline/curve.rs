@@ -23,6 +23,22 @@
 //!    pose j in pose coordinates, with δ fading), so every intermediate parameter is a
 //!    pose of the design; poses × sub-problems run in parallel (rayon). Every path is a
 //!    pure function of its inputs, so results are identical for any thread count.
+//!    **Chains** ([`CurveOptions::chain_length`]): only the first pose of every block of
+//!    consecutive poses goes the seed route; each next pose is solved from its
+//!    predecessor's complete finite solution set, through a random complex midpoint
+//!    between the two poses (short paths, a few steps each), and falls back to
+//!    the seed route where that set is incomplete or a path is lost. A set counts as
+//!    complete when it has the seed's number of distinct finite endpoints, so a path
+//!    jumping onto another one's endpoint is caught. The blocks are fixed by the pose
+//!    indices, not by the thread count.
+//!
+//!    All tracking is in isotropic coordinates `(x + iy, x − iy)` of the unknown
+//!    points ([`crate::problem::Coordinates::Isotropic`]): the rigid metrics have
+//!    complex critical points far out along isotropic lines, hopelessly ill-conditioned
+//!    in Cartesian coordinates (κ ≈ 10¹³ and up, double-double tracking needed, some
+//!    lost even then) and well-conditioned up to scaling in isotropic ones. Start
+//!    solutions are converted on entry, endpoints back to Cartesian for
+//!    post-processing.
 //! 3. **No silent losses**: a (pose, sub-problem) with failed paths re-tracks them with
 //!    [`TrackerOptions::conservative`], then tracks every path along a detour through a
 //!    random complex motion point near the pose (seeded per pose, sub-problem and
@@ -49,7 +65,7 @@ use crate::homotopy::{
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
-use crate::problem::{LagrangeProblem, ProblemError, ProblemId, subproblems_of};
+use crate::problem::{Coordinates, LagrangeProblem, ProblemError, ProblemId, subproblems_of};
 use crate::random;
 use crate::system::Evaluator;
 use rayon::prelude::*;
@@ -103,6 +119,12 @@ pub struct CurveOptions {
     /// ([`TrackerOptions::fast`]: on the built-in example 1.5 × faster than the default
     /// preset with the same endpoints and distances).
     pub tracker: TrackerOptions,
+    /// Tracker settings of the pose-to-pose paths ([`CurveOptions::chain_length`], the
+    /// rescue pass): the `fast` preset with steps up to 0.5 (two segments through a
+    /// complex midpoint between nearby poses; steps of at most 0.2 made the built-in
+    /// example's `plate/*` curves about 1.2 × slower).
+    #[serde(default = "default_neighbour_tracker")]
+    pub neighbour_tracker: TrackerOptions,
     /// Tracker settings of the re-runs (safer).
     pub retry_tracker: TrackerOptions,
     /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
@@ -112,6 +134,19 @@ pub struct CurveOptions {
     #[serde(default = "default_seed_retry_attempts")]
     pub seed_retry_attempts: usize,
 
+    /// Poses per chain of stage 2: the first pose of every block of `chain_length`
+    /// consecutive poses is solved from the seed, each following pose from its
+    /// predecessor's complete finite solution set (short pose-to-pose paths through a
+    /// random complex midpoint), falling back to the seed route wherever that set is
+    /// incomplete. `1` solves every pose from the seed (the reference route). The
+    /// blocks do not depend on the thread count, so neither do the results.
+    #[serde(default = "default_chain_length")]
+    pub chain_length: usize,
+    /// Coordinates of the unknown points while tracking ([`Coordinates::Isotropic`] by
+    /// default: critical points far out along isotropic lines stay well-conditioned,
+    /// see [`crate::algebra::Isotropic`]); results are reported in Cartesian ones.
+    #[serde(default = "default_coordinates")]
+    pub coordinates: Coordinates,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
@@ -134,12 +169,15 @@ impl Default for CurveOptions {
                 max_steps: CURVE_MAX_STEPS,
                 ..TrackerOptions::fast()
             },
+            neighbour_tracker: default_neighbour_tracker(),
             retry_tracker: TrackerOptions {
                 max_steps: CURVE_MAX_STEPS,
                 ..TrackerOptions::conservative()
             },
             retry_attempts: 1,
             seed_retry_attempts: default_seed_retry_attempts(),
+            chain_length: default_chain_length(),
+            coordinates: default_coordinates(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
         }
@@ -148,6 +186,23 @@ impl Default for CurveOptions {
 
 fn default_seed_retry_attempts() -> usize {
     6
+}
+
+fn default_neighbour_tracker() -> TrackerOptions {
+    TrackerOptions {
+        max_steps: CURVE_MAX_STEPS,
+        initial_step: 0.25,
+        max_step: 0.5,
+        ..TrackerOptions::fast()
+    }
+}
+
+fn default_coordinates() -> Coordinates {
+    Coordinates::Isotropic
+}
+
+fn default_chain_length() -> usize {
+    10
 }
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
@@ -759,7 +814,7 @@ pub fn seed_stage(
     let mut prepared = Vec::new();
     let mut not_applicable = Vec::new();
     for id in problem_ids(metrics) {
-        let problem = match LagrangeProblem::for_design(id, design) {
+        let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
             Ok(p) => p,
             Err(ProblemError::NotApplicable { .. }) => {
                 not_applicable.push(id.name());
@@ -785,13 +840,12 @@ pub fn seed_stage(
             });
         }
         let seed_parameters = normalized_parameters(&problem, design, &k_star, normalization);
-        prepared.push((
-            id,
-            problem,
-            source,
-            seed_parameters,
-            start.solutions.clone(),
-        ));
+        let starts: Vec<Vec<C64>> = start
+            .solutions
+            .iter()
+            .map(|x| problem.from_cartesian(x))
+            .collect();
+        prepared.push((id, problem, source, seed_parameters, starts));
     }
     let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
         .into_par_iter()
@@ -863,7 +917,7 @@ fn candidates(
     let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
     endpoints
         .iter()
-        .filter(|x| postprocess::is_real(x, real_tolerance))
+        .filter(|x| postprocess::is_real(&problem.to_cartesian(x), real_tolerance))
         .map(|x| {
             let k_prime = normalization
                 .restore(&problem.configuration(x, parameters, &mut work))
@@ -959,7 +1013,13 @@ fn track_problem(
             )
         },
         options.retry_attempts,
-        (&options.tracker, &options.retry_tracker),
+        (
+            match route {
+                Route::Seed => &options.tracker,
+                Route::Neighbour { .. } => &options.neighbour_tracker,
+            },
+            &options.retry_tracker,
+        ),
     );
     let failure = (best < seeded.start_count).then(|| PathFailure {
         pose_index: Some(index),
@@ -1028,6 +1088,78 @@ fn solve_pose_from_seed(
         assemble_pose(stage, metrics, index, sample, &k, entries, options),
         per_problem,
     )
+}
+
+/// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):
+/// the first pose from the seed, each next one per sub-problem from the previous
+/// pose's complete finite solution set, or from the seed when that set is incomplete
+/// or the pose-to-pose paths do not reach a complete set. Calls `on_pose` per pose.
+#[allow(clippy::too_many_arguments)]
+fn solve_chain(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    samples: &[SampledPose],
+    poses: std::ops::Range<usize>,
+    options: &CurveOptions,
+    on_pose: &(dyn Fn(&PoseResult) + Sync),
+) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
+    let mut previous: Vec<Option<Vec<Vec<C64>>>> = vec![None; stage.problems.len()];
+    let mut out = Vec::with_capacity(poses.len());
+    for j in poses {
+        let sample = samples[j];
+        let per_problem: Vec<ProblemAtPose> = previous
+            .par_iter()
+            .enumerate()
+            .map(|(problem_index, known)| {
+                let at = (j, sample);
+                let from_neighbour = known.as_ref().map(|solutions| {
+                    track_problem(
+                        stage,
+                        design,
+                        motion,
+                        at,
+                        problem_index,
+                        Route::Neighbour {
+                            from: MotionPoint::target(motion, &samples[j - 1]),
+                            solutions,
+                        },
+                        options,
+                    )
+                });
+                match from_neighbour {
+                    Some(result) if result.complete.is_some() => result,
+                    neighbour => {
+                        let mut result = track_problem(
+                            stage,
+                            design,
+                            motion,
+                            at,
+                            problem_index,
+                            Route::Seed,
+                            options,
+                        );
+                        if let Some(neighbour) = neighbour {
+                            let tracked = result.entry.3 + neighbour.entry.3;
+                            if neighbour.entry.1 > result.entry.1 {
+                                result = neighbour;
+                            }
+                            result.entry.3 = tracked;
+                        }
+                        result
+                    }
+                }
+            })
+            .collect();
+        previous = per_problem.iter().map(|p| p.complete.clone()).collect();
+        let k = design.configuration(sample.pose).to_array();
+        let entries = per_problem.iter().map(|p| p.entry.clone()).collect();
+        let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
+        on_pose(&result);
+        out.push((result, per_problem));
+    }
+    out
 }
 
 /// The rescue pass (stage 3b): every run of consecutive poses at which a sub-problem
@@ -1217,15 +1349,25 @@ pub fn compute_curve(
 ) -> Result<CurveResult, PipelineError> {
     let samples = sample_motion(motion, poses)?;
     let stage = seed_stage(design, motion, metrics, options, provider)?;
-    let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = samples
+    let chain_length = options.chain_length.max(1);
+    let blocks: Vec<usize> = (0..samples.len()).step_by(chain_length).collect();
+    let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = blocks
         .par_iter()
-        .enumerate()
-        .map(|(j, sample)| {
-            let (result, work) =
-                solve_pose_from_seed(&stage, design, motion, metrics, j, *sample, options);
-            on_pose(&result);
-            (result, work)
+        .flat_map_iter(|&first| {
+            let last = (first + chain_length).min(samples.len());
+            solve_chain(
+                &stage,
+                design,
+                motion,
+                metrics,
+                &samples,
+                first..last,
+                options,
+                on_pose,
+            )
         })
+        .collect::<Vec<_>>()
+        .into_iter()
         .unzip();
     for j in rescue_from_neighbours(&stage, design, motion, &samples, &mut work, options) {
         let k = design.configuration(samples[j].pose).to_array();

@@ -2,7 +2,7 @@
 
 use super::{ProblemId, SubProblem};
 use crate::C64;
-use crate::algebra::Point;
+use crate::algebra::{Cartesian, Isotropic, Plane, Point};
 use crate::mechanism::rpr::{self, Design};
 use crate::metric::Part;
 use crate::system::{CompiledSystem, Evaluator, Expr, System};
@@ -56,11 +56,37 @@ pub const CONFIGURATION_PARAMETER_NAMES: [&str; 12] = [
     "A1x", "A1y", "A2x", "A2y", "A3x", "A3y", "B1x", "B1y", "B2x", "B2y", "B3x", "B3y",
 ];
 
+/// The coordinates of a problem's unknown points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Coordinates {
+    /// `(x, y)`: variables `a1x a1y …` (the stored start solutions use these).
+    #[default]
+    Cartesian,
+    /// `(u, v) = (x + i y, x − i y)` ([`crate::algebra::Isotropic`]): variables
+    /// `a1u a1v …`. The same critical points (multipliers unchanged), with the ones far
+    /// out along isotropic lines well-conditioned; the curve pipeline tracks in these.
+    Isotropic,
+}
+
+impl Coordinates {
+    /// The suffixes of a point's two coordinate names.
+    fn suffixes(self) -> [char; 2] {
+        match self {
+            Coordinates::Cartesian => ['x', 'y'],
+            Coordinates::Isotropic => ['u', 'v'],
+        }
+    }
+}
+
 /// A sub-problem's compiled Lagrange system `∇Λ = 0` together with the map from a
 /// solution back to the configuration `K′` it describes.
 #[derive(Clone)]
 pub struct LagrangeProblem {
     id: ProblemId,
+    coordinates: Coordinates,
+    /// Index of the first coordinate of every point among the variables.
+    point_variables: Vec<usize>,
     system: System,
     compiled: CompiledSystem,
     /// `K′(x; p)`: twelve coordinates as functions of the unknowns and parameters.
@@ -94,9 +120,14 @@ struct PartUnknowns {
     rigidity: Option<(Expr, String)>,
 }
 
-fn part_unknowns(part: Part, prefix: char, role: &str) -> PartUnknowns {
+fn part_unknowns<P: Plane<Expr>>(
+    part: Part,
+    prefix: char,
+    role: &str,
+    [sx, sy]: [char; 2],
+) -> PartUnknowns {
     let coordinate = |k: usize, c: char| format!("{prefix}{k}{c}");
-    let point = |k: usize| [var(&coordinate(k, 'x')), var(&coordinate(k, 'y'))];
+    let point = |k: usize| [var(&coordinate(k, sx)), var(&coordinate(k, sy))];
     match part {
         Part::Rigid => {
             let (p1, p2) = (point(1), point(2));
@@ -105,12 +136,12 @@ fn part_unknowns(part: Part, prefix: char, role: &str) -> PartUnknowns {
                 format!("v_{role}"),
                 format!("r2_{role}"),
             );
-            let p3 = rpr::reconstruct_third_point(&p1, &p2, par(&u), par(&v));
-            let g = rpr::rigidity_constraint(&p1, &p2, par(&r2));
+            let p3 = rpr::reconstruct_third_point_in::<P, _>(&p1, &p2, par(&u), par(&v));
+            let g = rpr::rigidity_constraint_in::<P, _>(&p1, &p2, par(&r2));
             PartUnknowns {
                 points: [p1, p2, p3],
                 variables: (1..=2)
-                    .flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')])
+                    .flat_map(|k| [coordinate(k, sx), coordinate(k, sy)])
                     .collect(),
                 parameters: vec![u, v, r2],
                 rigidity: Some((g, format!("mu_{role}"))),
@@ -119,12 +150,21 @@ fn part_unknowns(part: Part, prefix: char, role: &str) -> PartUnknowns {
         Part::Plate | Part::Bars => PartUnknowns {
             points: [point(1), point(2), point(3)],
             variables: (1..=3)
-                .flat_map(|k| [coordinate(k, 'x'), coordinate(k, 'y')])
+                .flat_map(|k| [coordinate(k, sx), coordinate(k, sy)])
                 .collect(),
             parameters: Vec::new(),
             rigidity: None,
         },
     }
+}
+
+/// Applies `convert` to each of the six points of a configuration.
+fn map_points(k: &[Expr; 12], convert: impl Fn(&Point<Expr>) -> Point<Expr>) -> [Expr; 12] {
+    let mut out = k.clone();
+    for j in (0..12).step_by(2) {
+        [out[j], out[j + 1]] = convert(&[k[j].clone(), k[j + 1].clone()]);
+    }
+    out
 }
 
 fn flatten(base: &[Point<Expr>; 3], platform: &[Point<Expr>; 3]) -> [Expr; 12] {
@@ -246,8 +286,17 @@ impl LagrangeProblem {
     /// [`LagrangeProblem::new`] for a sub-problem that applies to `design`
     /// ([`LagrangeProblem::check_applicable`]; `NotApplicable` otherwise).
     pub fn for_design(id: ProblemId, design: &Design) -> Result<Self, ProblemError> {
+        Self::for_design_in(id, design, Coordinates::Cartesian)
+    }
+
+    /// [`LagrangeProblem::for_design`] with the unknown points in `coordinates`.
+    pub fn for_design_in(
+        id: ProblemId,
+        design: &Design,
+        coordinates: Coordinates,
+    ) -> Result<Self, ProblemError> {
         Self::check_applicable(id, design)?;
-        Self::new(id)
+        Self::new_in(id, coordinates)
     }
 
     /// Builds and compiles the Lagrange system of `id` (SPEC A.6).
@@ -265,8 +314,29 @@ impl LagrangeProblem {
     /// Every sub-problem is built for any design; whether it applies to a given design
     /// is [`LagrangeProblem::check_applicable`].
     pub fn new(id: ProblemId) -> Result<Self, ProblemError> {
+        Self::new_in(id, Coordinates::Cartesian)
+    }
+
+    /// [`LagrangeProblem::new`] with the unknown points in `coordinates` (the
+    /// parameters, the multipliers and [`LagrangeProblem::configuration`] stay
+    /// Cartesian; [`LagrangeProblem::from_cartesian`] converts solutions).
+    pub fn new_in(id: ProblemId, coordinates: Coordinates) -> Result<Self, ProblemError> {
+        match coordinates {
+            Coordinates::Cartesian => Self::build::<Cartesian>(id, coordinates),
+            Coordinates::Isotropic => Self::build::<Isotropic>(id, coordinates),
+        }
+    }
+
+    fn build<P: Plane<Expr>>(
+        id: ProblemId,
+        coordinates: Coordinates,
+    ) -> Result<Self, ProblemError> {
         let metric = id.metric;
-        let given: [Expr; 12] = std::array::from_fn(|i| par(CONFIGURATION_PARAMETER_NAMES[i]));
+        let suffixes = coordinates.suffixes();
+        let [sx, sy] = suffixes;
+        let given_cartesian: [Expr; 12] =
+            std::array::from_fn(|i| par(CONFIGURATION_PARAMETER_NAMES[i]));
+        let given = map_points(&given_cartesian, P::from_cartesian);
         let mut parameters: Vec<String> = CONFIGURATION_PARAMETER_NAMES
             .iter()
             .map(|s| s.to_string())
@@ -276,15 +346,17 @@ impl LagrangeProblem {
 
         let configuration: [Expr; 12] = match id.subproblem {
             SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
-                let base = part_unknowns(metric.base, 'a', "base");
-                let platform = part_unknowns(metric.platform, 'b', "platform");
+                let base = part_unknowns::<P>(metric.base, 'a', "base", suffixes);
+                let platform = part_unknowns::<P>(metric.platform, 'b', "platform", suffixes);
                 variables.extend(base.variables.iter().cloned());
                 variables.extend(platform.variables.iter().cloned());
                 let k_prime = flatten(&base.points, &platform.points);
                 let condition = match id.subproblem {
-                    SubProblem::Singularity => rpr::singularity_polynomial(&k_prime),
-                    SubProblem::CollinearPlatform => rpr::collinearity_platform(&k_prime),
-                    _ => rpr::collinearity_base(&k_prime),
+                    SubProblem::Singularity => rpr::singularity_polynomial_in::<P, _>(&k_prime),
+                    SubProblem::CollinearPlatform => {
+                        rpr::collinearity_platform_in::<P, _>(&k_prime)
+                    }
+                    _ => rpr::collinearity_base_in::<P, _>(&k_prime),
                 };
                 constraints.push((condition, "lambda".to_string()));
                 for part in [base, platform] {
@@ -297,9 +369,15 @@ impl LagrangeProblem {
                 // Paper Eq. 56: the first point is q itself, the others q + c_k w
                 // (fixing c_1 = 0 removes the slide of q along the line). See
                 // `all_collinear_offsets` for the offsets c_k of a rigid part.
-                let q = [var("qx"), var("qy")];
-                let w = [var("wx"), var("wy")];
-                variables.extend(["qx", "qy", "wx", "wy"].map(String::from));
+                let names = [
+                    format!("q{sx}"),
+                    format!("q{sy}"),
+                    format!("w{sx}"),
+                    format!("w{sy}"),
+                ];
+                let q = [var(&names[0]), var(&names[1])];
+                let w = [var(&names[2]), var(&names[3])];
+                variables.extend(names);
                 let offsets = all_collinear_offsets(metric.platform, metric.base);
                 variables.extend(offsets.variables);
                 parameters.extend(offsets.parameters);
@@ -314,8 +392,7 @@ impl LagrangeProblem {
                         ],
                     })
                     .collect();
-                let norm =
-                    w[0].clone() * w[0].clone() + w[1].clone() * w[1].clone() - Expr::from(1.0);
+                let norm = P::dot(&w, &w) - Expr::from(1.0);
                 constraints.push((norm, "nu".to_string()));
                 constraints.extend(offsets.orientation);
                 let base = [points[0].clone(), points[1].clone(), points[2].clone()];
@@ -323,17 +400,18 @@ impl LagrangeProblem {
                 flatten(&base, &platform)
             }
             SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => {
-                let q = [var("qx"), var("qy")];
-                variables.extend(["qx", "qy"].map(String::from));
+                let names = [format!("q{sx}"), format!("q{sy}")];
+                let q = [var(&names[0]), var(&names[1])];
+                variables.extend(names);
                 let coincident = [q.clone(), q.clone(), q];
                 let (base, platform) = if id.subproblem == SubProblem::CoincidentPlatform {
-                    let base = part_unknowns(Part::Rigid, 'a', "base");
+                    let base = part_unknowns::<P>(Part::Rigid, 'a', "base", suffixes);
                     variables.extend(base.variables.iter().cloned());
                     parameters.extend(base.parameters.iter().cloned());
                     constraints.extend(base.rigidity.clone());
                     (base.points, coincident)
                 } else {
-                    let platform = part_unknowns(Part::Rigid, 'b', "platform");
+                    let platform = part_unknowns::<P>(Part::Rigid, 'b', "platform", suffixes);
                     variables.extend(platform.variables.iter().cloned());
                     parameters.extend(platform.parameters.iter().cloned());
                     constraints.extend(platform.rigidity.clone());
@@ -343,7 +421,7 @@ impl LagrangeProblem {
             }
         };
 
-        let mut lagrangian = metric.distance_sq(&given, &configuration);
+        let mut lagrangian = metric.distance_sq_in::<P, Expr>(&given, &configuration);
         for (constraint, multiplier) in constraints {
             lagrangian -= var(&multiplier) * constraint;
             variables.push(multiplier);
@@ -354,10 +432,21 @@ impl LagrangeProblem {
         };
         let system = System::lagrange(&lagrangian, variables.clone(), parameters.clone())
             .map_err(|e| build_error(&e))?;
+        let point_variables = (0..variables.len().saturating_sub(1))
+            .filter(|&i| {
+                let (first, second) = (&variables[i], &variables[i + 1]);
+                first
+                    .strip_suffix(sx)
+                    .is_some_and(|stem| !stem.is_empty() && second.strip_suffix(sy) == Some(stem))
+            })
+            .collect();
+        let configuration = map_points(&configuration, P::to_cartesian);
         let configuration_map = System::new(variables, parameters, configuration.to_vec())
             .map_err(|e| build_error(&e))?;
         Ok(LagrangeProblem {
             id,
+            coordinates,
+            point_variables,
             compiled: system.compile(),
             system,
             configuration_map: configuration_map.compile(),
@@ -367,6 +456,36 @@ impl LagrangeProblem {
     /// Which metric and sub-problem this is.
     pub fn id(&self) -> ProblemId {
         self.id
+    }
+
+    /// The coordinates of the unknown points.
+    pub fn coordinates(&self) -> Coordinates {
+        self.coordinates
+    }
+
+    /// The solution `x` (Cartesian variables `a1x a1y …`, as in the stored start
+    /// solutions) in this problem's coordinates: `(u, v) = (x + i y, x − i y)` per point
+    /// for [`Coordinates::Isotropic`], unchanged otherwise.
+    pub fn from_cartesian(&self, x: &[C64]) -> Vec<C64> {
+        self.convert_points(x, crate::algebra::to_isotropic)
+    }
+
+    /// The inverse of [`LagrangeProblem::from_cartesian`]: `x = (u + v)/2`,
+    /// `y = −i (u − v)/2` per point.
+    pub fn to_cartesian(&self, x: &[C64]) -> Vec<C64> {
+        self.convert_points(x, crate::algebra::to_cartesian)
+    }
+
+    fn convert_points(&self, x: &[C64], convert: fn(&Point<C64>) -> Point<C64>) -> Vec<C64> {
+        let mut out = x.to_vec();
+        if self.coordinates == Coordinates::Isotropic {
+            for &i in &self.point_variables {
+                if i + 1 < out.len() {
+                    [out[i], out[i + 1]] = convert(&[x[i], x[i + 1]]);
+                }
+            }
+        }
+        out
     }
 
     /// The symbolic system `∇Λ = 0`.

@@ -23,8 +23,8 @@ mod build;
 pub mod rrr;
 
 pub use build::{
-    COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, LagrangeProblem,
-    ProblemError, anchors_collinear,
+    COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, Coordinates,
+    LagrangeProblem, ProblemError, anchors_collinear,
 };
 
 use crate::metric::{Metric, Part};

@@ -461,6 +461,12 @@ impl Ring for Expr {
     }
 }
 
+impl crate::algebra::ComplexRing for Expr {
+    fn imaginary_unit() -> Expr {
+        Expr::constant(C64::new(0.0, 1.0))
+    }
+}
+
 macro_rules! binary_operator {
     ($trait:ident, $method:ident, $function:ident) => {
         impl $trait<Expr> for Expr {
