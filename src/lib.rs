@@ -34,3 +34,11 @@ pub mod system;
 
 /// Complex double, the scalar of every numerical routine.
 pub type C64 = num_complex::Complex64;
+
+/// `|z| = √(re² + im²)` without the overflow guard of [`num_complex::Complex::norm`]
+/// (`hypot`, several times slower; it was 10 % of a curve run's profile). Exact to
+/// rounding for `|z| < 1e150`, which covers every finite point the tracker keeps.
+#[inline(always)]
+pub fn modulus(z: C64) -> f64 {
+    z.norm_sqr().sqrt()
+}

@@ -123,7 +123,7 @@ impl LuWorkspace {
             let n = self.n;
             let mut norm1: f64 = 0.0;
             for j in 0..n {
-                let column: f64 = (0..n).map(|i| self.matrix[i * n + j].norm()).sum();
+                let column: f64 = (0..n).map(|i| crate::modulus(self.matrix[i * n + j])).sum();
                 norm1 = norm1.max(column);
             }
             self.matrix_norm1 = norm1;
@@ -203,22 +203,23 @@ impl LuWorkspace {
         let mut previous_index = usize::MAX;
         for iteration in 0..5 {
             self.solve_in_place(&mut x);
-            let norm: f64 = x.iter().map(|v| v.norm()).sum();
+            let norm: f64 = x.iter().map(|v| crate::modulus(*v)).sum();
             if iteration > 0 && norm <= estimate {
                 estimate = estimate.max(norm);
                 break;
             }
             estimate = norm;
             for v in x.iter_mut() {
-                let r = v.norm();
+                let r = crate::modulus(*v);
                 *v = if r > 0.0 { *v / r } else { C64::new(1.0, 0.0) };
             }
             self.solve_adjoint_in_place(&mut x);
             let mut best = 0;
             let mut best_size = -1.0;
             for (j, v) in x.iter().enumerate() {
-                if v.norm() > best_size {
-                    best_size = v.norm();
+                let size = crate::modulus(*v);
+                if size > best_size {
+                    best_size = size;
                     best = j;
                 }
             }

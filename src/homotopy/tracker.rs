@@ -295,7 +295,7 @@ impl PathResult {
 const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
 
 fn max_norm(x: &[C64]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.norm()))
+    x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
 }
 
 /// Scratch for evaluations and linear solves.
@@ -458,7 +458,7 @@ impl Evaluation {
         let mut norm: f64 = 0.0;
         for (xi, d) in x.iter_mut().zip(&self.dh) {
             *xi += d;
-            norm = norm.max(d.norm());
+            norm = norm.max(crate::modulus(*d));
         }
         if norm.is_finite() {
             NewtonUpdate::Step(norm)

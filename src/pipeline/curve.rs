@@ -592,11 +592,14 @@ pub fn problem_ids(metrics: &[Metric]) -> Vec<ProblemId> {
     ids
 }
 
-/// Tracks every start solution through `homotopy`; returns the path results in order.
+/// Tracks every start solution through `homotopy` (with the endgame, or without:
+/// [`Tracker::track_between`] `0 → 1`, Newton at the end); returns the path results in
+/// order.
 fn track_all<H: Homotopy + ?Sized>(
     homotopy: &H,
     starts: &[Vec<C64>],
     options: &TrackerOptions,
+    endgame: bool,
 ) -> Vec<PathResult> {
     // In parallel over chunks of paths too (nested in the parallel poses ×
     // sub-problems), so a stage with few groups — the seed stage, a rescue chain — uses
@@ -612,7 +615,13 @@ fn track_all<H: Homotopy + ?Sized>(
             chunk
                 .iter()
                 .enumerate()
-                .map(|(i, x)| tracker.track(x, c * CHUNK + i))
+                .map(|(i, x)| {
+                    if endgame {
+                        tracker.track(x, c * CHUNK + i)
+                    } else {
+                        tracker.track_between(x, 0.0, 1.0, c * CHUNK + i)
+                    }
+                })
                 .collect()
         })
         .collect();
@@ -623,19 +632,32 @@ fn track_all<H: Homotopy + ?Sized>(
 const SAME_ENDPOINT: f64 = 1e-8;
 
 fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
-    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    // Squared moduli: this runs for every pair of endpoints of every run.
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt();
+    let tolerance = (SAME_ENDPOINT * scale).powi(2);
     a.iter()
         .zip(b)
-        .all(|(u, v)| (u - v).norm() <= SAME_ENDPOINT * scale)
+        .all(|(u, v)| (u - v).norm_sqr() <= tolerance)
 }
 
-/// For every path, whether it is a *path crossing*: its endpoint is nonsingular and
-/// another path ends at the same point. A nonsingular solution is the endpoint of
-/// exactly one path of a parameter homotopy, so one of them jumped (and missed a
-/// critical point); singular endpoints may legitimately be shared (multiplicity).
+/// Whether a path's endpoint is finite and was reached without winding (winding number
+/// 1): nonsingular endpoints, and those classified singular only because their
+/// condition number is large (e.g. far out along an isotropic line, where the unscaled
+/// condition number exceeds `singular_condition` although the point is simple).
+fn simple_endpoint(path: &PathResult) -> bool {
+    path.status.is_finite() && path.winding_number == 1
+}
+
+/// For every path, whether it is a *path crossing*: its endpoint is simple
+/// ([`simple_endpoint`]) and another such path ends at the same point. A nonsingular
+/// solution is the endpoint of exactly one path of a parameter homotopy, so one of them
+/// jumped (and missed a critical point). Endpoints reached with winding (Cauchy
+/// endgame, winding number > 1) may legitimately be shared (multiplicity); a genuinely
+/// singular endpoint reached without winding is reported as a crossing, which can only
+/// cost a re-run, never hide a lost path.
 fn crossings(paths: &[PathResult]) -> Vec<bool> {
     let nonsingular: Vec<usize> = (0..paths.len())
-        .filter(|&i| paths[i].status == PathStatus::Nonsingular)
+        .filter(|&i| simple_endpoint(&paths[i]))
         .collect();
     let mut crossed = vec![false; paths.len()];
     for (k, &i) in nonsingular.iter().enumerate() {
@@ -669,14 +691,13 @@ fn accounted(paths: &[PathResult]) -> usize {
     classified - (crossing_paths - crossing_points)
 }
 
-/// The distinct finite endpoints: every singular endpoint (shared ones count with
-/// their multiplicity of paths, as the start count does) and each nonsingular point
-/// once.
+/// The distinct finite endpoints: every endpoint reached with winding (shared ones
+/// count with their multiplicity of paths, as the start count does) and each simple
+/// endpoint ([`simple_endpoint`]) once.
 fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
     let mut out: Vec<Vec<C64>> = Vec::new();
     for p in paths.iter().filter(|p| p.status.is_finite()) {
-        let duplicate = p.status == PathStatus::Nonsingular
-            && out.iter().any(|x| same_endpoint(x, &p.solution));
+        let duplicate = simple_endpoint(p) && out.iter().any(|x| same_endpoint(x, &p.solution));
         if !duplicate {
             out.push(p.solution.clone());
         }
@@ -701,6 +722,31 @@ fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
         .collect()
 }
 
+/// The tracker settings of [`track_with_retries`].
+#[derive(Clone, Copy)]
+pub(crate) struct TrackingPlan<'a> {
+    /// Options of the first run and of the detours.
+    pub first: &'a TrackerOptions,
+    /// Options of the re-runs of failed or crossed paths (always with the endgame).
+    pub retry: &'a TrackerOptions,
+    /// Whether the first run and the detours end with the endgame. Without it (between
+    /// two generic parameter points, where every critical point is finite and
+    /// nonsingular) the endpoint is Newton-refined at `t = 1`; a path that diverges or
+    /// ends singular there is re-run with the endgame.
+    pub endgame: bool,
+}
+
+impl<'a> TrackingPlan<'a> {
+    /// Both runs with the endgame.
+    pub fn with_endgame(first: &'a TrackerOptions, retry: &'a TrackerOptions) -> Self {
+        TrackingPlan {
+            first,
+            retry,
+            endgame: true,
+        }
+    }
+}
+
 /// Tracks `starts` (solutions of `system` at `path(k)`'s start) along `path(0)` (the
 /// reference route, tracker options `tracker`); if paths fail or cross (two paths on
 /// one nonsingular endpoint), re-tracks those with `retry_tracker`, then (if some are
@@ -712,11 +758,16 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     starts: &[Vec<C64>],
     path: impl Fn(usize) -> P,
     attempts: usize,
-    (tracker, retry_tracker): (&TrackerOptions, &TrackerOptions),
+    plan: TrackingPlan<'_>,
 ) -> (Vec<Vec<C64>>, usize, usize) {
+    let TrackingPlan {
+        first: tracker,
+        retry: retry_tracker,
+        endgame,
+    } = plan;
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
-    let mut paths = track_all(&reference, starts, tracker);
+    let mut paths = track_all(&reference, starts, tracker, endgame);
     let mut tracked = starts.len();
     if accounted(&paths) < expected {
         // First re-run: only the failed paths and path crossings, same homotopy, safer
@@ -744,7 +795,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
-        let paths = track_all(&detour, starts, tracker);
+        let paths = track_all(&detour, starts, tracker, endgame);
         tracked += starts.len();
         best = best.max(accounted(&paths));
         at_infinity = at_infinity.max(count_at_infinity(&paths));
@@ -866,7 +917,7 @@ pub fn seed_stage(
                     PolylinePath::new(points)
                 },
                 options.seed_retry_attempts,
-                (&options.tracker, &options.retry_tracker),
+                TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
             );
             let failure = (best < expected).then(|| PathFailure {
                 pose_index: None,
@@ -1013,13 +1064,16 @@ fn track_problem(
             )
         },
         options.retry_attempts,
-        (
-            match route {
-                Route::Seed => &options.tracker,
-                Route::Neighbour { .. } => &options.neighbour_tracker,
+        match route {
+            Route::Seed => TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
+            // Between two generic real poses every critical point is finite and
+            // nonsingular: no endgame needed.
+            Route::Neighbour { .. } => TrackingPlan {
+                first: &options.neighbour_tracker,
+                retry: &options.retry_tracker,
+                endgame: false,
             },
-            &options.retry_tracker,
-        ),
+        },
     );
     let failure = (best < seeded.start_count).then(|| PathFailure {
         pose_index: Some(index),
@@ -1476,30 +1530,39 @@ mod tests {
 
     /// Two paths on one nonsingular endpoint are a crossing (one critical point
     /// missed): both are flagged, one is unaccounted for and the point is listed once;
-    /// two paths on one singular endpoint are a double root (both accounted for).
+    /// two paths on one singular endpoint reached with winding (Cauchy endgame,
+    /// winding number 2) are a double root (both accounted for); two paths on one
+    /// endpoint classified singular only by its condition number (winding number 1,
+    /// e.g. far out along an isotropic line) are a crossing too.
     #[test]
     fn path_crossings_are_unaccounted_and_shared_singular_endpoints_are_not() {
         use PathStatus::{AtInfinity, Failed, Nonsingular, Singular};
+        let winding = |mut p: PathResult| {
+            p.winding_number = 2;
+            p
+        };
         let paths = vec![
             path(0, Nonsingular, [1.0, 2.0]),
             path(1, Nonsingular, [1.0, 2.0 + 1e-12]),
             path(2, Nonsingular, [3.0, 4.0]),
-            path(3, Singular, [5.0, 6.0]),
-            path(4, Singular, [5.0, 6.0]),
+            winding(path(3, Singular, [5.0, 6.0])),
+            winding(path(4, Singular, [5.0, 6.0])),
             path(5, AtInfinity, [1e9, 0.0]),
             path(
                 6,
                 Failed(crate::homotopy::FailureReason::TooManySteps),
                 [7.0, 7.0],
             ),
+            path(7, Singular, [8.0, 9.0]),
+            path(8, Singular, [8.0, 9.0]),
         ];
         assert_eq!(
             crossings(&paths),
-            vec![true, true, false, false, false, false, false]
+            vec![true, true, false, false, false, false, false, true, true]
         );
-        // 7 paths: one failed, one extra on the crossing.
-        assert_eq!(accounted(&paths), 5);
-        assert_eq!(finite_solutions(&paths).len(), 4);
+        // 9 paths: one failed, one extra on each of the two crossings.
+        assert_eq!(accounted(&paths), 6);
+        assert_eq!(finite_solutions(&paths).len(), 5);
     }
 
     /// `MotionPath::point_and_velocity` is the derivative of `MotionPath::point`

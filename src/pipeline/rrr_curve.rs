@@ -27,7 +27,7 @@
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (paper Remark 11).
 
-use super::curve::{split_seed_results, track_with_retries};
+use super::curve::{TrackingPlan, split_seed_results, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::start_file::StartSolutions;
 use crate::C64;
@@ -345,7 +345,7 @@ pub fn rrr_seed_stage(
                     )
                 },
                 options.seed_retry_attempts,
-                (&options.tracker, &options.retry_tracker),
+                TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
             );
             let failure = (accounted < expected).then(|| RrrPathFailure {
                 pose_index: None,
@@ -405,7 +405,7 @@ fn solve_subproblem(
             )
         },
         options.retry_attempts,
-        (&options.tracker, &options.retry_tracker),
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
     );
     let kind = seeded.problem.kind();
     let failure = (accounted < seeded.start_count).then(|| RrrPathFailure {
