@@ -109,3 +109,55 @@ fn same_seed_gives_bit_identical_results_with_one_and_two_threads() {
     };
     assert_eq!(bits(&one), bits(&two));
 }
+
+/// Endgame: a path whose multiplier diverges like 1/s (s = 1 − t) while still small
+/// at the endgame's first checkpoints (0.2 at s = 0.025) is classified at infinity, and
+/// the other path still ends at its finite root. Family `p λ² − ε λ + ε c = 0` from
+/// p = 1 to p = 0: one root tends to c, the other is ≈ ε/p. (The regression that
+/// motivated the direct-finish veto, a jump onto another path's endpoint, is the
+/// built-in example's `rigid/rigid` seed stage: see the `pipeline_curve` tests.)
+#[test]
+fn a_slowly_diverging_multiplier_is_classified_at_infinity() {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
+    use singdist::system::{Expr, System};
+    let epsilon = 0.005;
+    let c = C64::new(-0.5, 0.1);
+    let lambda = Expr::variable("lambda");
+    let p = Expr::parameter("p");
+    let f = p * lambda.clone() * lambda.clone() - Expr::constant(C64::new(epsilon, 0.0)) * lambda
+        + Expr::constant(c * epsilon);
+    let system = System::new(["lambda"], ["p"], vec![f]).unwrap().compile();
+    // Roots of λ² − ελ + εc (p = 1).
+    let discriminant = (C64::new(epsilon * epsilon, 0.0) - 4.0 * epsilon * c).sqrt();
+    let starts = [
+        vec![(C64::new(epsilon, 0.0) + discriminant) / 2.0],
+        vec![(C64::new(epsilon, 0.0) - discriminant) / 2.0],
+    ];
+    let homotopy = PathParameterHomotopy::new(
+        &system,
+        PolylinePath::new(vec![vec![C64::new(1.0, 0.0)], vec![C64::new(0.0, 0.0)]]),
+    );
+    for options in [
+        TrackerOptions::default(),
+        TrackerOptions::fast(),
+        TrackerOptions::conservative(),
+    ] {
+        let mut tracker = Tracker::new(&homotopy, options);
+        let results: Vec<_> = starts
+            .iter()
+            .enumerate()
+            .map(|(i, x)| tracker.track(x, i))
+            .collect();
+        let finite: Vec<_> = results.iter().filter(|r| r.status.is_finite()).collect();
+        assert_eq!(finite.len(), 1, "{results:?}");
+        assert!((finite[0].solution[0] - c).norm() < 1e-8, "{results:?}");
+        assert_eq!(
+            results
+                .iter()
+                .filter(|r| r.status == PathStatus::AtInfinity)
+                .count(),
+            1,
+            "{results:?}"
+        );
+    }
+}

@@ -294,6 +294,11 @@ impl PathResult {
 /// (κ·ε ≈ 2·10⁻¹⁰, well under the corrector tolerance).
 const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
 
+/// Coordinates smaller than this do not veto the endgame's direct finish by a negative
+/// valuation (see [`Tracker::endgame`]); the divergence test itself only looks at
+/// coordinates of modulus ≥ 1.
+const DIRECT_FINISH_FLOOR: f64 = 0.1;
+
 fn max_norm(x: &[C64]) -> f64 {
     x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
 }
@@ -890,9 +895,16 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 self.previous_valuations.copy_from_slice(&self.valuations);
                 have_valuations = true;
             }
+            // The direct finish needs every coordinate to stay bounded, including ones
+            // still below 1 that have begun to diverge: a multiplier growing like 1/s
+            // (a critical point escaping to infinity at t = 1 while K′ converges) is
+            // only ~0.2 at s = 0.025, and a straight run to t = 1 from there can jump
+            // onto another path's endpoint. Coordinates below DIRECT_FINISH_FLOOR are
+            // ignored (their valuations are noise when they pass near 0).
             let valuations_finite = have_valuations
                 && (0..n).all(|i| {
-                    self.x[i].norm() < 1.0 || self.valuations[i] > -self.options.valuation_threshold
+                    self.x[i].norm() < DIRECT_FINISH_FLOOR
+                        || self.valuations[i] > -self.options.valuation_threshold
                 });
             // A singular endpoint shows as a condition number growing like
             // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
