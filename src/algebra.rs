@@ -82,9 +82,9 @@ impl<T: Ring> Plane<T> for Cartesian {
     }
 }
 
-/// Isotropic (minimal) coordinates `(u, v) = (x + i y, x − i y)` of the complexified
-/// plane: `p · q = (p_u q_v + p_v q_u) / 2`, `p × q = i (p_u q_v − p_v q_u) / 2`,
-/// `E (u, v) = (i u, −i v)`, so `|p|² = p_u p_v`.
+/// Isotropic (minimal) coordinates `(u, v) = ((x + i y)/√2, (x − i y)/√2)` of the
+/// complexified plane (a unitary change of coordinates): `p · q = p_u q_v + p_v q_u`,
+/// `p × q = i (p_u q_v − p_v q_u)`, `E (u, v) = (i u, −i v)`, so `|p|² = 2 p_u p_v`.
 ///
 /// Why: critical points of the rigid metrics' Lagrangians escape to infinity along
 /// isotropic lines (`y ≈ ∓ i x`, `|p|²` bounded). In Cartesian coordinates the products
@@ -93,17 +93,17 @@ impl<T: Ring> Plane<T> for Cartesian {
 /// coordinates one coordinate is large and the other bounded, nothing cancels, and the
 /// Jacobian is well-conditioned after scaling its rows and columns (measured on the
 /// built-in example's `rigid/rigid` seed solutions: κ ≈ 10¹³ Cartesian, 4·10⁴
-/// isotropic and equilibrated).
+/// isotropic and equilibrated). The factor `1/√2` keeps the map unitary and the dot
+/// product free of constants (shorter tapes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Isotropic;
 
 impl<T: ComplexRing> Plane<T> for Isotropic {
     fn dot(p: &Point<T>, q: &Point<T>) -> T {
-        (p[0].clone() * q[1].clone() + p[1].clone() * q[0].clone()) * T::from_f64(0.5)
+        p[0].clone() * q[1].clone() + p[1].clone() * q[0].clone()
     }
     fn cross(p: &Point<T>, q: &Point<T>) -> T {
-        (p[0].clone() * q[1].clone() - p[1].clone() * q[0].clone())
-            * (T::imaginary_unit() * T::from_f64(0.5))
+        T::imaginary_unit() * (p[0].clone() * q[1].clone() - p[1].clone() * q[0].clone())
     }
     fn rotate_quarter(p: &Point<T>) -> Point<T> {
         [
@@ -119,17 +119,21 @@ impl<T: ComplexRing> Plane<T> for Isotropic {
     }
 }
 
-/// Isotropic coordinates `(x + i y, x − i y)` of the Cartesian point `(x, y)`.
+/// Isotropic coordinates `((x + i y)/√2, (x − i y)/√2)` of the Cartesian point `(x, y)`.
 pub fn to_isotropic<T: ComplexRing>(p: &Point<T>) -> Point<T> {
-    let iy = T::imaginary_unit() * p[1].clone();
-    [p[0].clone() + iy.clone(), p[0].clone() - iy]
+    let (x, iy) = (
+        p[0].clone() * T::from_f64(std::f64::consts::FRAC_1_SQRT_2),
+        T::imaginary_unit() * p[1].clone() * T::from_f64(std::f64::consts::FRAC_1_SQRT_2),
+    );
+    [x.clone() + iy.clone(), x - iy]
 }
 
-/// Cartesian coordinates `((u + v)/2, −i (u − v)/2)` of the isotropic point `(u, v)`.
+/// Cartesian coordinates `((u + v)/√2, −i (u − v)/√2)` of the isotropic point `(u, v)`.
 pub fn to_cartesian<T: ComplexRing>(p: &Point<T>) -> Point<T> {
+    let scale = T::from_f64(std::f64::consts::FRAC_1_SQRT_2);
     [
-        (p[0].clone() + p[1].clone()) * T::from_f64(0.5),
-        (p[0].clone() - p[1].clone()) * (T::imaginary_unit() * T::from_f64(-0.5)),
+        (p[0].clone() + p[1].clone()) * scale.clone(),
+        (p[0].clone() - p[1].clone()) * (T::imaginary_unit() * -scale),
     ]
 }
 

@@ -136,15 +136,15 @@ fn start_pairs_lie_on_their_constraint_variety() {
 
 /// The isotropic formulation (`(u, v) = (x + i y, x − i y)` per point) is the Cartesian
 /// Lagrange system in other coordinates: at any point its equations are the chain rule
-/// `∂Λ/∂u = (∂Λ/∂x − i ∂Λ/∂y)/2`, `∂Λ/∂v = (∂Λ/∂x + i ∂Λ/∂y)/2` of the Cartesian
+/// `∂Λ/∂u = (∂Λ/∂x − i ∂Λ/∂y)/√2`, `∂Λ/∂v = (∂Λ/∂x + i ∂Λ/∂y)/√2` of the Cartesian
 /// ones (other equations equal), so every stored start solution converts to a solution,
 /// with the same configuration K′.
 #[test]
 fn isotropic_systems_are_the_cartesian_ones_in_other_coordinates() {
     use singdist::pipeline::ab_initio::embedded_start_solutions;
     use singdist::problem::Coordinates;
-    let half = C64::new(0.5, 0.0);
-    let half_i = C64::new(0.0, 0.5);
+    let half = C64::new(std::f64::consts::FRAC_1_SQRT_2, 0.0);
+    let half_i = C64::new(0.0, std::f64::consts::FRAC_1_SQRT_2);
     let mut checked_solutions = 0;
     for id in ProblemId::all() {
         let cartesian = LagrangeProblem::new(id).unwrap();

@@ -32,7 +32,7 @@
 //!    jumping onto another one's endpoint is caught. The blocks are fixed by the pose
 //!    indices, not by the thread count.
 //!
-//!    All tracking is in isotropic coordinates `(x + iy, x − iy)` of the unknown
+//!    All tracking is in isotropic coordinates `(x ± iy)/√2` of the unknown
 //!    points ([`crate::problem::Coordinates::Isotropic`]): the rigid metrics have
 //!    complex critical points far out along isotropic lines, hopelessly ill-conditioned
 //!    in Cartesian coordinates (κ ≈ 10¹³ and up, double-double tracking needed, some

@@ -63,7 +63,7 @@ pub enum Coordinates {
     /// `(x, y)`: variables `a1x a1y …` (the stored start solutions use these).
     #[default]
     Cartesian,
-    /// `(u, v) = (x + i y, x − i y)` ([`crate::algebra::Isotropic`]): variables
+    /// `(u, v) = ((x + i y)/√2, (x − i y)/√2)` ([`crate::algebra::Isotropic`]): variables
     /// `a1u a1v …`. The same critical points (multipliers unchanged), with the ones far
     /// out along isotropic lines well-conditioned; the curve pipeline tracks in these.
     Isotropic,
@@ -464,14 +464,14 @@ impl LagrangeProblem {
     }
 
     /// The solution `x` (Cartesian variables `a1x a1y …`, as in the stored start
-    /// solutions) in this problem's coordinates: `(u, v) = (x + i y, x − i y)` per point
+    /// solutions) in this problem's coordinates: `(u, v) = ((x + i y)/√2, (x − i y)/√2)` per point
     /// for [`Coordinates::Isotropic`], unchanged otherwise.
     pub fn from_cartesian(&self, x: &[C64]) -> Vec<C64> {
         self.convert_points(x, crate::algebra::to_isotropic)
     }
 
-    /// The inverse of [`LagrangeProblem::from_cartesian`]: `x = (u + v)/2`,
-    /// `y = −i (u − v)/2` per point.
+    /// The inverse of [`LagrangeProblem::from_cartesian`]: `x = (u + v)/√2`,
+    /// `y = −i (u − v)/√2` per point.
     pub fn to_cartesian(&self, x: &[C64]) -> Vec<C64> {
         self.convert_points(x, crate::algebra::to_cartesian)
     }
