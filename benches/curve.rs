@@ -1,6 +1,7 @@
 //! Distance-to-singularity curve of the built-in example (SPEC A.9): seed stage plus
-//! seed → pose homotopies along the complexified motion, 90 poses, on 2 threads, with
-//! the embedded start files. `SINGDIST_BENCH_METRICS` selects the metrics (default
+//! the pose stage (chains of pose-to-pose homotopies, each started by a seed → pose
+//! homotopy along the complexified motion), 90 poses, on 2 threads, with the embedded
+//! start files. `SINGDIST_BENCH_METRICS` selects the metrics (default
 //! `all`).
 
 use criterion::{Criterion, criterion_group, criterion_main};

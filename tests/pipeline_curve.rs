@@ -386,7 +386,7 @@ fn isotropic_coordinates_account_for_the_far_out_rigid_rigid_critical_points() {
     );
 }
 
-/// Pose-to-pose chains (the default, `chain_length` 10) give the distances of the
+/// Pose-to-pose chains (the default, `chain_length` 30) give the distances of the
 /// reference route (every pose from the seed, `chain_length` 1), metric by metric.
 #[test]
 fn chained_poses_match_the_seed_route() {

@@ -202,7 +202,7 @@ fn default_coordinates() -> Coordinates {
 }
 
 fn default_chain_length() -> usize {
-    10
+    30
 }
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
