@@ -30,28 +30,55 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - (s - bb)) + (b - bb))
 }
 
+/// The result of `detect`, computed once and cached in `state` (0 unknown, 1 no,
+/// 2 yes).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn detected_once(state: &std::sync::atomic::AtomicU8, detect: fn() -> bool) -> bool {
+    use std::sync::atomic::Ordering;
+    match state.load(Ordering::Relaxed) {
+        2 => true,
+        1 => false,
+        _ => {
+            let yes = detect();
+            state.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+    }
+}
+
 /// Whether this CPU has fused multiply-add (x86-64: checked once at run time; other
 /// architectures: whether the crate was compiled with the feature).
 #[inline(always)]
 pub fn has_fma() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
-        use std::sync::atomic::{AtomicU8, Ordering};
-        // 0 unknown, 1 no, 2 yes.
-        static STATE: AtomicU8 = AtomicU8::new(0);
-        match STATE.load(Ordering::Relaxed) {
-            2 => true,
-            1 => false,
-            _ => {
-                let yes = std::arch::is_x86_feature_detected!("fma");
-                STATE.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
-                yes
-            }
-        }
+        static STATE: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+        detected_once(&STATE, || std::arch::is_x86_feature_detected!("fma"))
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
         cfg!(target_feature = "fma")
+    }
+}
+
+/// Whether this CPU has AVX2 and FMA (x86-64, checked once at run time; other
+/// architectures: never). Kernels compiled a second time with these target features
+/// are chosen by it; without explicit `mul_add` the compiler does not fuse, so they
+/// round exactly as the baseline copies.
+#[inline(always)]
+pub fn has_avx2_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        static STATE: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+        detected_once(&STATE, || {
+            std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("fma")
+        })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
     }
 }
 
