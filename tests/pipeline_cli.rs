@@ -58,6 +58,9 @@ fn bad_inputs_give_one_line_errors() {
     let (code, err) = run(&["curve", "--quiet", "--poses", "0"]);
     assert_one_line_error(code, &err, &["poses"]);
 
+    let (code, err) = run(&["curve", "--quiet", "--chain", "0"]);
+    assert_one_line_error(code, &err, &["--chain"]);
+
     let bad_motion = write("motion.json", "{\"tau_range\": [1, 0], \"x\": 1}");
     let (code, err) = run(&["curve", "--quiet", "--motion", &bad_motion]);
     assert_one_line_error(code, &err, &["motion.json"]);
