@@ -1097,9 +1097,11 @@ fn track_problem(
     }
 }
 
-/// Stages 2–4 at one pose: parameter homotopy from the seed along the complexified
-/// motion (`MotionPath`) for every sub-problem (in parallel), re-runs of failed paths
-/// (detours through a random complex point near the pose), post-processing.
+/// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
+/// along the complexified motion (`MotionPath`) for every sub-problem (in parallel),
+/// re-runs of failed paths (detours through a random complex point near the pose),
+/// post-processing. ([`compute_curve`] solves most poses from their neighbours instead,
+/// see [`CurveOptions::chain_length`].)
 pub fn solve_pose(
     stage: &SeedStage,
     design: &Design,
@@ -1109,39 +1111,24 @@ pub fn solve_pose(
     sample: SampledPose,
     options: &CurveOptions,
 ) -> PoseResult {
-    let (result, _) = solve_pose_from_seed(stage, design, motion, metrics, index, sample, options);
-    result
-}
-
-fn solve_pose_from_seed(
-    stage: &SeedStage,
-    design: &Design,
-    motion: &Motion,
-    metrics: &[Metric],
-    index: usize,
-    sample: SampledPose,
-    options: &CurveOptions,
-) -> (PoseResult, Vec<ProblemAtPose>) {
-    let per_problem: Vec<ProblemAtPose> = (0..stage.problems.len())
+    let entries = (0..stage.problems.len())
         .into_par_iter()
         .map(|problem_index| {
+            let at = (index, sample);
             track_problem(
                 stage,
                 design,
                 motion,
-                (index, sample),
+                at,
                 problem_index,
                 Route::Seed,
                 options,
             )
+            .entry
         })
         .collect();
     let k = design.configuration(sample.pose).to_array();
-    let entries = per_problem.iter().map(|p| p.entry.clone()).collect();
-    (
-        assemble_pose(stage, metrics, index, sample, &k, entries, options),
-        per_problem,
-    )
+    assemble_pose(stage, metrics, index, sample, &k, entries, options)
 }
 
 /// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):

@@ -161,45 +161,38 @@ impl Tape {
             "workspace shorter than workspace_len()"
         );
         work[constants_start..temporaries_start].copy_from_slice(&self.constants);
+        self.execute_dispatched(work);
+    }
+
+    /// [`Tape::execute`] in double-double (see [`Tape::execute_dispatched`]).
+    fn execute_double_double(&self, registers: &mut [ComplexDd]) {
+        self.execute_dispatched(registers);
+    }
+
+    /// [`Tape::execute`], compiled a second time with the `avx2` and `fma` target
+    /// features and chosen at run time where the CPU has them. In double precision the
+    /// operations are the same (no explicit `mul_add`), so the rounding is too; in
+    /// double-double the exact products become one FMA instruction each.
+    #[inline(always)]
+    fn execute_dispatched<T: TapeScalar>(&self, registers: &mut [T]) {
         #[cfg(target_arch = "x86_64")]
         if crate::system::double_double::has_avx2_fma() {
             // SAFETY: the CPU supports AVX2 and FMA (checked at run time just above).
-            unsafe { self.execute_with_avx2(work) };
+            unsafe { self.execute_with_avx2_fma(registers) };
             return;
         }
-        self.execute(work);
+        self.execute(registers);
     }
 
-    /// [`Tape::execute`] in double precision compiled with AVX2 (the same operations,
-    /// so the same rounding).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    fn execute_with_avx2(&self, registers: &mut [C64]) {
-        self.execute(registers);
-    }
-
-    /// [`Tape::execute`] in double-double, compiled a second time with the `fma`
-    /// target feature and chosen at run time where the CPU has it (the exact products
-    /// of double-double arithmetic are then one instruction each).
-    fn execute_double_double(&self, registers: &mut [ComplexDd]) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::system::double_double::has_fma() {
-            // SAFETY: the CPU supports FMA (checked at run time just above).
-            unsafe { self.execute_with_fma(registers) };
-            return;
-        }
-        self.execute(registers);
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "fma")]
-    fn execute_with_fma(&self, registers: &mut [ComplexDd]) {
+    fn execute_with_avx2_fma<T: TapeScalar>(&self, registers: &mut [T]) {
         self.execute(registers);
     }
 
     /// Runs the instructions on `registers` (inputs and constants already loaded),
     /// block by block so the inner loops do not branch on the operation. (Always
-    /// inlined, so [`Tape::execute_with_fma`] compiles it with the `fma` feature.)
+    /// inlined, so [`Tape::execute_with_avx2_fma`] compiles it with those features.)
     #[inline(always)]
     fn execute<T: TapeScalar>(&self, registers: &mut [T]) {
         let temporaries_start = self.num_inputs + self.constants.len();
