@@ -161,3 +161,111 @@ fn a_slowly_diverging_multiplier_is_classified_at_infinity() {
         );
     }
 }
+
+/// `λ² − p` along `p: 1 → 4` (roots ±1 → ±2), in [`singdist::homotopy::Tracker`] terms.
+fn square_root_family() -> singdist::system::CompiledSystem {
+    use singdist::system::{Expr, System};
+    let lambda = Expr::variable("lambda");
+    let p = Expr::parameter("p");
+    System::new(["lambda"], ["p"], vec![lambda.clone() * lambda - p])
+        .unwrap()
+        .compile()
+}
+
+/// Newton's method from a prediction ([`Tracker::correct_at`]) converges to the root
+/// near the prediction to full accuracy in a few updates, fails from a point where the
+/// Jacobian is singular, and does not report a double root (linear convergence) as a
+/// nonsingular solution.
+#[test]
+fn newton_from_a_prediction_converges_only_to_nonsingular_roots() {
+    use singdist::homotopy::{FailureReason, PathParameterHomotopy, PolylinePath, Tracker};
+    use singdist::homotopy::{TrackerOptions, tracker::CORRECT_AT_ITERATIONS};
+    use singdist::system::{Expr, System};
+    let c = |v: f64| vec![C64::new(v, 0.0)];
+    let system = square_root_family();
+    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(4.0)]));
+    let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
+    let near = tracker.correct_at(&c(1.8), 1.0, 0);
+    assert_eq!(near.status, PathStatus::Nonsingular, "{near:?}");
+    assert!((near.solution[0] - 2.0).norm() < 1e-14, "{near:?}");
+    assert!(near.steps <= 5, "{near:?}");
+    assert!(near.residual < 1e-13, "{near:?}");
+    let other = tracker.correct_at(&c(-2.3), 1.0, 1);
+    assert!((other.solution[0] + 2.0).norm() < 1e-14, "{other:?}");
+    let singular = tracker.correct_at(&c(0.0), 1.0, 2);
+    assert_eq!(
+        singular.status,
+        PathStatus::Failed(FailureReason::CorrectorDidNotConverge),
+        "{singular:?}"
+    );
+    // (λ − p)²: a double root at λ = p, Newton's updates halve.
+    let lambda = Expr::variable("lambda");
+    let p = Expr::parameter("p");
+    let double = System::new(
+        ["lambda"],
+        ["p"],
+        vec![(lambda.clone() - p.clone()) * (lambda - p)],
+    )
+    .unwrap()
+    .compile();
+    let homotopy = PathParameterHomotopy::new(&double, PolylinePath::new(vec![c(1.0), c(2.0)]));
+    let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
+    let result = tracker.correct_at(&c(2.1), 1.0, 0);
+    assert_eq!(
+        result.status,
+        PathStatus::Failed(FailureReason::CorrectorDidNotConverge),
+        "{result:?}"
+    );
+    assert_eq!(result.steps, CORRECT_AT_ITERATIONS, "{result:?}");
+}
+
+/// [`Tracker::track_via`] along a route through the complex `t`-plane reaches the
+/// endpoint of the straight route when no branch point lies between them (`λ² − p`
+/// branches only at `p = 0`, i.e. `t = −1/3`), on either side.
+#[test]
+fn tracking_around_an_arc_reaches_the_straight_route_endpoint() {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
+    let c = |v: f64| vec![C64::new(v, 0.0)];
+    let system = square_root_family();
+    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(4.0)]));
+    let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
+    for start in [1.0, -1.0] {
+        let straight = tracker.track(&c(start), 0);
+        for side in [0.2, -0.2] {
+            let via = [C64::new(0.3, 0.0), C64::new(0.5, side), C64::new(0.7, 0.0)];
+            let around = tracker.track_via(&c(start), &via, 0);
+            assert_eq!(around.status, PathStatus::Nonsingular, "{around:?}");
+            assert!(
+                (around.solution[0] - straight.solution[0]).norm() < 1e-12
+                    && (around.solution[0] - 2.0 * start).norm() < 1e-12,
+                "{around:?} vs {straight:?}"
+            );
+        }
+    }
+}
+
+/// Rejected steps alone do not switch the tracker to extended precision: along
+/// `λ² − p`, `p: 1 → 10⁴`, the Jacobian `2λ` is perfectly conditioned (1×1) but the
+/// root grows a hundredfold, so long first steps are rejected.
+#[test]
+fn rejections_at_a_well_conditioned_point_keep_double_precision() {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
+    let c = |v: f64| vec![C64::new(v, 0.0)];
+    let system = square_root_family();
+    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(1e4)]));
+    let options = TrackerOptions {
+        initial_step: 0.5,
+        max_step: 0.5,
+        ..TrackerOptions::fast()
+    };
+    assert!(options.extended_after_rejections > 0);
+    let mut tracker = Tracker::new(&homotopy, options);
+    let result = tracker.track_between(&c(1.0), 0.0, 1.0, 0);
+    assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
+    assert!((result.solution[0] - 100.0).norm() < 1e-10, "{result:?}");
+    assert!(
+        result.rejected_steps >= 3,
+        "no rejections, nothing tested: {result:?}"
+    );
+    assert!(!result.used_extended_precision, "{result:?}");
+}

@@ -386,22 +386,25 @@ fn isotropic_coordinates_account_for_the_far_out_rigid_rigid_critical_points() {
     );
 }
 
-/// Pose-to-pose chains (the default, `chain_length` 30) give the distances of the
-/// reference route (every pose from the seed, `chain_length` 1), metric by metric.
+/// Pose-to-pose chains give the distances of the reference route (every pose from
+/// the seed, `chain_length` 1), metric by metric: with Newton jumps from extrapolated
+/// critical points (the default) and with pose-to-pose paths only (`jump: false`).
+/// Both continue fewer paths than the reference route, the jumps fewest.
 #[test]
 fn chained_poses_match_the_seed_route() {
     let design = example_design();
     let motion = example_motion();
     let metrics = [metric("plate/rigid"), metric("bars/bars")];
-    let run = |chain_length: usize| {
+    let run = |chain_length: usize, jump: bool| {
         let options = CurveOptions {
             chain_length,
+            jump,
             ..CurveOptions::default()
         };
         compute_curve(
             &design,
             &motion,
-            24,
+            40,
             &metrics,
             &options,
             &default_start_solutions,
@@ -409,27 +412,34 @@ fn chained_poses_match_the_seed_route() {
         )
         .expect("curve")
     };
-    let (chained, reference) = (run(8), run(1));
-    assert!(chained.failures.is_empty() && reference.failures.is_empty());
-    assert!(
-        chained.paths_tracked < reference.paths_tracked,
-        "chains should track fewer paths: {} vs {}",
-        chained.paths_tracked,
-        reference.paths_tracked
-    );
-    for (a, b) in chained.poses.iter().zip(&reference.poses) {
-        for (name, da) in &a.metrics {
-            let db = &b.metrics[name];
-            assert!(
-                (da.distance - db.distance).abs() <= 1e-9 * (1.0 + db.distance),
-                "pose {} {name}: {} vs {}",
-                a.index,
-                da.distance,
-                db.distance
-            );
-            assert_eq!(da.subproblem, db.subproblem, "pose {} {name}", a.index);
+    let reference = run(1, false);
+    let tracked = run(40, false);
+    let jumped = run(40, true);
+    assert!(reference.failures.is_empty());
+    for chained in [&tracked, &jumped] {
+        assert!(chained.failures.is_empty());
+        for (a, b) in chained.poses.iter().zip(&reference.poses) {
+            for (name, da) in &a.metrics {
+                let db = &b.metrics[name];
+                assert!(
+                    (da.distance - db.distance).abs() <= 1e-9 * (1.0 + db.distance),
+                    "pose {} {name}: {} vs {}",
+                    a.index,
+                    da.distance,
+                    db.distance
+                );
+                assert_eq!(da.subproblem, db.subproblem, "pose {} {name}", a.index);
+            }
         }
     }
+    assert!(
+        jumped.paths_tracked < tracked.paths_tracked
+            && tracked.paths_tracked < reference.paths_tracked,
+        "paths continued: jumps {}, pose-to-pose paths {}, reference {}",
+        jumped.paths_tracked,
+        tracked.paths_tracked,
+        reference.paths_tracked
+    );
 }
 
 /// The rescue pass: with a step budget too small for some of the long seed → pose

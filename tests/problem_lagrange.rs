@@ -231,3 +231,55 @@ fn isotropic_systems_are_the_cartesian_ones_in_other_coordinates() {
         "only {checked_solutions} start solutions checked"
     );
 }
+
+/// The Lagrange systems have real coefficients (in Cartesian coordinates), so
+/// `F(x̄; p̄) = conj F(x; p)` with `x̄` the conjugate in the problem's coordinates
+/// ([`LagrangeProblem::conjugate`]; in isotropic coordinates the equations are the
+/// gradient in `(u, v)`, so `∂/∂u` and `∂/∂v` swap like the variables): at a real pose
+/// the conjugate of a critical point is one. Checked at random complex points for
+/// every sub-problem in both coordinate systems; in isotropic coordinates plain
+/// entrywise conjugation must fail.
+#[test]
+fn conjugate_solutions_solve_the_conjugate_system() {
+    use singdist::problem::Coordinates;
+    for id in ProblemId::all() {
+        for coordinates in [Coordinates::Cartesian, Coordinates::Isotropic] {
+            let problem = LagrangeProblem::new_in(id, coordinates).unwrap();
+            let (n, m) = (
+                problem.variable_names().len(),
+                problem.parameter_names().len(),
+            );
+            let x: Vec<C64> = (0..n)
+                .map(|i| C64::new(0.3 + 0.17 * i as f64, -0.4 + 0.09 * (i * i) as f64))
+                .collect();
+            let p: Vec<C64> = (0..m)
+                .map(|i| C64::new(1.1 - 0.13 * i as f64, 0.05 * i as f64 - 0.2))
+                .collect();
+            let conj = |v: &[C64]| v.iter().map(|z| z.conj()).collect::<Vec<_>>();
+            let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
+            let evaluate = |x: &[C64], p: &[C64], work: &mut [C64]| {
+                let mut f = vec![C64::new(0.0, 0.0); n];
+                problem.evaluator().evaluate(x, p, work, &mut f);
+                f
+            };
+            let f = evaluate(&x, &p, &mut work);
+            let scale = 1.0 + f.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            let g = evaluate(&problem.conjugate(&x), &conj(&p), &mut work);
+            let error = problem
+                .conjugate(&f)
+                .iter()
+                .zip(&g)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+            assert!(error < 1e-12 * scale, "{id} {coordinates:?}: {error:e}");
+            if coordinates == Coordinates::Isotropic {
+                let naive = evaluate(&conj(&x), &conj(&p), &mut work);
+                let naive_error = problem
+                    .conjugate(&f)
+                    .iter()
+                    .zip(&naive)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+                assert!(naive_error > 1e-6 * scale, "{id}: {naive_error:e}");
+            }
+        }
+    }
+}

@@ -20,7 +20,8 @@
 //!    halves `h`.
 //! 4. **Adaptive precision** (in the spirit of Bates, Hauenstein, Sommese & Wampler's
 //!    adaptive multiprecision): after `extended_after_rejections` consecutive rejected
-//!    steps the tracker switches to double-double arithmetic
+//!    steps at a condition number κ > 10⁶ (below it double precision is accurate to
+//!    κ·ε ≈ 10⁻¹⁰ and a rejection means the step was too long) the tracker switches to double-double arithmetic
 //!    ([`crate::system::double_double`]): residuals `H`, Jacobians `∂H/∂x` and `∂H/∂t`
 //!    come from the compiled tapes run in double-double
 //!    ([`Homotopy::evaluate_extended`],
@@ -82,8 +83,8 @@ pub struct TrackerOptions {
     /// Newton's updates stagnate at rounding level and would otherwise reject every
     /// step until the step size underflows.
     pub corrector_noise_tolerance: f64,
-    /// Adaptive precision: after this many consecutive rejected steps the tracker
-    /// switches to extended precision (residuals, Jacobians and LU solves in
+    /// Adaptive precision: after this many consecutive rejected steps at a condition
+    /// number above 10⁶ the tracker switches to extended precision (residuals, Jacobians and LU solves in
     /// double-double, see the module documentation). At condition numbers κ with
     /// `κ·ε` near or above the corrector tolerance — e.g. critical points far out along
     /// an isotropic direction — double-precision velocities and Newton updates are
@@ -229,6 +230,9 @@ pub enum FailureReason {
     EndgameDidNotConverge,
     /// NaN or infinity appeared in the evaluation.
     NonFiniteValue,
+    /// Newton's method from a predicted point ([`Tracker::correct_at`]) stopped
+    /// contracting, or its limit is singular.
+    CorrectorDidNotConverge,
 }
 
 /// Classification of a path's endpoint at `t = 1`.
@@ -293,6 +297,12 @@ impl PathResult {
 /// Condition number below which extended mode returns to double precision
 /// (κ·ε ≈ 2·10⁻¹⁰, well under the corrector tolerance).
 const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
+
+/// Newton updates of [`Tracker::correct_at`].
+pub const CORRECT_AT_ITERATIONS: usize = 8;
+
+/// Largest ratio of successive Newton updates in [`Tracker::correct_at`].
+pub const CORRECT_AT_CONTRACTION: f64 = 1.0;
 
 /// Coordinates smaller than this do not veto the endgame's direct finish by a negative
 /// valuation (see [`Tracker::endgame`]); the divergence test itself only looks at
@@ -603,6 +613,34 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.finish(path_index, status)
     }
 
+    /// Like [`Tracker::track`], but along straight segments in the complex `t`-plane
+    /// through the points `via` (then on to the endgame zone): e.g. a small arc around
+    /// the point where the real path passed too close to infinity. The homotopy must be
+    /// analytic along the route (`via` off the real axis only where no breakpoint lies).
+    pub fn track_via(&mut self, start: &[C64], via: &[C64], path_index: usize) -> PathResult {
+        self.reset(start, 0.0);
+        let endgame_start = {
+            let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
+            self.options.endgame_start.min(0.5 * (1.0 - last))
+        };
+        let end = C64::new(1.0 - endgame_start, 0.0);
+        let mut from = C64::new(0.0, 0.0);
+        let mut outcome = Ok(());
+        for &to in via.iter().chain(std::iter::once(&end)) {
+            outcome = self.track_segment(from, to);
+            if outcome.is_err() {
+                break;
+            }
+            from = to;
+        }
+        let status = match outcome {
+            Ok(()) => self.endgame(endgame_start),
+            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+        };
+        self.finish(path_index, status)
+    }
+
     /// Tracks `start` from `t0` to `t1` (real, either direction) without endgame, e.g.
     /// a monodromy loop or a parameter homotopy between generic parameters. The
     /// endpoint is Newton-refined and returned as `Nonsingular` (or `Singular` if its
@@ -631,6 +669,64 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.finish_at(path_index, status, C64::new(t1, 0.0))
     }
 
+    /// Newton's method at `t` from `prediction` (an approximation of a nonsingular
+    /// solution of `H(x, t) = 0`, e.g. extrapolated from the solutions at neighbouring
+    /// parameters), without path tracking: `x ← x − J⁻¹H(x, t)` while the updates
+    /// contract (`‖Δ_{k+1}‖ ≤ ½‖Δ_k‖`), at most [`CORRECT_AT_ITERATIONS`] updates, until
+    /// `‖Δ‖ ≤ 10⁻¹¹(1 + ‖x‖∞)`, in double precision (a limit that needs extended
+    /// precision to converge is left to the tracker). `Nonsingular` if the limit has
+    /// condition below `singular_condition`, else `Failed(CorrectorDidNotConverge)`.
+    ///
+    /// Which solution Newton's method converges to is not controlled (no path is
+    /// followed): callers must check the set of limits, e.g. that they are distinct
+    /// and as many as the generic solution count.
+    pub fn correct_at(&mut self, prediction: &[C64], t: f64, path_index: usize) -> PathResult {
+        self.reset(prediction, t);
+        let t = C64::new(t, 0.0);
+        let failed = PathStatus::Failed(FailureReason::CorrectorDidNotConverge);
+        let mut previous = f64::INFINITY;
+        let mut status = failed;
+        let mut condition = f64::INFINITY;
+        let mut residual = f64::INFINITY;
+        for _ in 0..CORRECT_AT_ITERATIONS {
+            self.x_saved.copy_from_slice(&self.x);
+            self.steps += 1;
+            let NewtonUpdate::Step(norm) = self.eval.newton(self.homotopy, &mut self.x, t, false)
+            else {
+                break;
+            };
+            let scale = 1.0 + max_norm(&self.x);
+            let stagnated = norm > CORRECT_AT_CONTRACTION * previous;
+            if stagnated {
+                // Updates at the rounding level of an ill-conditioned limit stop
+                // contracting: below 1e-9 relative that is the attainable accuracy
+                // (as in the endpoint refinement), keep the previous iterate.
+                self.x.copy_from_slice(&self.x_saved);
+                if previous > 1e-9 * scale {
+                    break;
+                }
+            }
+            if stagnated || norm <= 1e-11 * scale {
+                // `eval.lu` holds J at the previous iterate, within 1e-9 of the limit.
+                condition = self.eval.condition_estimate();
+                status = if condition < self.options.singular_condition {
+                    PathStatus::Nonsingular
+                } else {
+                    PathStatus::Singular
+                };
+                break;
+            }
+            previous = norm;
+        }
+        if status.is_finite() {
+            self.homotopy
+                .evaluate(&self.x, t, &mut self.eval.work, &mut self.eval.h);
+            residual = max_norm(&self.eval.h);
+        }
+        self.t = t;
+        self.result(path_index, status, residual, condition)
+    }
+
     fn finish(&mut self, path_index: usize, status: PathStatus) -> PathResult {
         self.finish_at(path_index, status, C64::new(1.0, 0.0))
     }
@@ -643,6 +739,17 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         } else {
             (f64::INFINITY, f64::INFINITY)
         };
+        self.result(path_index, status, residual, condition)
+    }
+
+    /// The [`PathResult`] at the current point.
+    fn result(
+        &self,
+        path_index: usize,
+        status: PathStatus,
+        residual: f64,
+        condition: f64,
+    ) -> PathResult {
         PathResult {
             path_index,
             solution: self.x.clone(),
@@ -802,7 +909,11 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     if !self.extended
                         && self.options.extended_after_rejections > 0
                         && self.consecutive_rejections >= self.options.extended_after_rejections
+                        && self.eval.condition_estimate() > RETURN_TO_DOUBLE_CONDITION
                     {
+                        // Only where double precision is the likely culprit: below
+                        // κ = 10⁶ Newton's updates are accurate to κ·ε ≈ 10⁻¹⁰, under
+                        // the corrector tolerance, and rejections mean a step too long.
                         self.switch_to_extended();
                     }
                     if h < self.options.min_step_fraction {

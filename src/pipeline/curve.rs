@@ -24,13 +24,18 @@
 //!    pose of the design; poses × sub-problems run in parallel (rayon). Every path is a
 //!    pure function of its inputs, so results are identical for any thread count.
 //!    **Chains** ([`CurveOptions::chain_length`]): only the first pose of every block of
-//!    consecutive poses goes the seed route; each next pose is solved from its
-//!    predecessor's complete finite solution set, through a random complex midpoint
-//!    between the two poses (short paths, a few steps each), and falls back to
-//!    the seed route where that set is incomplete or a path is lost. A set counts as
-//!    complete when it has the seed's number of distinct finite endpoints, so a path
-//!    jumping onto another one's endpoint is caught. The blocks are fixed by the pose
-//!    indices, not by the thread count.
+//!    consecutive poses goes the seed route (by default the whole motion is one
+//!    block). Each next pose is solved from its predecessors' complete finite
+//!    solution sets ([`CurveOptions::jump`]): every critical point is extrapolated
+//!    from the last three poses and corrected by Newton's method at the new pose,
+//!    one per complex conjugate pair (the poses are real, so the other is its
+//!    conjugate). What fails or coincides is tracked from the predecessor, through a
+//!    random complex midpoint between the two poses (short paths, a few steps each);
+//!    where the set is still incomplete, every critical point is tracked that way,
+//!    and then the pose falls back to the seed route. A set counts as complete when it
+//!    has the seed's number of distinct nonsingular finite points: no more exist, so
+//!    a Newton sequence or a path that lands on another one's point is caught. The
+//!    blocks are fixed by the pose indices, not by the thread count.
 //!
 //!    All tracking is in isotropic coordinates `(x ± iy)/√2` of the unknown
 //!    points ([`crate::problem::Coordinates::Isotropic`]): the rigid metrics have
@@ -60,8 +65,8 @@ type PoseEntry = (Vec<Candidate>, usize, Option<PathFailure>, usize);
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::homotopy::{
-    Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, PolylinePath, Tracker,
-    TrackerOptions,
+    FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus,
+    PolylinePath, Tracker, TrackerOptions,
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
@@ -136,12 +141,21 @@ pub struct CurveOptions {
 
     /// Poses per chain of stage 2: the first pose of every block of `chain_length`
     /// consecutive poses is solved from the seed, each following pose from its
-    /// predecessor's complete finite solution set (short pose-to-pose paths through a
-    /// random complex midpoint), falling back to the seed route wherever that set is
-    /// incomplete. `1` solves every pose from the seed (the reference route). The
-    /// blocks do not depend on the thread count, so neither do the results.
+    /// predecessors' complete finite solution sets ([`CurveOptions::jump`], or short
+    /// pose-to-pose paths through a random complex midpoint), falling back to the seed
+    /// route wherever that set is incomplete. `1` solves every pose from the seed (the
+    /// reference route). The blocks do not depend on the thread count, so neither do
+    /// the results. Default 1000: a seed-route pose costs about as much as twenty
+    /// chained ones, and the chained poses run their sub-problems and critical points
+    /// in parallel.
     #[serde(default = "default_chain_length")]
     pub chain_length: usize,
+    /// Within a chain, solve a pose first by Newton's method from critical points
+    /// extrapolated from the preceding poses, one per complex conjugate pair, without
+    /// tracking; pose-to-pose paths only for what that leaves unaccounted for (see the
+    /// module documentation). `false`: every critical point along a path.
+    #[serde(default = "default_jump")]
+    pub jump: bool,
     /// Coordinates of the unknown points while tracking ([`Coordinates::Isotropic`] by
     /// default: critical points far out along isotropic lines stay well-conditioned,
     /// see [`crate::algebra::Isotropic`]); results are reported in Cartesian ones.
@@ -177,6 +191,7 @@ impl Default for CurveOptions {
             retry_attempts: 1,
             seed_retry_attempts: default_seed_retry_attempts(),
             chain_length: default_chain_length(),
+            jump: default_jump(),
             coordinates: default_coordinates(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
@@ -201,8 +216,12 @@ fn default_coordinates() -> Coordinates {
     Coordinates::Isotropic
 }
 
+fn default_jump() -> bool {
+    true
+}
+
 fn default_chain_length() -> usize {
-    30
+    1000
 }
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
@@ -722,6 +741,10 @@ fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
         .collect()
 }
 
+/// Half-width in `t` of the arcs around a point where a path diverged before the
+/// endgame zone ([`track_with_retries`]).
+const DIVERGENCE_ARC: f64 = 0.05;
+
 /// The tracker settings of [`track_with_retries`].
 #[derive(Clone, Copy)]
 pub(crate) struct TrackingPlan<'a> {
@@ -748,11 +771,21 @@ impl<'a> TrackingPlan<'a> {
 }
 
 /// Tracks `starts` (solutions of `system` at `path(k)`'s start) along `path(0)` (the
-/// reference route, tracker options `tracker`); if paths fail or cross (two paths on
-/// one nonsingular endpoint), re-tracks those with `retry_tracker`, then (if some are
-/// still unaccounted for) every path along the
-/// detours `path(1)`, … `path(attempts)`, whose endpoints are merged (deduplicated). Returns the merged finite endpoints, the best attempt's number of
-/// accounted paths ([`accounted`]) and the number of paths tracked.
+/// reference route, `plan.first`), then, while paths are unaccounted for:
+/// 1. re-tracks the failed paths and path crossings (two paths on one nonsingular
+///    endpoint) with `plan.retry`, except paths that diverged before the endgame zone
+///    (passing close to infinity is a property of the route, not of the step size);
+/// 2. (with the endgame) tracks each path that diverged before the endgame zone
+///    around the point where it did, along a small arc in the `t`-plane on either
+///    side ([`Tracker::track_via`]); an endpoint counts only if it is finite and
+///    distinct from every endpoint found (an endpoint of any route is a solution at
+///    the target, but which one a path reaches may depend on the route);
+/// 3. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
+///    distinct finite endpoints.
+///
+/// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
+/// of the best attempt, or the distinct finite endpoints of all attempts plus the
+/// most paths one attempt classified at infinity) and the number of paths tracked.
 pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     system: &E,
     starts: &[Vec<C64>],
@@ -770,12 +803,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     let mut paths = track_all(&reference, starts, tracker, endgame);
     let mut tracked = starts.len();
     if accounted(&paths) < expected {
-        // First re-run: only the failed paths and path crossings, same homotopy, safer
-        // settings.
         let crossed = crossings(&paths);
         let mut careful = Tracker::new(&reference, retry_tracker.clone());
         for (i, path) in paths.iter_mut().enumerate() {
-            if matches!(path.status, PathStatus::Failed(_)) || crossed[i] {
+            let diverged = path.status == PathStatus::Failed(FailureReason::DivergedBeforeEndgame);
+            if (matches!(path.status, PathStatus::Failed(_)) && !diverged) || crossed[i] {
                 *path = careful.track(&starts[i], i);
                 tracked += 1;
             }
@@ -790,6 +822,43 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             .count()
     };
     let mut at_infinity = count_at_infinity(&paths);
+    let merge = |endpoints: &mut Vec<Vec<C64>>, found: Vec<Vec<C64>>| {
+        for x in found {
+            if !endpoints.iter().any(|y| same_endpoint(y, &x)) {
+                endpoints.push(x);
+            }
+        }
+    };
+    if best < expected && endgame {
+        // Paths that passed too close to infinity on the reference route: around the
+        // trouble spot `t_c` along a small arc in the t-plane, on either side. Away
+        // from branch points both arcs continue the same path, to the endpoint the
+        // reference route would reach.
+        let mut arcs = Tracker::new(&reference, tracker.clone());
+        let diverged = paths
+            .iter()
+            .filter(|p| p.status == PathStatus::Failed(FailureReason::DivergedBeforeEndgame));
+        for p in diverged {
+            let t_c = p.last_t.re;
+            let delta = DIVERGENCE_ARC.min(t_c).min(1.0 - t_c);
+            for side in [1.0, -1.0] {
+                let via = [
+                    C64::new(t_c - delta, 0.0),
+                    C64::new(t_c, side * delta),
+                    C64::new(t_c + delta, 0.0),
+                ];
+                let around = arcs.track_via(&starts[p.path_index], &via, p.path_index);
+                tracked += 1;
+                if simple_endpoint(&around)
+                    && !endpoints.iter().any(|y| same_endpoint(y, &around.solution))
+                {
+                    endpoints.push(around.solution);
+                    break;
+                }
+            }
+        }
+        best = best.max(endpoints.len() + at_infinity);
+    }
     for attempt in 1..=attempts {
         if best >= expected {
             break;
@@ -799,12 +868,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         tracked += starts.len();
         best = best.max(accounted(&paths));
         at_infinity = at_infinity.max(count_at_infinity(&paths));
-        for x in finite_solutions(&paths) {
-            let known = endpoints.iter().any(|y| same_endpoint(y, &x));
-            if !known {
-                endpoints.push(x);
-            }
-        }
+        merge(&mut endpoints, finite_solutions(&paths));
         // The union of the attempts' distinct finite endpoints, plus the most paths
         // any one attempt classified at infinity, may account for more than any
         // single attempt.
@@ -981,6 +1045,48 @@ fn candidates(
         .collect()
 }
 
+/// The parameter path of attempt `attempt` from `origin` to `target`: from the seed
+/// (with its perturbation fading) straight, or for `attempt > 0` through a random
+/// complex point near the target; between neighbouring poses through a random complex
+/// midpoint.
+#[allow(clippy::too_many_arguments)]
+fn route_path<'a>(
+    stage: &SeedStage,
+    design: &'a Design,
+    motion: &'a Motion,
+    (origin, target): (MotionPoint, MotionPoint),
+    neighbour: bool,
+    attempt: usize,
+    mut rng: random::SeededRng,
+    shape: Vec<C64>,
+) -> MotionPath<'a> {
+    let mut waypoints = vec![origin];
+    if neighbour {
+        // Between two real poses the straight segment may meet a real branch point
+        // (two real critical points merging into a complex pair), so every route
+        // passes through a random complex midpoint.
+        let epsilon = 0.5 * origin.distance(&target);
+        waypoints.push(origin.midpoint(&target).perturbed(epsilon, &mut rng));
+    } else if attempt > 0 {
+        let epsilon = 0.3 * origin.distance(&target) + 0.05;
+        waypoints.push(target.perturbed(epsilon, &mut rng));
+    }
+    waypoints.push(target);
+    let perturbation = if neighbour {
+        [C64::new(0.0, 0.0); 12]
+    } else {
+        stage.seed.perturbation
+    };
+    MotionPath::new(
+        design,
+        motion,
+        waypoints,
+        perturbation,
+        stage.normalization,
+        shape,
+    )
+}
+
 /// Where the paths of a (pose, sub-problem) start.
 #[derive(Clone, Copy)]
 enum Route<'a> {
@@ -1020,48 +1126,23 @@ fn track_problem(
     let k_normalized = stage.normalization.apply(&to_real(&k));
     let parameters =
         normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
-    let (starts, origin, perturbation, salt) = match route {
-        Route::Seed => (
-            seeded.seed_solutions.as_slice(),
-            stage.seed.point,
-            stage.seed.perturbation,
-            0,
-        ),
-        Route::Neighbour { from, solutions } => (solutions, from, [C64::new(0.0, 0.0); 12], 8),
+    let (starts, origin, salt) = match route {
+        Route::Seed => (seeded.seed_solutions.as_slice(), stage.seed.point, 0),
+        Route::Neighbour { from, solutions } => (solutions, from, 8),
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let (endpoints, best, tracked) = track_with_retries(
         seeded.problem.evaluator(),
         starts,
         |attempt| {
-            let mut rng = random::stream(
+            let rng = random::stream(
                 options.seed,
                 stream.wrapping_mul(16) + salt + attempt as u64,
             );
-            let mut waypoints = vec![origin];
-            match route {
-                Route::Seed if attempt > 0 => {
-                    let epsilon = 0.3 * origin.distance(&target) + 0.05;
-                    waypoints.push(target.perturbed(epsilon, &mut rng));
-                }
-                Route::Seed => {}
-                // Between two real poses the straight segment may meet a real branch
-                // point (two real critical points merging into a complex pair), so
-                // every route passes through a random complex midpoint.
-                Route::Neighbour { .. } => {
-                    let epsilon = 0.5 * origin.distance(&target);
-                    waypoints.push(origin.midpoint(&target).perturbed(epsilon, &mut rng));
-                }
-            }
-            waypoints.push(target);
-            MotionPath::new(
-                design,
-                motion,
-                waypoints,
-                perturbation,
-                stage.normalization,
-                parameters[12..].to_vec(),
-            )
+            let neighbour = matches!(route, Route::Neighbour { .. });
+            let ends = (origin, target);
+            let shape = parameters[12..].to_vec();
+            route_path(stage, design, motion, ends, neighbour, attempt, rng, shape)
         },
         options.retry_attempts,
         match route {
@@ -1082,12 +1163,34 @@ fn track_problem(
         expected: seeded.start_count,
         accounted: best,
     });
+    let at = (&parameters[..], &k);
+    problem_at_pose(
+        stage,
+        seeded,
+        endpoints,
+        at,
+        (best, failure, tracked),
+        options,
+    )
+}
+
+/// A sub-problem's result at a pose from its finite endpoints (normalised frame) at
+/// the pose's `(parameters, configuration)`: the real candidates, and the endpoints
+/// themselves when they are complete (the seed's count).
+fn problem_at_pose(
+    stage: &SeedStage,
+    seeded: &SeededProblem,
+    endpoints: Vec<Vec<C64>>,
+    (parameters, k): (&[C64], &[f64; 12]),
+    (best, failure, tracked): (usize, Option<PathFailure>, usize),
+    options: &CurveOptions,
+) -> ProblemAtPose {
     let list = candidates(
         &seeded.problem,
         seeded.id.metric,
         &endpoints,
-        (&parameters, stage.normalization),
-        &k,
+        (parameters, stage.normalization),
+        k,
         options.real_tolerance,
     );
     let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
@@ -1095,6 +1198,157 @@ fn track_problem(
         entry: (list, best, failure, tracked),
         complete,
     }
+}
+
+/// The prediction of a critical point at the next pose from its values at the last
+/// one, two or three poses (`history[0]` the latest; equally spaced poses): the
+/// constant, linear or quadratic extrapolation `x₀`, `2x₀ − x₁`, `3x₀ − 3x₁ + x₂`.
+fn extrapolate(history: &[&[C64]], out: &mut [C64]) {
+    match *history {
+        [x0] => out.copy_from_slice(x0),
+        [x0, x1] => {
+            for ((o, a), b) in out.iter_mut().zip(x0).zip(x1) {
+                *o = 2.0 * a - b;
+            }
+        }
+        [x0, x1, x2] => {
+            for (((o, a), b), c) in out.iter_mut().zip(x0).zip(x1).zip(x2) {
+                *o = 3.0 * (a - b) + c;
+            }
+        }
+        [x0, x1, x2, x3, ..] => {
+            for ((((o, a), b), c), d) in out.iter_mut().zip(x0).zip(x1).zip(x2).zip(x3) {
+                *o = 4.0 * a - 6.0 * b + 4.0 * c - d;
+            }
+        }
+        [] => {}
+    }
+}
+
+/// For every point of a solution set at a real parameter, the index of its complex
+/// conjugate in the set ([`LagrangeProblem::conjugate`]; itself for a real point), or
+/// `None` if the conjugate is not in the set or the pairing is not mutual.
+fn conjugate_partners(problem: &LagrangeProblem, set: &[Vec<C64>]) -> Vec<Option<usize>> {
+    let found: Vec<Option<usize>> = set
+        .iter()
+        .map(|x| {
+            let conjugate = problem.conjugate(x);
+            set.iter().position(|y| same_endpoint(y, &conjugate))
+        })
+        .collect();
+    (0..set.len())
+        .map(|i| found[i].filter(|&j| found[j] == Some(i)))
+        .collect()
+}
+
+/// Solves one sub-problem at pose `index` from the complete solution sets of the
+/// preceding poses (`history`, latest first, each in the same order) without tracking:
+/// every critical point is extrapolated ([`extrapolate`]) and corrected by Newton's
+/// method at the pose ([`Tracker::correct_at`]). Of each complex conjugate pair only
+/// one is continued and the other is its conjugate ([`conjugate_partners`]; the poses
+/// are real). Which critical point a Newton sequence converges to is not controlled,
+/// but the set is checked: the number of nonsingular solutions is at most the generic
+/// one, so `start_count` distinct nonsingular limits are all the critical points.
+/// Limits that fail or coincide are re-tracked from the latest pose (short paths
+/// through a random complex midpoint); `None` when the set is still incomplete.
+#[allow(clippy::too_many_arguments)]
+fn jump_problem(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    (index, sample): (usize, SampledPose),
+    problem_index: usize,
+    from: MotionPoint,
+    history: &[&[Vec<C64>]],
+    options: &CurveOptions,
+) -> Option<ProblemAtPose> {
+    let seeded = &stage.problems[problem_index];
+    let latest = *history.first()?;
+    let k = design.configuration(sample.pose).to_array();
+    let target = MotionPoint::target(motion, &sample);
+    let k_normalized = stage.normalization.apply(&to_real(&k));
+    let parameters =
+        normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
+    let stream = ((index as u64 + 1) << 32) | problem_index as u64;
+    let rng = random::stream(options.seed, stream.wrapping_mul(16) + 8);
+    let path = route_path(
+        stage,
+        design,
+        motion,
+        (from, target),
+        true,
+        0,
+        rng,
+        parameters[12..].to_vec(),
+    );
+    let homotopy = PathParameterHomotopy::new(seeded.problem.evaluator(), path);
+    // At a real pose the critical points come in complex conjugate pairs (and real
+    // ones): only one of each pair is continued, its partner is the conjugate.
+    let partner = conjugate_partners(&seeded.problem, latest);
+    let representatives: Vec<usize> = (0..latest.len())
+        .filter(|&i| partner[i].is_none_or(|j| j >= i))
+        .collect();
+    const CHUNK: usize = 16;
+    let mut reps: Vec<PathResult> = representatives
+        .par_chunks(CHUNK)
+        .map(|chunk| {
+            let mut tracker = Tracker::new(&homotopy, options.neighbour_tracker.clone());
+            let mut prediction = vec![C64::new(0.0, 0.0); homotopy.dimension()];
+            chunk
+                .iter()
+                .map(|&i| {
+                    let points: Vec<&[C64]> = history.iter().map(|set| set[i].as_slice()).collect();
+                    extrapolate(&points, &mut prediction);
+                    tracker.correct_at(&prediction, 1.0, i)
+                })
+                .collect::<Vec<_>>()
+        })
+        .flatten()
+        .collect();
+    let mut tracked = reps.len();
+    // Newton limits that failed or coincide: re-tracked (short paths).
+    let mut tracker = Tracker::new(&homotopy, options.neighbour_tracker.clone());
+    let crossed = crossings(&reps);
+    for (result, crossed) in reps.iter_mut().zip(crossed) {
+        if !simple_endpoint(result) || crossed {
+            let i = result.path_index;
+            *result = tracker.track_between(&latest[i], 0.0, 1.0, i);
+            tracked += 1;
+        }
+    }
+    let mut paths: Vec<Option<PathResult>> = vec![None; latest.len()];
+    for result in reps {
+        let i = result.path_index;
+        if let Some(j) = partner[i].filter(|&j| j != i) {
+            let mut conjugate = result.clone();
+            conjugate.solution = seeded.problem.conjugate(&result.solution);
+            conjugate.path_index = j;
+            paths[j] = Some(conjugate);
+        }
+        paths[i] = Some(result);
+    }
+    let mut paths = paths.into_iter().collect::<Option<Vec<PathResult>>>()?;
+    // A pair whose continuation became real (two real critical points), or a path
+    // crossing between pairs: those critical points are tracked one by one.
+    let crossed = crossings(&paths);
+    for (i, crossed) in crossed.into_iter().enumerate() {
+        if !simple_endpoint(&paths[i]) || crossed {
+            paths[i] = tracker.track_between(&latest[i], 0.0, 1.0, i);
+            tracked += 1;
+        }
+    }
+    let complete = paths.iter().all(simple_endpoint)
+        && !crossings(&paths).contains(&true)
+        && paths.len() == seeded.start_count;
+    if !complete {
+        return None;
+    }
+    let endpoints: Vec<Vec<C64>> = paths.into_iter().map(|p| p.solution).collect();
+    let at = (&parameters[..], &k);
+    let count = (seeded.start_count, None, tracked);
+    Some(problem_at_pose(
+        stage, seeded, endpoints, at, count, options,
+    ))
 }
 
 /// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
@@ -1131,6 +1385,9 @@ pub fn solve_pose(
     assemble_pose(stage, metrics, index, sample, &k, entries, options)
 }
 
+/// Solution sets kept per sub-problem for [`extrapolate`].
+const JUMP_HISTORY: usize = 3;
+
 /// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):
 /// the first pose from the seed, each next one per sub-problem from the previous
 /// pose's complete finite solution set, or from the seed when that set is incomplete
@@ -1146,16 +1403,34 @@ fn solve_chain(
     options: &CurveOptions,
     on_pose: &(dyn Fn(&PoseResult) + Sync),
 ) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
-    let mut previous: Vec<Option<Vec<Vec<C64>>>> = vec![None; stage.problems.len()];
+    // Per sub-problem, the complete solution sets of the last poses (latest first),
+    // all in one order: cleared where a pose went the seed route.
+    let mut histories: Vec<Vec<Vec<Vec<C64>>>> = vec![Vec::new(); stage.problems.len()];
     let mut out = Vec::with_capacity(poses.len());
     for j in poses {
         let sample = samples[j];
-        let per_problem: Vec<ProblemAtPose> = previous
+        let per_problem: Vec<(ProblemAtPose, bool)> = histories
             .par_iter()
             .enumerate()
-            .map(|(problem_index, known)| {
+            .map(|(problem_index, history)| {
                 let at = (j, sample);
-                let from_neighbour = known.as_ref().map(|solutions| {
+                let from = || MotionPoint::target(motion, &samples[j - 1]);
+                if options.jump && !history.is_empty() {
+                    let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
+                    if let Some(result) = jump_problem(
+                        stage,
+                        design,
+                        motion,
+                        at,
+                        problem_index,
+                        from(),
+                        &sets,
+                        options,
+                    ) {
+                        return (result, true);
+                    }
+                }
+                let from_neighbour = history.first().map(|solutions| {
                     track_problem(
                         stage,
                         design,
@@ -1163,14 +1438,14 @@ fn solve_chain(
                         at,
                         problem_index,
                         Route::Neighbour {
-                            from: MotionPoint::target(motion, &samples[j - 1]),
+                            from: from(),
                             solutions,
                         },
                         options,
                     )
                 });
                 match from_neighbour {
-                    Some(result) if result.complete.is_some() => result,
+                    Some(result) if result.complete.is_some() => (result, true),
                     neighbour => {
                         let mut result = track_problem(
                             stage,
@@ -1188,12 +1463,24 @@ fn solve_chain(
                             }
                             result.entry.3 = tracked;
                         }
-                        result
+                        (result, false)
                     }
                 }
             })
             .collect();
-        previous = per_problem.iter().map(|p| p.complete.clone()).collect();
+        for (history, (result, same_order)) in histories.iter_mut().zip(&per_problem) {
+            if !same_order {
+                history.clear();
+            }
+            match &result.complete {
+                Some(set) => {
+                    history.insert(0, set.clone());
+                    history.truncate(JUMP_HISTORY);
+                }
+                None => history.clear(),
+            }
+        }
+        let per_problem: Vec<ProblemAtPose> = per_problem.into_iter().map(|(p, _)| p).collect();
         let k = design.configuration(sample.pose).to_array();
         let entries = per_problem.iter().map(|p| p.entry.clone()).collect();
         let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);

@@ -476,6 +476,23 @@ impl LagrangeProblem {
         self.convert_points(x, crate::algebra::to_cartesian)
     }
 
+    /// The complex conjugate solution: for real parameters the system has real
+    /// coefficients in Cartesian coordinates, so with `x` also `x̄` is a solution. In
+    /// this problem's coordinates: every entry conjugated, and for
+    /// [`Coordinates::Isotropic`] the two coordinates of each point swapped
+    /// (`(u, v) ↦ (v̄, ū)`, since `ū = (x̄ − iȳ)/√2`).
+    pub fn conjugate(&self, x: &[C64]) -> Vec<C64> {
+        let mut out: Vec<C64> = x.iter().map(|v| v.conj()).collect();
+        if self.coordinates == Coordinates::Isotropic {
+            for &i in &self.point_variables {
+                if i + 1 < out.len() {
+                    out.swap(i, i + 1);
+                }
+            }
+        }
+        out
+    }
+
     fn convert_points(&self, x: &[C64], convert: fn(&Point<C64>) -> Point<C64>) -> Vec<C64> {
         let mut out = x.to_vec();
         if self.coordinates == Coordinates::Isotropic {
