@@ -780,12 +780,16 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     }
 
     /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
+    /// In double precision (unless the tracker is in extended mode) while the updates
+    /// contract; where they stagnate above `10⁻¹³` relative (rounding noise of an
+    /// ill-conditioned point) the remaining iterations run in extended precision.
     fn refine_at(&mut self, t: C64) -> (bool, f64) {
         let mut previous = f64::INFINITY;
         let mut converged = false;
+        let mut extended = self.extended;
         for _ in 0..self.options.refinement_iterations {
             self.x_saved.copy_from_slice(&self.x);
-            match self.eval.newton(self.homotopy, &mut self.x, t, true) {
+            match self.eval.newton(self.homotopy, &mut self.x, t, extended) {
                 NewtonUpdate::Singular => {
                     self.x.copy_from_slice(&self.x_saved);
                     break;
@@ -793,11 +797,16 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 NewtonUpdate::Step(norm) => {
                     let scale = 1.0 + max_norm(&self.x);
                     if norm > previous && norm > 1e-14 * scale {
-                        // No longer contracting: keep the previous iterate. If the
+                        // No longer contracting: keep the previous iterate. In double
+                        // precision try again in extended precision; there, if the
                         // updates were already at rounding level for the condition of
                         // the point (below 1e-9 relative), that is the attainable
                         // accuracy: converged.
                         self.x.copy_from_slice(&self.x_saved);
+                        if !extended {
+                            extended = true;
+                            continue;
+                        }
                         converged = previous <= 1e-9 * scale;
                         break;
                     }
