@@ -1233,23 +1233,144 @@ fn problem_at_pose(
     }
 }
 
-/// The prediction of a critical point at the next pose from its values at the last
-/// one, two or three poses (`history[0]` the latest; equally spaced poses): the
-/// constant, linear or quadratic extrapolation `x₀`, `2x₀ − x₁`, `3x₀ − 3x₁ + x₂`.
-fn extrapolate(history: &[&[C64]], out: &mut [C64]) {
-    match *history {
-        [x0] => out.copy_from_slice(x0),
-        [x0, x1] => {
-            for ((o, a), b) in out.iter_mut().zip(x0).zip(x1) {
-                *o = 2.0 * a - b;
+/// A known value of one critical point along the motion: `(s, x)`, `s` in units of
+/// the pose spacing from the latest solved pose (`0`; earlier poses at `−1`, `−2`,
+/// sub-steps towards the next pose at `0 < s < 1`).
+type Node<'a> = (f64, &'a [C64]);
+
+/// The polynomial through the latest (up to three) nodes (`nodes[0]` the latest), at
+/// `s` (Lagrange form); for nodes at `0, −1, −2` and `s = 1`: `3x₀ − 3x₁ + x₂`.
+fn extrapolate(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
+    let nodes = &nodes[..nodes.len().min(3)];
+    for o in out.iter_mut() {
+        *o = C64::new(0.0, 0.0);
+    }
+    for (k, &(sk, xk)) in nodes.iter().enumerate() {
+        let weight = nodes
+            .iter()
+            .enumerate()
+            .filter(|&(l, _)| l != k)
+            .fold(1.0, |w, (_, &(sl, _))| w * (s - sl) / (sk - sl));
+        for (o, x) in out.iter_mut().zip(xk) {
+            *o += x * weight;
+        }
+    }
+}
+
+/// Per coordinate, the Möbius function `(p + q s)/(1 + r s)` through the latest three
+/// nodes (`p + q s_k − r s_k x_k = x_k`, Cramer's rule), at `s`. Exact for a
+/// coordinate with a simple pole in τ, like the far-out critical points that pass near
+/// infinity between poses; the polynomial ([`extrapolate`]) where the fit is
+/// degenerate.
+fn extrapolate_moebius(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
+    let [(s0, x0), (s1, x1), (s2, x2), ..] = *nodes else {
+        return extrapolate(nodes, s, out);
+    };
+    extrapolate(nodes, s, out);
+    let one = C64::new(1.0, 0.0);
+    let det3 = |m: [[C64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    for (i, o) in out.iter_mut().enumerate() {
+        let rows = [(s0, x0[i]), (s1, x1[i]), (s2, x2[i])];
+        let matrix = rows.map(|(sk, xk)| [one, C64::new(sk, 0.0), -xk * sk]);
+        let rhs = rows.map(|(_, xk)| xk);
+        let det = det3(matrix);
+        let column = |c: usize| {
+            let mut m = matrix;
+            for (row, value) in m.iter_mut().zip(rhs) {
+                row[c] = value;
+            }
+            det3(m) / det
+        };
+        let (p, q, r) = (column(0), column(1), column(2));
+        let value = (p + q * s) / (one + r * s);
+        if value.re.is_finite() && value.im.is_finite() {
+            *o = value;
+        }
+    }
+}
+
+/// A prediction of a critical point at `s` from its known values ([`Node`]).
+type Predictor = fn(&[Node<'_>], f64, &mut [C64]);
+
+/// The predictions [`jump_problem`] tries in turn, given `depth` known values: the
+/// polynomial extrapolation, then the Möbius one, then the latest value. (Measured on
+/// the built-in example: the Möbius and constant retries cut the critical points
+/// left to pose-to-pose paths from 1,252 to 841.)
+fn predictors(depth: usize) -> &'static [Predictor] {
+    fn latest(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
+        extrapolate(&nodes[..1], s, out);
+    }
+    match depth {
+        0 | 1 => &[extrapolate],
+        2 => &[extrapolate, latest],
+        _ => &[extrapolate, extrapolate_moebius, latest],
+    }
+}
+
+/// Newton's method at `s` ([`Tracker::correct_at`]) from each prediction in turn;
+/// the first limit that is a simple endpoint, else the last attempt.
+fn correct_predicted<H: Homotopy + ?Sized>(
+    tracker: &mut Tracker<'_, H>,
+    nodes: &[Node<'_>],
+    s: f64,
+    prediction: &mut [C64],
+    path_index: usize,
+) -> PathResult {
+    let mut result = None;
+    for predict in predictors(nodes.len()) {
+        predict(nodes, s, prediction);
+        let limit = tracker.correct_at(prediction, s, path_index);
+        let simple = simple_endpoint(&limit);
+        result = Some(limit);
+        if simple {
+            break;
+        }
+    }
+    result.expect("at least one predictor")
+}
+
+/// Smallest sub-step (in pose spacings) of [`substep_to_pose`].
+const MIN_SUBSTEP: f64 = 1.0 / 16.0;
+
+/// Newton continuation of one critical point from the latest pose (`s = 0`) to the
+/// next (`s = 1`) along the straight real route (`homotopy` at `t = s`): sub-steps
+/// from `½` down to [`MIN_SUBSTEP`] pose spacings, each predicted from the latest
+/// three known values ([`correct_predicted`]), halved when Newton's method fails,
+/// doubled when it succeeds. `None` if a sub-step would fall below the minimum.
+fn substep_to_pose<H: Homotopy + ?Sized>(
+    tracker: &mut Tracker<'_, H>,
+    history: &[&[C64]],
+    path_index: usize,
+) -> Option<PathResult> {
+    let mut nodes: Vec<(f64, Vec<C64>)> = history
+        .iter()
+        .enumerate()
+        .map(|(k, x)| (-(k as f64), x.to_vec()))
+        .collect();
+    let mut prediction = vec![C64::new(0.0, 0.0); history[0].len()];
+    let (mut s, mut h): (f64, f64) = (0.0, 0.5);
+    loop {
+        let target = (s + h).min(1.0);
+        let known: Vec<Node<'_>> = nodes.iter().map(|(s, x)| (*s, x.as_slice())).collect();
+        let result = correct_predicted(tracker, &known, target, &mut prediction, path_index);
+        if simple_endpoint(&result) {
+            if target >= 1.0 {
+                return Some(result);
+            }
+            nodes.insert(0, (target, result.solution));
+            nodes.truncate(3);
+            s = target;
+            h *= 2.0;
+        } else {
+            h *= 0.5;
+            if h < MIN_SUBSTEP {
+                return None;
             }
         }
-        [x0, x1, x2, ..] => {
-            for (((o, a), b), c) in out.iter_mut().zip(x0).zip(x1).zip(x2) {
-                *o = 3.0 * (a - b) + c;
-            }
-        }
-        [] => {}
     }
 }
 
@@ -1267,47 +1388,6 @@ fn conjugate_partners(problem: &LagrangeProblem, set: &[Vec<C64>]) -> Vec<Option
     (0..set.len())
         .map(|i| found[i].filter(|&j| found[j] == Some(i)))
         .collect()
-}
-
-/// Per coordinate, the Möbius function `(p + qτ)/(1 + rτ)` through the values at the
-/// last three poses (`τ = 0, −1, −2`, `history[0]` the latest), at `τ = 1`:
-/// `r = (2x₁ − x₀ − x₂)/(2(x₁ − x₂))`, `q = x₀ − x₁ + x₁r`, prediction
-/// `(x₀ + q)/(1 + r)`. Exact for a coordinate with a simple pole in τ, like the far-out
-/// critical points that pass near infinity between poses; the quadratic extrapolation
-/// where the fit is degenerate.
-fn extrapolate_moebius(history: &[&[C64]], out: &mut [C64]) {
-    let [x0, x1, x2, ..] = *history else {
-        return extrapolate(history, out);
-    };
-    for (i, o) in out.iter_mut().enumerate() {
-        let (a, b, c) = (x0[i], x1[i], x2[i]);
-        let r = (2.0 * b - a - c) / (2.0 * (b - c));
-        let q = a - b + b * r;
-        let value = (a + q) / (1.0 + r);
-        *o = if value.re.is_finite() && value.im.is_finite() {
-            value
-        } else {
-            3.0 * (a - b) + c
-        };
-    }
-}
-
-/// A prediction of a critical point at the next pose from its values at the last ones.
-type Predictor = fn(&[&[C64]], &mut [C64]);
-
-/// The predictions [`jump_problem`] tries in turn, given `depth` known poses: the
-/// polynomial extrapolation, then the Möbius one, then the latest value. (Measured on
-/// the built-in example: the Möbius and constant retries cut the critical points
-/// left to pose-to-pose paths from 1,252 to 841.)
-fn predictors(depth: usize) -> &'static [Predictor] {
-    fn latest(history: &[&[C64]], out: &mut [C64]) {
-        extrapolate(&history[..1], out);
-    }
-    match depth {
-        0 | 1 => &[extrapolate],
-        2 => &[extrapolate, latest],
-        _ => &[extrapolate, extrapolate_moebius, latest],
-    }
 }
 
 /// Solves one sub-problem at pose `index` from the complete solution sets of the
@@ -1366,34 +1446,59 @@ fn jump_problem(
             chunk
                 .iter()
                 .map(|&i| {
-                    let points: Vec<&[C64]> = history.iter().map(|set| set[i].as_slice()).collect();
-                    let mut result = None;
-                    for predict in predictors(points.len()) {
-                        predict(&points, &mut prediction);
-                        let limit = tracker.correct_at(&prediction, 1.0, i);
-                        let simple = simple_endpoint(&limit);
-                        result = Some(limit);
-                        if simple {
-                            break;
-                        }
-                    }
-                    result.expect("at least one predictor")
+                    let nodes: Vec<Node<'_>> = history
+                        .iter()
+                        .enumerate()
+                        .map(|(k, set)| (-(k as f64), set[i].as_slice()))
+                        .collect();
+                    correct_predicted(&mut tracker, &nodes, 1.0, &mut prediction, i)
                 })
                 .collect::<Vec<_>>()
         })
         .flatten()
         .collect();
     let mut tracked = reps.len();
-    // Newton limits that failed or coincide: re-tracked (short paths).
-    let mut tracker = Tracker::new(&homotopy, options.neighbour_tracker.clone());
+    // Newton limits that failed or coincide: continued in sub-steps along the straight
+    // real route, else tracked (short paths through the complex midpoint).
+    let straight = PathParameterHomotopy::new(
+        seeded.problem.evaluator(),
+        MotionPath::new(
+            design,
+            motion,
+            vec![from, target],
+            [C64::new(0.0, 0.0); 12],
+            stage.normalization,
+            parameters[12..].to_vec(),
+        ),
+    );
+    let redo = |which: &[usize]| -> Vec<PathResult> {
+        which
+            .par_chunks(4)
+            .map(|chunk| {
+                let mut newton = Tracker::new(&straight, options.neighbour_tracker.clone());
+                let mut paths = Tracker::new(&homotopy, options.neighbour_tracker.clone());
+                chunk
+                    .iter()
+                    .map(|&i| {
+                        let known: Vec<&[C64]> =
+                            history.iter().map(|set| set[i].as_slice()).collect();
+                        substep_to_pose(&mut newton, &known, i)
+                            .unwrap_or_else(|| paths.track_between(&latest[i], 0.0, 1.0, i))
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .flatten()
+            .collect()
+    };
     let crossed = crossings(&reps);
-    for (result, crossed) in reps.iter_mut().zip(crossed) {
-        if !simple_endpoint(result) || crossed {
-            let i = result.path_index;
-            *result = tracker.track_between(&latest[i], 0.0, 1.0, i);
-            tracked += 1;
-        }
+    let which: Vec<usize> = (0..reps.len())
+        .filter(|&r| !simple_endpoint(&reps[r]) || crossed[r])
+        .collect();
+    let indices: Vec<usize> = which.iter().map(|&r| reps[r].path_index).collect();
+    for (r, result) in which.iter().zip(redo(&indices)) {
+        reps[*r] = result;
     }
+    tracked += which.len();
     let mut paths: Vec<Option<PathResult>> = vec![None; latest.len()];
     for result in reps {
         let i = result.path_index;
@@ -1409,12 +1514,13 @@ fn jump_problem(
     // A pair whose continuation became real (two real critical points), or a path
     // crossing between pairs: those critical points are tracked one by one.
     let crossed = crossings(&paths);
-    for (i, crossed) in crossed.into_iter().enumerate() {
-        if !simple_endpoint(&paths[i]) || crossed {
-            paths[i] = tracker.track_between(&latest[i], 0.0, 1.0, i);
-            tracked += 1;
-        }
+    let which: Vec<usize> = (0..paths.len())
+        .filter(|&i| !simple_endpoint(&paths[i]) || crossed[i])
+        .collect();
+    for (&i, result) in which.iter().zip(redo(&which)) {
+        paths[i] = result;
     }
+    tracked += which.len();
     let complete = paths.iter().all(simple_endpoint)
         && !crossings(&paths).contains(&true)
         && paths.len() == seeded.start_count;
@@ -1863,6 +1969,59 @@ pub fn default_start_solutions(id: ProblemId) -> Result<std::sync::Arc<StartSolu
 mod tests {
     use super::*;
     use crate::mechanism::rpr::{example_design, example_motion};
+
+    /// The predictors are exact on their model functions at any nodes: a quadratic
+    /// per coordinate for [`extrapolate`], a Möbius function (a simple pole at
+    /// `s = 2.5` and `s = −4`) for [`extrapolate_moebius`], which the quadratic misses.
+    #[test]
+    fn predictors_reproduce_their_model_functions() {
+        let quadratic = |s: f64| {
+            [
+                C64::new(1.0 - 2.0 * s + 0.5 * s * s, s),
+                C64::new(3.0, -s * s),
+            ]
+        };
+        let moebius = |s: f64| {
+            [
+                C64::new(2.0 + 3.0 * s, 1.0) / (1.0 - 0.4 * s),
+                C64::new(-1.0, 0.5 * s) / C64::new(1.0 + 0.25 * s, 0.1 * s),
+            ]
+        };
+        for nodes_at in [[0.0, -1.0, -2.0], [0.5, 0.0, -1.0], [0.75, 0.5, 0.0]] {
+            for s in [1.0, 0.875] {
+                let mut out = [C64::new(0.0, 0.0); 2];
+                let values = nodes_at.map(quadratic);
+                let nodes: Vec<Node<'_>> = nodes_at
+                    .iter()
+                    .zip(&values)
+                    .map(|(&t, v)| (t, &v[..]))
+                    .collect();
+                extrapolate(&nodes, s, &mut out);
+                let exact = quadratic(s);
+                assert!(
+                    (0..2).all(|i| (out[i] - exact[i]).norm() < 1e-12),
+                    "{out:?} vs {exact:?}"
+                );
+                let values = nodes_at.map(moebius);
+                let nodes: Vec<Node<'_>> = nodes_at
+                    .iter()
+                    .zip(&values)
+                    .map(|(&t, v)| (t, &v[..]))
+                    .collect();
+                extrapolate_moebius(&nodes, s, &mut out);
+                let exact = moebius(s);
+                assert!(
+                    (0..2).all(|i| (out[i] - exact[i]).norm() < 1e-10),
+                    "{out:?} vs {exact:?}"
+                );
+                extrapolate(&nodes, s, &mut out);
+                assert!(
+                    (out[0] - exact[0]).norm() > 1e-3,
+                    "the quadratic should miss the pole"
+                );
+            }
+        }
+    }
 
     fn path(index: usize, status: PathStatus, point: [f64; 2]) -> PathResult {
         PathResult {
