@@ -1569,6 +1569,67 @@ pub fn solve_pose(
     assemble_pose(stage, metrics, index, sample, &k, entries, options)
 }
 
+/// Poses a block of [`solve_chain`] runs through per sub-problem before they are
+/// assembled (and reported as partial results).
+const POSES_PER_BLOCK: usize = 10;
+
+/// One sub-problem at pose `at` of a chain, from the solution sets of the preceding
+/// poses (`history`, latest first): Newton jumps ([`jump_problem`]), else pose-to-pose
+/// paths from the latest set, else the seed route. Returns the result and whether its
+/// solution set is in the order of `history` (not after the seed route).
+#[allow(clippy::too_many_arguments)]
+fn solve_problem_in_chain(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    samples: &[SampledPose],
+    (j, sample): (usize, SampledPose),
+    problem_index: usize,
+    history: &[Vec<Vec<C64>>],
+    options: &CurveOptions,
+) -> (ProblemAtPose, bool) {
+    let at = (j, sample);
+    let from = || MotionPoint::target(motion, &samples[j - 1]);
+    if options.jump && !history.is_empty() {
+        let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
+        let jumped = jump_problem(
+            stage,
+            design,
+            motion,
+            at,
+            problem_index,
+            from(),
+            &sets,
+            options,
+        );
+        if let Some(result) = jumped {
+            return (result, true);
+        }
+    }
+    let from_neighbour = history.first().map(|solutions| {
+        let route = Route::Neighbour {
+            from: from(),
+            solutions,
+        };
+        track_problem(stage, design, motion, at, problem_index, route, options)
+    });
+    match from_neighbour {
+        Some(result) if result.complete.is_some() => (result, true),
+        neighbour => {
+            let seed = Route::Seed;
+            let mut result = track_problem(stage, design, motion, at, problem_index, seed, options);
+            if let Some(neighbour) = neighbour {
+                let tracked = result.entry.3 + neighbour.entry.3;
+                if neighbour.entry.1 > result.entry.1 {
+                    result = neighbour;
+                }
+                result.entry.3 = tracked;
+            }
+            (result, false)
+        }
+    }
+}
+
 /// Solution sets kept per sub-problem for [`extrapolate`].
 const JUMP_HISTORY: usize = 3;
 
@@ -1591,85 +1652,57 @@ fn solve_chain(
     // all in one order: cleared where a pose went the seed route.
     let mut histories: Vec<Vec<Vec<Vec<C64>>>> = vec![Vec::new(); stage.problems.len()];
     let mut out = Vec::with_capacity(poses.len());
-    for j in poses {
-        let sample = samples[j];
-        let per_problem: Vec<(ProblemAtPose, bool)> = histories
-            .par_iter()
+    let indices: Vec<usize> = poses.collect();
+    // The sub-problems' chains are independent: each runs through a block of poses
+    // on its own (no barrier per pose), then the block's poses are assembled.
+    for block in indices.chunks(POSES_PER_BLOCK) {
+        let per_problem: Vec<Vec<ProblemAtPose>> = histories
+            .par_iter_mut()
             .enumerate()
             .map(|(problem_index, history)| {
-                let at = (j, sample);
-                let from = || MotionPoint::target(motion, &samples[j - 1]);
-                if options.jump && !history.is_empty() {
-                    let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
-                    if let Some(result) = jump_problem(
-                        stage,
-                        design,
-                        motion,
-                        at,
-                        problem_index,
-                        from(),
-                        &sets,
-                        options,
-                    ) {
-                        return (result, true);
-                    }
-                }
-                let from_neighbour = history.first().map(|solutions| {
-                    track_problem(
-                        stage,
-                        design,
-                        motion,
-                        at,
-                        problem_index,
-                        Route::Neighbour {
-                            from: from(),
-                            solutions,
-                        },
-                        options,
-                    )
-                });
-                match from_neighbour {
-                    Some(result) if result.complete.is_some() => (result, true),
-                    neighbour => {
-                        let mut result = track_problem(
+                block
+                    .iter()
+                    .map(|&j| {
+                        let at = (j, samples[j]);
+                        let (result, same_order) = solve_problem_in_chain(
                             stage,
                             design,
                             motion,
+                            samples,
                             at,
                             problem_index,
-                            Route::Seed,
+                            history,
                             options,
                         );
-                        if let Some(neighbour) = neighbour {
-                            let tracked = result.entry.3 + neighbour.entry.3;
-                            if neighbour.entry.1 > result.entry.1 {
-                                result = neighbour;
-                            }
-                            result.entry.3 = tracked;
+                        if !same_order {
+                            history.clear();
                         }
-                        (result, false)
-                    }
-                }
+                        match &result.complete {
+                            Some(set) => {
+                                history.insert(0, set.clone());
+                                history.truncate(JUMP_HISTORY);
+                            }
+                            None => history.clear(),
+                        }
+                        result
+                    })
+                    .collect()
             })
             .collect();
-        for (history, (result, same_order)) in histories.iter_mut().zip(&per_problem) {
-            if !same_order {
-                history.clear();
-            }
-            match &result.complete {
-                Some(set) => {
-                    history.insert(0, set.clone());
-                    history.truncate(JUMP_HISTORY);
-                }
-                None => history.clear(),
-            }
+        let mut per_problem: Vec<std::vec::IntoIter<ProblemAtPose>> =
+            per_problem.into_iter().map(|v| v.into_iter()).collect();
+        for &j in block {
+            let at_pose: Vec<ProblemAtPose> = per_problem
+                .iter_mut()
+                .map(|results| results.next().expect("one result per pose"))
+                .collect();
+            let sample = samples[j];
+            let k = design.configuration(sample.pose).to_array();
+            let entries = at_pose.iter().map(|p| p.entry.clone()).collect();
+            let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
+            on_pose(&result);
+            out.push((result, at_pose));
         }
-        let per_problem: Vec<ProblemAtPose> = per_problem.into_iter().map(|(p, _)| p).collect();
-        let k = design.configuration(sample.pose).to_array();
-        let entries = per_problem.iter().map(|p| p.entry.clone()).collect();
-        let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
-        on_pose(&result);
-        out.push((result, per_problem));
     }
     out
 }
