@@ -277,6 +277,16 @@ pub struct SeededProblem {
     pub start_count: usize,
 }
 
+/// A sub-problem ready for the user homotopy: id, compiled system, source parameters,
+/// seed parameters, start solutions (in the system's coordinates).
+type PreparedProblem = (
+    ProblemId,
+    LagrangeProblem,
+    Vec<C64>,
+    Vec<C64>,
+    Vec<Vec<C64>>,
+);
+
 /// The output of the user homotopy: every sub-problem at the common seed.
 pub struct SeedStage {
     /// The prepared sub-problems, in the order of [`Metric::all`] and
@@ -958,41 +968,48 @@ pub fn seed_stage(
         at_seed.point(C64::new(0.0, 0.0), &mut k);
         k
     };
+    // Building and compiling the systems in parallel too (about 60 ms in sequence).
+    let built: Vec<Result<Option<PreparedProblem>, PipelineError>> = problem_ids(metrics)
+        .into_par_iter()
+        .map(|id| {
+            let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
+                Ok(p) => p,
+                Err(ProblemError::NotApplicable { .. }) => return Ok(None),
+                Err(e) => return Err(e.into()),
+            };
+            let start = provider(id).map_err(|message| PipelineError::StartSolutions {
+                problem: id.name(),
+                message,
+            })?;
+            let source = start
+                .parameter_vector(problem.parameter_names())
+                .map_err(|name| PipelineError::StartSolutions {
+                    problem: id.name(),
+                    message: format!("parameter `{name}` missing"),
+                })?;
+            let n = problem.variable_names().len();
+            if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
+                return Err(PipelineError::StartSolutions {
+                    problem: id.name(),
+                    message: format!("a solution has {} entries, expected {n}", bad.len()),
+                });
+            }
+            let seed_parameters = normalized_parameters(&problem, design, &k_star, normalization);
+            let starts: Vec<Vec<C64>> = start
+                .solutions
+                .iter()
+                .map(|x| problem.from_cartesian(x))
+                .collect();
+            Ok(Some((id, problem, source, seed_parameters, starts)))
+        })
+        .collect();
     let mut prepared = Vec::new();
     let mut not_applicable = Vec::new();
-    for id in problem_ids(metrics) {
-        let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
-            Ok(p) => p,
-            Err(ProblemError::NotApplicable { .. }) => {
-                not_applicable.push(id.name());
-                continue;
-            }
-            Err(e) => return Err(e.into()),
-        };
-        let start = provider(id).map_err(|message| PipelineError::StartSolutions {
-            problem: id.name(),
-            message,
-        })?;
-        let source = start
-            .parameter_vector(problem.parameter_names())
-            .map_err(|name| PipelineError::StartSolutions {
-                problem: id.name(),
-                message: format!("parameter `{name}` missing"),
-            })?;
-        let n = problem.variable_names().len();
-        if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
-            return Err(PipelineError::StartSolutions {
-                problem: id.name(),
-                message: format!("a solution has {} entries, expected {n}", bad.len()),
-            });
+    for (id, result) in problem_ids(metrics).into_iter().zip(built) {
+        match result? {
+            Some(problem) => prepared.push(problem),
+            None => not_applicable.push(id.name()),
         }
-        let seed_parameters = normalized_parameters(&problem, design, &k_star, normalization);
-        let starts: Vec<Vec<C64>> = start
-            .solutions
-            .iter()
-            .map(|x| problem.from_cartesian(x))
-            .collect();
-        prepared.push((id, problem, source, seed_parameters, starts));
     }
     let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
         .into_par_iter()
