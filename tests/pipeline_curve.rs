@@ -392,7 +392,9 @@ fn isotropic_coordinates_account_for_the_far_out_rigid_rigid_critical_points() {
 /// Pose-to-pose chains give the distances of the reference route (every pose from
 /// the seed, `chain_length` 1), metric by metric: with Newton jumps from extrapolated
 /// critical points (the default) and with pose-to-pose paths only (`jump: false`).
-/// Both continue fewer paths than the reference route, the jumps fewest.
+/// The jumps continue the fewest critical points (one per conjugate pair); the
+/// pose-to-pose paths no more than the reference route (the same number when no path
+/// needs a re-run).
 #[test]
 fn chained_poses_match_the_seed_route() {
     let design = example_design();
@@ -437,7 +439,7 @@ fn chained_poses_match_the_seed_route() {
     }
     assert!(
         jumped.paths_tracked < tracked.paths_tracked
-            && tracked.paths_tracked < reference.paths_tracked,
+            && tracked.paths_tracked <= reference.paths_tracked,
         "paths continued: jumps {}, pose-to-pose paths {}, reference {}",
         jumped.paths_tracked,
         tracked.paths_tracked,
