@@ -717,41 +717,66 @@ fn simple_endpoint(path: &PathResult) -> bool {
 /// jumped (and missed a critical point). Endpoints reached with winding (Cauchy
 /// endgame, winding number > 1) may legitimately be shared (multiplicity); a genuinely
 /// singular endpoint reached without winding is reported as a crossing, which can only
-/// cost a re-run, never hide a lost path.
+/// cost a re-run, never hide a lost path. Paths classified at infinity on the same
+/// point at the same `t` cross too ([`shared_endpoints`]).
 fn crossings(paths: &[PathResult]) -> Vec<bool> {
-    let nonsingular: Vec<usize> = (0..paths.len())
-        .filter(|&i| simple_endpoint(&paths[i]))
-        .collect();
     let mut crossed = vec![false; paths.len()];
-    for (k, &i) in nonsingular.iter().enumerate() {
-        for &j in &nonsingular[k + 1..] {
-            if same_endpoint(&paths[i].solution, &paths[j].solution) {
-                crossed[i] = true;
-                crossed[j] = true;
-            }
+    for group in shared_endpoints(paths) {
+        for i in group {
+            crossed[i] = true;
         }
     }
     crossed
 }
 
+/// Groups (two or more paths) that share an endpoint no two paths may share: simple
+/// finite endpoints ([`simple_endpoint`]), and paths classified at infinity that
+/// stopped at the same `t` on the same point. Distinct paths of a homotopy never meet
+/// before `t = 1` (and the branches of one Puiseux cycle are apart at any one radius),
+/// so a shared point at infinity means one path jumped onto another one's divergent
+/// path, hiding the critical point it should have reached.
+fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
+    let shareable = |a: &PathResult, b: &PathResult| {
+        (simple_endpoint(a) && simple_endpoint(b))
+            || (a.status == PathStatus::AtInfinity
+                && b.status == PathStatus::AtInfinity
+                && a.last_t == b.last_t)
+    };
+    let mut grouped = vec![false; paths.len()];
+    let mut groups = Vec::new();
+    for i in 0..paths.len() {
+        if grouped[i] || !(simple_endpoint(&paths[i]) || paths[i].status == PathStatus::AtInfinity)
+        {
+            continue;
+        }
+        let mut group = vec![i];
+        for j in i + 1..paths.len() {
+            if !grouped[j]
+                && shareable(&paths[i], &paths[j])
+                && same_endpoint(&paths[i].solution, &paths[j].solution)
+            {
+                group.push(j);
+                grouped[j] = true;
+            }
+        }
+        if group.len() > 1 {
+            groups.push(group);
+        }
+    }
+    groups
+}
+
 /// Paths whose fate is known: a finite endpoint, or an endpoint at infinity (a
 /// critical point that does not exist at these parameters, classified by the endgame),
-/// less one per extra path on a shared nonsingular endpoint (a path crossing hides a
-/// missed critical point just as a failed path does).
+/// less one per extra path on a shared endpoint ([`shared_endpoints`]: a path crossing
+/// hides a missed critical point just as a failed path does).
 fn accounted(paths: &[PathResult]) -> usize {
     let classified = paths
         .iter()
         .filter(|p| !matches!(p.status, PathStatus::Failed(_)))
         .count();
-    let crossed = crossings(paths);
-    let crossing_paths = crossed.iter().filter(|&&c| c).count();
-    let crossing_points = finite_solutions(paths).len()
-        - paths
-            .iter()
-            .zip(&crossed)
-            .filter(|(p, c)| p.status.is_finite() && !**c)
-            .count();
-    classified - (crossing_paths - crossing_points)
+    let extra: usize = shared_endpoints(paths).iter().map(|g| g.len() - 1).sum();
+    classified - extra
 }
 
 /// The distinct finite endpoints: every endpoint reached with winding (shared ones
@@ -2138,6 +2163,27 @@ mod tests {
         // 9 paths: one failed, one extra on each of the two crossings.
         assert_eq!(accounted(&paths), 6);
         assert_eq!(finite_solutions(&paths).len(), 5);
+    }
+
+    /// Two paths classified at infinity on the same point at the same `t` cross (one
+    /// jumped onto the other's divergent path); at different `t`, or on different
+    /// points, they do not.
+    #[test]
+    fn paths_diverging_together_are_a_crossing() {
+        use PathStatus::{AtInfinity, Nonsingular};
+        let at = |mut p: PathResult, t: f64| {
+            p.last_t = C64::new(t, 0.0);
+            p
+        };
+        let paths = vec![
+            at(path(0, AtInfinity, [146.6, 3.0]), 0.9999755859375),
+            at(path(1, AtInfinity, [146.6, 3.0]), 0.9999755859375),
+            at(path(2, AtInfinity, [146.6, 3.0]), 0.99990234375),
+            at(path(3, AtInfinity, [70.0, 3.0]), 0.9999755859375),
+            path(4, Nonsingular, [1.0, 2.0]),
+        ];
+        assert_eq!(crossings(&paths), vec![true, true, false, false, false]);
+        assert_eq!(accounted(&paths), 4);
     }
 
     /// `MotionPath::point_and_velocity` is the derivative of `MotionPath::point`
