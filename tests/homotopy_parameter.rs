@@ -162,7 +162,7 @@ fn a_slowly_diverging_multiplier_is_classified_at_infinity() {
     }
 }
 
-/// `λ² − p` along `p: 1 → 4` (roots ±1 → ±2), in [`singdist::homotopy::Tracker`] terms.
+/// `λ² − p` (roots `±√p`), one unknown, one parameter.
 fn square_root_family() -> singdist::system::CompiledSystem {
     use singdist::system::{Expr, System};
     let lambda = Expr::variable("lambda");
@@ -172,18 +172,38 @@ fn square_root_family() -> singdist::system::CompiledSystem {
         .compile()
 }
 
+/// The one-entry real vector `[v]`.
+fn real(v: f64) -> Vec<C64> {
+    vec![C64::new(v, 0.0)]
+}
+
+/// The parameter homotopy of a one-parameter `system` along `p: from → to`.
+fn segment(
+    system: &singdist::system::CompiledSystem,
+    from: f64,
+    to: f64,
+) -> singdist::homotopy::PathParameterHomotopy<
+    '_,
+    singdist::system::CompiledSystem,
+    singdist::homotopy::PolylinePath,
+> {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath};
+    PathParameterHomotopy::new(system, PolylinePath::new(vec![real(from), real(to)]))
+}
+
 /// Newton's method from a prediction ([`Tracker::correct_at`]) converges to the root
 /// near the prediction to full accuracy in a few updates, fails from a point where the
 /// Jacobian is singular, and does not report a double root (linear convergence) as a
 /// nonsingular solution.
 #[test]
 fn newton_from_a_prediction_converges_only_to_nonsingular_roots() {
-    use singdist::homotopy::{FailureReason, PathParameterHomotopy, PolylinePath, Tracker};
-    use singdist::homotopy::{TrackerOptions, tracker::CORRECT_AT_ITERATIONS};
+    use singdist::homotopy::{
+        FailureReason, Tracker, TrackerOptions, tracker::CORRECT_AT_ITERATIONS,
+    };
     use singdist::system::{Expr, System};
-    let c = |v: f64| vec![C64::new(v, 0.0)];
+    let c = real;
     let system = square_root_family();
-    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(4.0)]));
+    let homotopy = segment(&system, 1.0, 4.0);
     let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
     let near = tracker.correct_at(&c(1.8), 1.0, 0);
     assert_eq!(near.status, PathStatus::Nonsingular, "{near:?}");
@@ -208,7 +228,7 @@ fn newton_from_a_prediction_converges_only_to_nonsingular_roots() {
     )
     .unwrap()
     .compile();
-    let homotopy = PathParameterHomotopy::new(&double, PolylinePath::new(vec![c(1.0), c(2.0)]));
+    let homotopy = segment(&double, 1.0, 2.0);
     let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
     let result = tracker.correct_at(&c(2.1), 1.0, 0);
     assert_eq!(
@@ -224,10 +244,10 @@ fn newton_from_a_prediction_converges_only_to_nonsingular_roots() {
 /// branches only at `p = 0`, i.e. `t = −1/3`), on either side.
 #[test]
 fn tracking_around_an_arc_reaches_the_straight_route_endpoint() {
-    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
-    let c = |v: f64| vec![C64::new(v, 0.0)];
+    use singdist::homotopy::{Tracker, TrackerOptions};
+    let c = real;
     let system = square_root_family();
-    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(4.0)]));
+    let homotopy = segment(&system, 1.0, 4.0);
     let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
     for start in [1.0, -1.0] {
         let straight = tracker.track(&c(start), 0);
@@ -249,10 +269,10 @@ fn tracking_around_an_arc_reaches_the_straight_route_endpoint() {
 /// root grows a hundredfold, so long first steps are rejected.
 #[test]
 fn rejections_at_a_well_conditioned_point_keep_double_precision() {
-    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
-    let c = |v: f64| vec![C64::new(v, 0.0)];
+    use singdist::homotopy::{Tracker, TrackerOptions};
+    let c = real;
     let system = square_root_family();
-    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![c(1.0), c(1e4)]));
+    let homotopy = segment(&system, 1.0, 1e4);
     let options = TrackerOptions {
         initial_step: 0.5,
         max_step: 0.5,

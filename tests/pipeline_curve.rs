@@ -322,13 +322,14 @@ fn lost_on_example(name: &str, poses: &[usize], options: &CurveOptions) -> (usiz
     (lost(&stage.failures), at_poses)
 }
 
-/// Regression test of adaptive precision (tracker `extended_after_rejections`): on the
-/// built-in example, `plate/rigid` poses 20–29 (τ ≈ 0.24–0.79) lost 1–2 of 80 paths
-/// each with double-precision residuals — critical points escaping along isotropic
-/// directions, κ ≈ 10¹⁰–10¹², where rounding noise exceeds the corrector tolerance.
-/// With double-double residuals every path is accounted for, at the seed and there.
+/// Regression test: on the built-in example, `plate/rigid` poses 20–29 (τ ≈ 0.24–0.79)
+/// once lost 1–2 of 80 paths each (Cartesian coordinates, double-precision residuals):
+/// critical points escaping along isotropic directions, κ ≈ 10¹⁰–10¹². With the
+/// default options (isotropic coordinates, extended precision where the step
+/// underflows and in the conservative re-runs) every path is accounted for, at the
+/// seed and there, along the seed → pose route.
 #[test]
-fn extended_precision_accounts_for_every_plate_rigid_path_mid_motion() {
+fn every_plate_rigid_path_mid_motion_is_accounted_for() {
     let lost = lost_on_example("plate/rigid", &[20, 24, 28], &CurveOptions::default());
     assert_eq!(lost, (0, 0), "(seed, poses)");
 }

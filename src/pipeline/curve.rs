@@ -823,8 +823,8 @@ pub(crate) struct TrackingPlan<'a> {
     pub retry: &'a TrackerOptions,
     /// Whether the first run and the detours end with the endgame. Without it (between
     /// two generic parameter points, where every critical point is finite and
-    /// nonsingular) the endpoint is Newton-refined at `t = 1`; a path that diverges or
-    /// ends singular there is re-run with the endgame.
+    /// nonsingular) the endpoint is Newton-refined at `t = 1`; a path that fails,
+    /// crosses another one or diverges is re-run with the endgame.
     pub endgame: bool,
 }
 
@@ -1502,12 +1502,14 @@ fn jump_problem(
             chunk
                 .iter()
                 .map(|&i| {
-                    let nodes: Vec<Node<'_>> = history
-                        .iter()
-                        .enumerate()
-                        .map(|(k, set)| (-(k as f64), set[i].as_slice()))
-                        .collect();
-                    correct_predicted(&mut tracker, &nodes, 1.0, &mut prediction, i)
+                    // At most JUMP_HISTORY known values, on the stack.
+                    let mut nodes: [Node<'_>; JUMP_HISTORY] = [(0.0, &[]); JUMP_HISTORY];
+                    let depth = history.len().min(JUMP_HISTORY);
+                    for (k, (node, set)) in nodes.iter_mut().zip(history).enumerate() {
+                        *node = (-(k as f64), set[i].as_slice());
+                    }
+                    let nodes = &nodes[..depth];
+                    correct_predicted(&mut tracker, nodes, 1.0, &mut prediction, i)
                 })
                 .collect::<Vec<_>>()
         })
@@ -2076,27 +2078,25 @@ mod tests {
                 C64::new(-1.0, 0.5 * s) / C64::new(1.0 + 0.25 * s, 0.1 * s),
             ]
         };
+        let nodes_of = |at: &[f64; 3], values: &[[C64; 2]; 3]| -> Vec<(f64, Vec<C64>)> {
+            at.iter()
+                .zip(values)
+                .map(|(&t, v)| (t, v.to_vec()))
+                .collect()
+        };
         for nodes_at in [[0.0, -1.0, -2.0], [0.5, 0.0, -1.0], [0.75, 0.5, 0.0]] {
             for s in [1.0, 0.875] {
                 let mut out = [C64::new(0.0, 0.0); 2];
-                let values = nodes_at.map(quadratic);
-                let nodes: Vec<Node<'_>> = nodes_at
-                    .iter()
-                    .zip(&values)
-                    .map(|(&t, v)| (t, &v[..]))
-                    .collect();
+                let owned = nodes_of(&nodes_at, &nodes_at.map(quadratic));
+                let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
                 extrapolate(&nodes, s, &mut out);
                 let exact = quadratic(s);
                 assert!(
                     (0..2).all(|i| (out[i] - exact[i]).norm() < 1e-12),
                     "{out:?} vs {exact:?}"
                 );
-                let values = nodes_at.map(moebius);
-                let nodes: Vec<Node<'_>> = nodes_at
-                    .iter()
-                    .zip(&values)
-                    .map(|(&t, v)| (t, &v[..]))
-                    .collect();
+                let owned = nodes_of(&nodes_at, &nodes_at.map(moebius));
+                let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
                 extrapolate_moebius(&nodes, s, &mut out);
                 let exact = moebius(s);
                 assert!(
