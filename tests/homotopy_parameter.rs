@@ -289,3 +289,35 @@ fn rejections_at_a_well_conditioned_point_keep_double_precision() {
     );
     assert!(!result.used_extended_precision, "{result:?}");
 }
+
+/// A root far out (|λ| ≈ 3.7·10⁷) of a polynomial in expanded form,
+/// `λ² − 2pλ + p² − δ²` with roots `p ± δ`: the terms are of order 10¹⁵, so the
+/// double-precision residual carries rounding noise of order 0.1 and Newton's updates
+/// stagnate near 10⁻¹⁰…10⁻⁸ relative, above [`Tracker::correct_at`]'s 10⁻⁹ floor (with
+/// double precision only, this call fails 4·10⁻³ from the root). The correction goes
+/// on in double-double and reaches the root to 10⁻⁶ absolute (3·10⁻¹⁴ relative).
+#[test]
+fn newton_from_a_prediction_goes_on_in_double_double_below_the_rounding_floor() {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
+    use singdist::system::{Expr, System};
+    let (p, delta) = (3.0e7 + 0.3, 1.0);
+    let lambda = Expr::variable("lambda");
+    let q = Expr::parameter("p");
+    let constant = |v: f64| Expr::constant(C64::new(v, 0.0));
+    let expanded = lambda.clone() * lambda.clone() - constant(2.0) * q.clone() * lambda
+        + q.clone() * q
+        - constant(delta * delta);
+    let system = System::new(["lambda"], ["p"], vec![expanded])
+        .unwrap()
+        .compile();
+    let p = C64::new(p, 0.7 * p);
+    let homotopy = PathParameterHomotopy::new(&system, PolylinePath::new(vec![vec![p], vec![p]]));
+    let mut tracker = Tracker::new(&homotopy, TrackerOptions::fast());
+    let result = tracker.correct_at(&[p + delta + 0.3], 1.0, 0);
+    assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
+    assert!(result.used_extended_precision, "{result:?}");
+    assert!(
+        (result.solution[0] - (p + delta)).norm() < 1e-6,
+        "{result:?}"
+    );
+}

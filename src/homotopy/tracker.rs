@@ -301,6 +301,14 @@ const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
 /// Newton updates of [`Tracker::correct_at`].
 pub const CORRECT_AT_ITERATIONS: usize = 8;
 
+/// Double-double Newton updates [`Tracker::correct_at`] may add once double precision
+/// stagnates above its tolerance.
+pub const CORRECT_AT_EXTENDED_ITERATIONS: usize = 4;
+
+/// [`Tracker::correct_at`] goes on in double-double when double-precision Newton
+/// stagnates after a last contracting update below this (relative to `1 + ‖x‖∞`).
+pub const CORRECT_AT_EXTENDED_START: f64 = 1e-4;
+
 /// Largest ratio of successive Newton updates in [`Tracker::correct_at`].
 pub const CORRECT_AT_CONTRACTION: f64 = 1.0;
 
@@ -673,9 +681,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// solution of `H(x, t) = 0`, e.g. extrapolated from the solutions at neighbouring
     /// parameters), without path tracking: `x ← x − J⁻¹H(x, t)` while the updates
     /// contract (`‖Δ_{k+1}‖ ≤ ½‖Δ_k‖`), at most [`CORRECT_AT_ITERATIONS`] updates, until
-    /// `‖Δ‖ ≤ 10⁻¹¹(1 + ‖x‖∞)`, in double precision (a limit that needs extended
-    /// precision to converge is left to the tracker). `Nonsingular` if the limit has
-    /// condition below `singular_condition`, else `Failed(CorrectorDidNotConverge)`.
+    /// `‖Δ‖ ≤ 10⁻¹¹(1 + ‖x‖∞)`, in double precision. Where the updates contract to
+    /// below [`CORRECT_AT_EXTENDED_START`] and then stagnate above `10⁻⁹(1 + ‖x‖∞)`
+    /// (the rounding floor of the double-precision residual of a far-out point), up to
+    /// [`CORRECT_AT_EXTENDED_ITERATIONS`] more updates run in double-double (residual,
+    /// Jacobian and LU). `Nonsingular` if the limit has condition below
+    /// `singular_condition`, `Singular` above it, else `Failed(CorrectorDidNotConverge)`.
     ///
     /// Which solution Newton's method converges to is not controlled (no path is
     /// followed): callers must check the set of limits, e.g. that they are distinct
@@ -688,10 +699,23 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let mut status = failed;
         let mut condition = f64::INFINITY;
         let mut residual = f64::INFINITY;
-        for _ in 0..CORRECT_AT_ITERATIONS {
+        let mut extended = false;
+        let mut extended_left = CORRECT_AT_EXTENDED_ITERATIONS;
+        let mut double_left = CORRECT_AT_ITERATIONS;
+        while if extended {
+            extended_left > 0
+        } else {
+            double_left > 0
+        } {
+            if extended {
+                extended_left -= 1;
+            } else {
+                double_left -= 1;
+            }
             self.x_saved.copy_from_slice(&self.x);
             self.steps += 1;
-            let NewtonUpdate::Step(norm) = self.eval.newton(self.homotopy, &mut self.x, t, false)
+            let NewtonUpdate::Step(norm) =
+                self.eval.newton(self.homotopy, &mut self.x, t, extended)
             else {
                 break;
             };
@@ -703,6 +727,15 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 // (as in the endpoint refinement), keep the previous iterate.
                 self.x.copy_from_slice(&self.x_saved);
                 if previous > 1e-9 * scale {
+                    if !extended && previous <= CORRECT_AT_EXTENDED_START * scale {
+                        // Converging, but double precision's rounding floor (residual
+                        // terms of a far-out point) is above the tolerance: go on in
+                        // double-double from the last contracting iterate.
+                        extended = true;
+                        self.used_extended = true;
+                        previous = f64::INFINITY;
+                        continue;
+                    }
                     break;
                 }
             }

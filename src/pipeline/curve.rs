@@ -1529,7 +1529,7 @@ fn jump_problem(
             parameters[12..].to_vec(),
         ),
     );
-    let redo = |which: &[usize]| -> Vec<PathResult> {
+    let redo = |which: &[usize], substeps: bool| -> Vec<PathResult> {
         which
             .par_chunks(4)
             .map(|chunk| {
@@ -1540,7 +1540,9 @@ fn jump_problem(
                     .map(|&i| {
                         let known: Vec<&[C64]> =
                             history.iter().map(|set| set[i].as_slice()).collect();
-                        substep_to_pose(&mut newton, &known, i)
+                        substeps
+                            .then(|| substep_to_pose(&mut newton, &known, i))
+                            .flatten()
                             .unwrap_or_else(|| paths.track_between(&latest[i], 0.0, 1.0, i))
                     })
                     .collect::<Vec<_>>()
@@ -1553,7 +1555,7 @@ fn jump_problem(
         .filter(|&r| !simple_endpoint(&reps[r]) || crossed[r])
         .collect();
     let indices: Vec<usize> = which.iter().map(|&r| reps[r].path_index).collect();
-    for (r, result) in which.iter().zip(redo(&indices)) {
+    for (r, result) in which.iter().zip(redo(&indices, true)) {
         reps[*r] = result;
     }
     tracked += which.len();
@@ -1570,12 +1572,15 @@ fn jump_problem(
     }
     let mut paths = paths.into_iter().collect::<Option<Vec<PathResult>>>()?;
     // A pair whose continuation became real (two real critical points), or a path
-    // crossing between pairs: those critical points are tracked one by one.
+    // crossing between pairs: those critical points are tracked one by one, by paths
+    // through the complex midpoint only. Newton sub-steps along the real route cannot
+    // separate them: the iterates from a point and from its conjugate stay conjugate,
+    // so a pair that turned real between the poses lands twice on one real point.
     let crossed = crossings(&paths);
     let which: Vec<usize> = (0..paths.len())
         .filter(|&i| !simple_endpoint(&paths[i]) || crossed[i])
         .collect();
-    for (&i, result) in which.iter().zip(redo(&which)) {
+    for (&i, result) in which.iter().zip(redo(&which, false)) {
         paths[i] = result;
     }
     tracked += which.len();
