@@ -4,11 +4,13 @@
 //! `J = ∂H/∂x` (n = 11..19 for singdist's problems). At that size a plain LU
 //! factorisation with partial pivoting (`P J = L U`, Golub & Van Loan Alg. 3.4.1) on a
 //! preallocated row-major buffer beats general-purpose libraries, whose per-call set-up
-//! dominates (see `benches/tracker_linalg.rs`: this LU against nalgebra and faer; on an
-//! idle machine, factor + solve took 1.03/1.46/2.48/4.17 µs for n = 11/13/16/19 here,
-//! against 1.24/1.85/2.80/3.24 µs for faer's allocation-free `lu_in_place` and
-//! 1.32/2.01/3.69/5.15 µs for nalgebra. Delegating n ≥ 18 to faer was tried and lost
-//! its edge to the layout copies, so this loop is used for every n).
+//! dominates (see `benches/tracker_linalg.rs`: this LU against nalgebra and faer. With
+//! the AVX2 row update ([`subtract_scaled_row_avx2`]) factor + solve took
+//! 0.87/1.26/1.77/2.45 µs for n = 11/13/16/19, against 1.33/1.83/3.45/3.60 µs for
+//! faer's allocation-free `lu_in_place` in the same run; nalgebra was slower still.
+//! Delegating n ≥ 18 to faer was tried and lost its edge to the layout copies, and a
+//! split real/imaginary layout was slower than interleaved complex entries for rows
+//! this short, so this loop is used for every n).
 //!
 //! Besides solving, the workspace offers
 //! - the adjoint solve `Jᴴ y = b` from the same factors,
@@ -23,6 +25,53 @@
 
 use crate::C64;
 use crate::system::double_double::{ComplexDd, DoubleDouble};
+
+/// `t ← t − f·u` entrywise (rows of equal length), products as num-complex forms
+/// them: `f·u = (f_re u_re − f_im u_im, f_re u_im + f_im u_re)`.
+#[inline(always)]
+fn subtract_scaled_row(target: &mut [C64], row: &[C64], f: C64) {
+    for (t, &u) in target.iter_mut().zip(row) {
+        *t -= f * u;
+    }
+}
+
+/// [`subtract_scaled_row`] with AVX2 intrinsics, two complex entries per 256-bit
+/// register: `u·f_re` and `swap(u)·f_im` combined by one `addsub` give
+/// `(u_re f_re − u_im f_im, u_im f_re + u_re f_im)`, the same products and sums as
+/// num-complex's `f·u` (no fused operations), so results are bit-identical.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn subtract_scaled_row_avx2(target: &mut [C64], row: &[C64], f: C64) {
+    use std::arch::x86_64::{
+        _mm256_addsub_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_permute_pd, _mm256_set1_pd,
+        _mm256_storeu_pd, _mm256_sub_pd,
+    };
+    let len = target.len().min(row.len());
+    let t = target.as_mut_ptr() as *mut f64;
+    let u = row.as_ptr() as *const f64;
+    let f_re = _mm256_set1_pd(f.re);
+    let f_im = _mm256_set1_pd(f.im);
+    let mut j = 0;
+    while j + 2 <= len {
+        // SAFETY: entries j and j + 1 are in bounds of both slices (j + 2 ≤ len), and
+        // `Complex<f64>` is `repr(C)`: `(re, im)` pairs of contiguous f64.
+        unsafe {
+            let uv = _mm256_loadu_pd(u.add(2 * j));
+            let swapped = _mm256_permute_pd(uv, 0b0101);
+            let product = _mm256_addsub_pd(_mm256_mul_pd(uv, f_re), _mm256_mul_pd(swapped, f_im));
+            let tv = _mm256_loadu_pd(t.add(2 * j));
+            _mm256_storeu_pd(t.add(2 * j), _mm256_sub_pd(tv, product));
+        }
+        j += 2;
+    }
+    if j < len {
+        target[j] -= f * row[j];
+    }
+}
 
 /// Preallocated LU factorisation `P A = L U` of an n × n complex matrix (row-major).
 #[derive(Clone, Debug)]
@@ -71,16 +120,25 @@ impl LuWorkspace {
         self.factor_generic(a)
     }
 
-    /// [`LuWorkspace::factor`] compiled with AVX2 (wider vectors for the row updates;
-    /// the same operations, so the same rounding).
+    /// [`LuWorkspace::factor`] compiled with AVX2, with the row updates in
+    /// [`subtract_scaled_row_avx2`] (two complex entries per instruction; the same
+    /// products and sums, so the same rounding).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     fn factor_with_avx2(&mut self, a: &[C64]) -> bool {
-        self.factor_generic(a)
+        // SAFETY: this function runs only where the CPU supports AVX2.
+        self.factor_with(a, |target, row, f| unsafe {
+            subtract_scaled_row_avx2(target, row, f)
+        })
     }
 
-    #[inline(always)]
     fn factor_generic(&mut self, a: &[C64]) -> bool {
+        self.factor_with(a, subtract_scaled_row)
+    }
+
+    /// `P A = L U` by rows (right-looking), with `update(t, u, f)` doing `t ← t − f·u`.
+    #[inline(always)]
+    fn factor_with(&mut self, a: &[C64], update: impl Fn(&mut [C64], &[C64], C64)) -> bool {
         let n = self.n;
         debug_assert_eq!(a.len(), n * n);
         self.matrix.copy_from_slice(a);
@@ -117,11 +175,11 @@ impl LuWorkspace {
                 lu[i * n + k] = factor;
                 if factor.re != 0.0 || factor.im != 0.0 {
                     let (upper, lower) = lu.split_at_mut(i * n);
-                    let pivot_row_slice = &upper[k * n + k + 1..k * n + n];
-                    let target = &mut lower[k + 1..n];
-                    for (t, &u) in target.iter_mut().zip(pivot_row_slice) {
-                        *t -= factor * u;
-                    }
+                    update(
+                        &mut lower[k + 1..n],
+                        &upper[k * n + k + 1..k * n + n],
+                        factor,
+                    );
                 }
             }
         }
