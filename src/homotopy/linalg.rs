@@ -5,7 +5,7 @@
 //! factorisation with partial pivoting (`P J = L U`, Golub & Van Loan Alg. 3.4.1) on a
 //! preallocated row-major buffer beats general-purpose libraries, whose per-call set-up
 //! dominates (see `benches/tracker_linalg.rs`: this LU against nalgebra and faer. With
-//! the AVX2 row update ([`subtract_scaled_row_avx2`]) factor + solve took
+//! the AVX2 row update (`subtract_scaled_row_avx2`) factor + solve took
 //! 0.87/1.26/1.77/2.45 µs for n = 11/13/16/19, against 1.33/1.83/3.45/3.60 µs for
 //! faer's allocation-free `lu_in_place` in the same run; nalgebra was slower still.
 //! Delegating n ≥ 18 to faer was tried and lost its edge to the layout copies, and a
