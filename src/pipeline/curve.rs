@@ -742,19 +742,51 @@ fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
                 && b.status == PathStatus::AtInfinity
                 && a.last_t == b.last_t)
     };
+    let eligible = |p: &PathResult| simple_endpoint(p) || p.status == PathStatus::AtInfinity;
+    // Sort and sweep: two endpoints within `same_endpoint`'s tolerance have first
+    // coordinates within `window` (the largest tolerance of any pair), so only
+    // neighbours in the order of Re x₀ closer than that are compared.
+    let key = |i: usize| paths[i].solution.first().map_or(0.0, |v| v.re);
+    let mut order: Vec<usize> = (0..paths.len()).filter(|&i| eligible(&paths[i])).collect();
+    if order.len() < 2 {
+        return Vec::new();
+    }
+    let largest = order.iter().fold(0.0f64, |m, &i| {
+        paths[i]
+            .solution
+            .iter()
+            .fold(m, |m, v| m.max(v.re.abs()).max(v.im.abs()))
+    });
+    let window = SAME_ENDPOINT * (1.0 + 2.0 * largest);
+    order.sort_by(|&a, &b| key(a).total_cmp(&key(b)));
+    // Pairs `(i, j)`, `i < j`, that share an endpoint, with `i`'s tolerance.
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for (position, &a) in order.iter().enumerate() {
+        for &b in &order[position + 1..] {
+            if key(b) - key(a) > window {
+                break;
+            }
+            let (i, j) = (a.min(b), a.max(b));
+            if shareable(&paths[i], &paths[j])
+                && same_endpoint(&paths[i].solution, &paths[j].solution)
+            {
+                pairs.push((i, j));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    // Each group: the first ungrouped path and every later ungrouped one sharing its
+    // endpoint.
     let mut grouped = vec![false; paths.len()];
     let mut groups = Vec::new();
-    for i in 0..paths.len() {
-        if grouped[i] || !(simple_endpoint(&paths[i]) || paths[i].status == PathStatus::AtInfinity)
-        {
+    for run in pairs.chunk_by(|x, y| x.0 == y.0) {
+        let i = run[0].0;
+        if grouped[i] {
             continue;
         }
         let mut group = vec![i];
-        for j in i + 1..paths.len() {
-            if !grouped[j]
-                && shareable(&paths[i], &paths[j])
-                && same_endpoint(&paths[i].solution, &paths[j].solution)
-            {
+        for &(_, j) in run {
+            if !grouped[j] {
                 group.push(j);
                 grouped[j] = true;
             }
