@@ -972,11 +972,36 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         }
         best = best.max(endpoints.len() + at_infinity);
     }
+    // The starts whose paths are still unaccounted for on the reference route.
+    let missing: Vec<Vec<C64>> = if best < expected {
+        let crossed = crossings(&paths);
+        paths
+            .iter()
+            .zip(&crossed)
+            .filter(|&(p, &c)| matches!(p.status, PathStatus::Failed(_)) || c)
+            .map(|(p, _)| starts[p.path_index].clone())
+            .collect()
+    } else {
+        Vec::new()
+    };
     for attempt in 1..=attempts {
         if best >= expected {
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
+        if attempt == 1 && !missing.is_empty() && missing.len() < starts.len() {
+            // First only those on the detour: any distinct finite endpoint they reach
+            // is a critical point the reference route missed (e.g. 2 of the example's
+            // 80 `rigid/rigid` seed → pose-0 paths, which pass through a pole on the
+            // way). The whole detour only if they do not complete the set.
+            let found = track_all(&detour, &missing, tracker, endgame);
+            tracked += missing.len();
+            merge(&mut endpoints, finite_solutions(&found));
+            best = best.max(endpoints.len() + at_infinity);
+            if best >= expected {
+                break;
+            }
+        }
         let paths = track_all(&detour, starts, tracker, endgame);
         tracked += starts.len();
         best = best.max(accounted(&paths));
