@@ -50,8 +50,9 @@ pub struct CurveArgs {
     /// Seed of every random choice (results are identical for any thread count).
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
-    /// Poses per chain: the first pose of every block of N is solved from the seed,
-    /// the others from their predecessors (Newton's method from extrapolated critical
+    /// Poses per chain: one pose of every block of N is solved from the seed (the
+    /// one nearest Re τ*; the first for pose lists), the others forwards and
+    /// backwards from it, each from its predecessors (Newton's method from extrapolated critical
     /// points, short pose-to-pose paths where that set is incomplete, the seed route
     /// where those lose a critical point); 1 = every pose from the seed.
     #[arg(long, value_name = "N", default_value_t = CurveOptions::default().chain_length)]

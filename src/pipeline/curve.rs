@@ -23,10 +23,12 @@
 //!    pose j in pose coordinates, with δ fading), so every intermediate parameter is a
 //!    pose of the design; poses × sub-problems run in parallel (rayon). Every path is a
 //!    pure function of its inputs, so results are identical for any thread count.
-//!    **Chains** ([`CurveOptions::chain_length`]): only the first pose of every block of
-//!    consecutive poses goes the seed route (by default the whole motion is one
-//!    block). Each next pose is solved from its predecessors' complete finite
-//!    solution sets ([`CurveOptions::jump`]): every critical point is extrapolated
+//!    **Chains** ([`CurveOptions::chain_length`]): only one pose of every block of
+//!    consecutive poses goes the seed route, the one nearest `Re τ*` (the shortest
+//!    route; by default the whole motion is one block). From it the chain runs
+//!    forwards and backwards at once; each next pose in chain order is solved from
+//!    its predecessors' complete finite solution sets ([`CurveOptions::jump`]):
+//!    every critical point is extrapolated
 //!    from the last three poses and corrected by Newton's method at the new pose,
 //!    one per complex conjugate pair (the poses are real, so the other is its
 //!    conjugate). What fails or coincides is tracked from the predecessor, through a
@@ -139,9 +141,10 @@ pub struct CurveOptions {
     #[serde(default = "default_seed_retry_attempts")]
     pub seed_retry_attempts: usize,
 
-    /// Poses per chain of stage 2: the first pose of every block of `chain_length`
-    /// consecutive poses is solved from the seed, each following pose from its
-    /// predecessors' complete finite solution sets ([`CurveOptions::jump`], or short
+    /// Poses per chain of stage 2: one pose of every block of `chain_length`
+    /// consecutive poses is solved from the seed (the one nearest `Re τ*`; the first
+    /// for pose lists), the others forwards and backwards from it, each from its
+    /// predecessors' (in chain order) complete finite solution sets ([`CurveOptions::jump`], or short
     /// pose-to-pose paths through a random complex midpoint), falling back to the seed
     /// route wherever that set is incomplete. `1` solves every pose from the seed (the
     /// reference route). The blocks do not depend on the thread count, so neither do
@@ -1694,9 +1697,10 @@ pub fn solve_pose(
 const POSES_PER_BLOCK: usize = 10;
 
 /// One sub-problem at pose `at` of a chain, from the solution sets of the preceding
-/// poses (`history`, latest first): Newton jumps ([`jump_problem`]), else pose-to-pose
-/// paths from the latest set, else the seed route. Returns the result and whether its
-/// solution set is in the order of `history` (not after the seed route).
+/// poses in chain order (`history`, latest first; the latest is pose `previous`):
+/// Newton jumps ([`jump_problem`]), else pose-to-pose paths from the latest set, else
+/// the seed route. Returns the result and whether its solution set is in the order of
+/// `history` (not after the seed route).
 #[allow(clippy::too_many_arguments)]
 fn solve_problem_in_chain(
     stage: &SeedStage,
@@ -1705,11 +1709,11 @@ fn solve_problem_in_chain(
     samples: &[SampledPose],
     (j, sample): (usize, SampledPose),
     problem_index: usize,
-    history: &[Vec<Vec<C64>>],
+    (previous, history): (usize, &[Vec<Vec<C64>>]),
     options: &CurveOptions,
 ) -> (ProblemAtPose, bool) {
     let at = (j, sample);
-    let from = || MotionPoint::target(motion, &samples[j - 1]);
+    let from = || MotionPoint::target(motion, &samples[previous]);
     if options.jump && !history.is_empty() {
         let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
         let jumped = jump_problem(
@@ -1753,10 +1757,34 @@ fn solve_problem_in_chain(
 /// Solution sets kept per sub-problem for [`extrapolate`].
 const JUMP_HISTORY: usize = 3;
 
+/// The pose of `poses` where a chain starts from the seed: the one nearest `Re τ*`
+/// (the shortest seed route: on the built-in example the `rigid/rigid` seed route to
+/// the motion's first pose took 13 × as long as to the pose nearest `Re τ*`), or the
+/// first pose for explicit pose lists (whose seed is the first pose perturbed).
+fn chain_anchor(
+    stage: &SeedStage,
+    samples: &[SampledPose],
+    poses: &std::ops::Range<usize>,
+) -> usize {
+    match stage.seed.point {
+        MotionPoint::Tau(tau) => poses
+            .clone()
+            .min_by(|&a, &b| {
+                (samples[a].tau - tau.re)
+                    .abs()
+                    .total_cmp(&(samples[b].tau - tau.re).abs())
+            })
+            .unwrap_or(poses.start),
+        MotionPoint::Pose(_) => poses.start,
+    }
+}
+
 /// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):
-/// the first pose from the seed, each next one per sub-problem from the previous
-/// pose's complete finite solution set, or from the seed when that set is incomplete
-/// or the pose-to-pose paths do not reach a complete set. Calls `on_pose` per pose.
+/// the anchor ([`chain_anchor`]) from the seed, then the poses after it (forwards) and
+/// before it (backwards), each per sub-problem from the preceding pose's (in chain
+/// order) complete finite solution set, or from the seed when that set is incomplete
+/// or the pose-to-pose paths do not reach a complete set. Calls `on_pose` per pose;
+/// returns the poses in index order.
 #[allow(clippy::too_many_arguments)]
 fn solve_chain(
     stage: &SeedStage,
@@ -1768,62 +1796,100 @@ fn solve_chain(
     options: &CurveOptions,
     on_pose: &(dyn Fn(&PoseResult) + Sync),
 ) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
-    // Per sub-problem, the complete solution sets of the last poses (latest first),
-    // all in one order: cleared where a pose went the seed route.
-    let mut histories: Vec<Vec<Vec<Vec<C64>>>> = vec![Vec::new(); stage.problems.len()];
-    let mut out = Vec::with_capacity(poses.len());
-    let indices: Vec<usize> = poses.collect();
+    let problems = stage.problems.len();
+    let anchor = chain_anchor(stage, samples, &poses);
+    // The two directions, in chain order after the anchor.
+    let directions: [Vec<usize>; 2] = [
+        (anchor + 1..poses.end).collect(),
+        (poses.start..anchor).rev().collect(),
+    ];
+    // Per (direction, sub-problem), the complete solution sets of the last poses
+    // (latest first) and the latest pose: cleared where a pose went the seed route.
+    type History = (usize, Vec<Vec<Vec<C64>>>);
+    let assemble = |j: usize, at_pose: Vec<ProblemAtPose>| {
+        let sample = samples[j];
+        let k = design.configuration(sample.pose).to_array();
+        let entries = at_pose.iter().map(|p| p.entry.clone()).collect();
+        let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
+        on_pose(&result);
+        (result, at_pose)
+    };
+    // Runs one sub-problem's chain through `block` (poses in chain order).
+    let run =
+        |history: &mut History, problem_index: usize, block: &[usize]| -> Vec<ProblemAtPose> {
+            block
+                .iter()
+                .map(|&j| {
+                    let (previous, sets) = (history.0, &history.1);
+                    let (result, same_order) = solve_problem_in_chain(
+                        stage,
+                        design,
+                        motion,
+                        samples,
+                        (j, samples[j]),
+                        problem_index,
+                        (previous, sets),
+                        options,
+                    );
+                    let sets = &mut history.1;
+                    if !same_order {
+                        sets.clear();
+                    }
+                    match &result.complete {
+                        Some(set) => {
+                            sets.insert(0, set.clone());
+                            sets.truncate(JUMP_HISTORY);
+                        }
+                        None => sets.clear(),
+                    }
+                    history.0 = j;
+                    result
+                })
+                .collect()
+        };
+    let mut anchor_history: Vec<History> = vec![(anchor, Vec::new()); problems];
+    let at_anchor: Vec<ProblemAtPose> = anchor_history
+        .par_iter_mut()
+        .enumerate()
+        .map(|(problem_index, history)| run(history, problem_index, &[anchor]).remove(0))
+        .collect();
+    let mut out = vec![assemble(anchor, at_anchor)];
+    // Both directions continue from the anchor's sets.
+    let mut histories: Vec<History> = [anchor_history.clone(), anchor_history].concat();
     // The sub-problems' chains are independent: each runs through a block of poses
-    // on its own (no barrier per pose), then the block's poses are assembled.
-    for block in indices.chunks(POSES_PER_BLOCK) {
-        let per_problem: Vec<Vec<ProblemAtPose>> = histories
+    // on its own (no barrier per pose), both directions at once, then the blocks'
+    // poses are assembled.
+    let blocks: [Vec<&[usize]>; 2] = directions
+        .each_ref()
+        .map(|d| d.chunks(POSES_PER_BLOCK).collect());
+    for step in 0..blocks[0].len().max(blocks[1].len()) {
+        let per_task: Vec<Vec<ProblemAtPose>> = histories
             .par_iter_mut()
             .enumerate()
-            .map(|(problem_index, history)| {
-                block
-                    .iter()
-                    .map(|&j| {
-                        let at = (j, samples[j]);
-                        let (result, same_order) = solve_problem_in_chain(
-                            stage,
-                            design,
-                            motion,
-                            samples,
-                            at,
-                            problem_index,
-                            history,
-                            options,
-                        );
-                        if !same_order {
-                            history.clear();
-                        }
-                        match &result.complete {
-                            Some(set) => {
-                                history.insert(0, set.clone());
-                                history.truncate(JUMP_HISTORY);
-                            }
-                            None => history.clear(),
-                        }
-                        result
-                    })
-                    .collect()
+            .map(|(task, history)| {
+                let (direction, problem_index) = (task / problems, task % problems);
+                match blocks[direction].get(step) {
+                    Some(block) => run(history, problem_index, block),
+                    None => Vec::new(),
+                }
             })
             .collect();
-        let mut per_problem: Vec<std::vec::IntoIter<ProblemAtPose>> =
-            per_problem.into_iter().map(|v| v.into_iter()).collect();
-        for &j in block {
-            let at_pose: Vec<ProblemAtPose> = per_problem
-                .iter_mut()
-                .map(|results| results.next().expect("one result per pose"))
-                .collect();
-            let sample = samples[j];
-            let k = design.configuration(sample.pose).to_array();
-            let entries = at_pose.iter().map(|p| p.entry.clone()).collect();
-            let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
-            on_pose(&result);
-            out.push((result, at_pose));
+        let mut per_task: Vec<std::vec::IntoIter<ProblemAtPose>> =
+            per_task.into_iter().map(|v| v.into_iter()).collect();
+        for (direction, tasks) in per_task.chunks_mut(problems).enumerate() {
+            let Some(block) = blocks[direction].get(step) else {
+                continue;
+            };
+            for &j in *block {
+                let at_pose: Vec<ProblemAtPose> = tasks
+                    .iter_mut()
+                    .map(|results| results.next().expect("one result per pose"))
+                    .collect();
+                out.push(assemble(j, at_pose));
+            }
         }
     }
+    out.sort_by_key(|(result, _)| result.index);
     out
 }
 
