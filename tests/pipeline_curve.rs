@@ -544,13 +544,22 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
 /// separates it.
 #[test]
 fn pairs_turning_real_between_poses_are_separated_without_tracking_every_point() {
-    let plate = curve(&example_design(), &example_motion(), 90, &[metric("plate/plate")]);
+    let plate = curve(
+        &example_design(),
+        &example_motion(),
+        90,
+        &[metric("plate/plate")],
+    );
     assert!(plate.failures.is_empty(), "{:?}", plate.failures);
     let tau_star = plate.tau_star.expect("an analytic motion")[0];
     let anchor = plate
         .poses
         .iter()
-        .min_by(|a, b| (a.tau - tau_star).abs().total_cmp(&(b.tau - tau_star).abs()))
+        .min_by(|a, b| {
+            (a.tau - tau_star)
+                .abs()
+                .total_cmp(&(b.tau - tau_star).abs())
+        })
         .expect("poses")
         .index;
     let whole_set = 50 + 4;

@@ -431,6 +431,20 @@ fn normalized_parameters(
     problem.parameters_in_units(design, k_normalized, normalization.scale)
 }
 
+/// Parameters of `seeded`'s system at the real `pose` of `design`, in the stage's
+/// normalised frame: the target of the seed → pose homotopy (`p = (N(K(pose)), shape
+/// constants)`, the seed's being [`SeededProblem::seed_parameters`]).
+pub fn pose_parameters(
+    stage: &SeedStage,
+    seeded: &SeededProblem,
+    design: &Design,
+    pose: Pose,
+) -> Vec<C64> {
+    let k = design.configuration(pose).to_array();
+    let k_normalized = stage.normalization.apply(&to_real(&k));
+    normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization)
+}
+
 /// A point of the complexified motion: complex τ of an analytic motion, or a complex
 /// pose `(x, y, φ)` for explicit pose lists (which are interpolated linearly in pose
 /// coordinates).
