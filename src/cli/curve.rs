@@ -36,9 +36,11 @@ pub struct CurveArgs {
     #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
     metric: Vec<String>,
     /// Output table: `.json` (full detail) or `.csv` (signed distance per metric).
-    /// Partial results are appended to `FILE.partial` (JSON lines) while running; a pose
-    /// re-solved by the rescue pass (from a neighbouring pose) appears again, the later
-    /// line wins.
+    /// Partial results are appended to `FILE.partial` (JSON lines, each with its pose
+    /// `index`) while running, in the order poses complete: the chain's start pose
+    /// (nearest Re τ*) first, then forwards and backwards from it, block by block. A
+    /// pose re-solved by the rescue pass (from a neighbouring pose) appears again, the
+    /// later line wins.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// SVG plot of the signed distance curves against τ, singular poses marked.
