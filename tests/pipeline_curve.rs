@@ -489,9 +489,14 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
                 .iter()
                 .enumerate()
                 .filter(|(j, sample)| {
-                    !solve_pose(&stage, &design, &motion, &metrics, *j, **sample, &options)
-                        .failures
-                        .is_empty()
+                    let failures =
+                        solve_pose(&stage, &design, &motion, &metrics, *j, **sample, &options)
+                            .failures;
+                    // Each names the starved step budget as (one of) its reasons.
+                    for f in &failures {
+                        assert!(f.reasons.contains_key("TooManySteps"), "{f:?}");
+                    }
+                    !failures.is_empty()
                 })
                 .map(|(j, _)| j)
                 .collect();

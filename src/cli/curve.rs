@@ -115,19 +115,25 @@ pub fn warn_failures(failures: &[PathFailure]) -> bool {
     }
     let list: Vec<String> = failures
         .iter()
-        .map(|f| match (f.pose_index, f.tau) {
-            (Some(j), Some(tau)) => format!(
-                "pose {j} (tau = {tau:.6}) {}: {} of {} paths failed",
-                f.problem,
-                f.expected - f.accounted,
-                f.expected
-            ),
-            _ => format!(
-                "seed {}: {} of {} paths failed",
-                f.problem,
-                f.expected - f.accounted,
-                f.expected
-            ),
+        .map(|f| {
+            let why = if f.reasons.is_empty() {
+                String::new()
+            } else {
+                let reasons: Vec<String> =
+                    f.reasons.iter().map(|(r, n)| format!("{r} {n}")).collect();
+                format!(" (reference route: {})", reasons.join(", "))
+            };
+            let lost = f.expected - f.accounted;
+            match (f.pose_index, f.tau) {
+                (Some(j), Some(tau)) => format!(
+                    "pose {j} (tau = {tau:.6}) {}: {lost} of {} paths failed{why}",
+                    f.problem, f.expected
+                ),
+                _ => format!(
+                    "seed {}: {lost} of {} paths failed{why}",
+                    f.problem, f.expected
+                ),
+            }
         })
         .collect();
     const SHOWN: usize = 8;

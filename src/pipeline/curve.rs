@@ -272,6 +272,12 @@ pub struct PathFailure {
     /// Paths whose endpoint was classified (finite, or at infinity), best attempt; the
     /// difference to `expected` is the number of paths that failed.
     pub accounted: usize,
+    /// Why paths were unaccounted for on the reference route after the careful
+    /// re-runs, by reason: a [`FailureReason`] name (e.g. `TooManySteps`), or
+    /// `PathCrossing` for a path that ended on another one's endpoint. The detours may
+    /// have recovered some of them since.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub reasons: BTreeMap<String, usize>,
 }
 
 /// One sub-problem prepared at the seed.
@@ -708,6 +714,35 @@ fn track_all<H: Homotopy + ?Sized>(
     chunks.into_iter().flatten().collect()
 }
 
+/// Why paths of one run are unaccounted for ([`accounted`]): per failure reason (its
+/// name), and `PathCrossing` for each path beyond the first on a shared endpoint.
+fn unaccounted_reasons(paths: &[PathResult]) -> BTreeMap<String, usize> {
+    let mut reasons = BTreeMap::new();
+    for p in paths {
+        if let PathStatus::Failed(reason) = p.status {
+            *reasons.entry(format!("{reason:?}")).or_insert(0) += 1;
+        }
+    }
+    let crossed: usize = shared_endpoints(paths).iter().map(|g| g.len() - 1).sum();
+    if crossed > 0 {
+        reasons.insert("PathCrossing".into(), crossed);
+    }
+    reasons
+}
+
+/// What [`track_with_retries`] found for one group of paths.
+pub(crate) struct Retried {
+    /// The distinct finite endpoints of all attempts.
+    pub endpoints: Vec<Vec<C64>>,
+    /// Paths accounted for, best over the attempts (see [`accounted`]).
+    pub accounted: usize,
+    /// Paths tracked, re-runs and detours included.
+    pub tracked: usize,
+    /// Why paths were unaccounted for on the reference route after the careful
+    /// re-runs ([`unaccounted_reasons`]; empty if none were).
+    pub reasons: BTreeMap<String, usize>,
+}
+
 /// Relative distance under which two endpoints are the same point.
 const SAME_ENDPOINT: f64 = 1e-8;
 
@@ -911,7 +946,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     path: impl Fn(usize) -> P,
     attempts: usize,
     plan: TrackingPlan<'_>,
-) -> (Vec<Vec<C64>>, usize, usize) {
+) -> Retried {
     let TrackingPlan {
         first: tracker,
         retry: retry_tracker,
@@ -943,6 +978,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     }
     let mut endpoints = finite_solutions(&paths);
     let mut best = accounted(&paths);
+    let reasons = if best < expected {
+        unaccounted_reasons(&paths)
+    } else {
+        BTreeMap::new()
+    };
     let count_at_infinity = |paths: &[PathResult]| {
         paths
             .iter()
@@ -1029,7 +1069,12 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
     }
-    (endpoints, best, tracked)
+    Retried {
+        endpoints,
+        accounted: best,
+        tracked,
+        reasons,
+    }
 }
 
 /// Splits the per-problem results of a seed stage into the seeded problems, their
@@ -1130,7 +1175,12 @@ pub fn seed_stage(
         .map(|(index, (id, problem, source, seed_parameters, starts))| {
             let expected = starts.len();
             let stream = (index as u64) << 32;
-            let (solutions, best, tracked) = track_with_retries(
+            let Retried {
+                endpoints: solutions,
+                accounted: best,
+                tracked,
+                reasons,
+            } = track_with_retries(
                 problem.evaluator(),
                 &starts,
                 |attempt| {
@@ -1151,6 +1201,7 @@ pub fn seed_stage(
                 problem: id.name(),
                 expected,
                 accounted: best,
+                reasons,
             });
             // Paths that end at infinity at the seed are critical points that the
             // design's shape (fixed along the motion) does not have: the poses expect
@@ -1293,7 +1344,12 @@ fn track_problem(
         Route::Neighbour { from, solutions } => (solutions, from, 8),
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-    let (endpoints, best, tracked) = track_with_retries(
+    let Retried {
+        endpoints,
+        accounted: best,
+        tracked,
+        reasons,
+    } = track_with_retries(
         seeded.problem.evaluator(),
         starts,
         |attempt| {
@@ -1325,6 +1381,7 @@ fn track_problem(
         problem: seeded.id.name(),
         expected: seeded.start_count,
         accounted: best,
+        reasons,
     });
     let at = (&parameters[..], &k);
     problem_at_pose(
@@ -2305,6 +2362,17 @@ mod tests {
         // 9 paths: one failed, one extra on each of the two crossings.
         assert_eq!(accounted(&paths), 6);
         assert_eq!(finite_solutions(&paths).len(), 5);
+        // The three unaccounted paths, by reason (as `PathFailure::reasons`).
+        let reasons = unaccounted_reasons(&paths);
+        assert_eq!(
+            reasons.into_iter().collect::<Vec<_>>(),
+            vec![
+                ("PathCrossing".to_string(), 2),
+                ("TooManySteps".to_string(), 1)
+            ]
+        );
+        assert!(unaccounted_reasons(&paths[..3]).len() == 1);
+        assert!(unaccounted_reasons(&paths[2..6]).is_empty());
     }
 
     /// Two paths classified at infinity on the same point at the same `t` cross (one

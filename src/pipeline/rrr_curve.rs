@@ -27,7 +27,7 @@
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (paper Remark 11).
 
-use super::curve::{TrackingPlan, split_seed_results, track_with_retries};
+use super::curve::{Retried, TrackingPlan, split_seed_results, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::start_file::StartSolutions;
 use crate::C64;
@@ -332,7 +332,12 @@ pub fn rrr_seed_stage(
         .enumerate()
         .map(|(index, (problem, source, starts))| {
             let expected = starts.len();
-            let (solutions, accounted, tracked) = track_with_retries(
+            let Retried {
+                endpoints: solutions,
+                accounted,
+                tracked,
+                reasons,
+            } = track_with_retries(
                 problem.evaluator(),
                 &starts,
                 |attempt| {
@@ -353,6 +358,7 @@ pub fn rrr_seed_stage(
                 problem: problem.kind().name(),
                 expected,
                 accounted,
+                reasons,
             });
             // The seed is generic (all 18 coordinates perturbed): every path should end
             // finite there; the poses expect the seed's finite solutions.
@@ -392,7 +398,12 @@ fn solve_subproblem(
 ) -> Entry {
     let target: Vec<C64> = k.iter().map(|&v| C64::new(v, 0.0)).collect();
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-    let (endpoints, accounted, tracked) = track_with_retries(
+    let Retried {
+        endpoints,
+        accounted,
+        tracked,
+        reasons,
+    } = track_with_retries(
         seeded.problem.evaluator(),
         &seeded.seed_solutions,
         |attempt| {
@@ -414,6 +425,7 @@ fn solve_subproblem(
         problem: kind.name(),
         expected: seeded.start_count,
         accounted,
+        reasons,
     });
     let mut best_candidate: Option<(f64, [f64; CONFIGURATION_LEN])> = None;
     let mut real = 0;
