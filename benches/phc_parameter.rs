@@ -29,7 +29,6 @@ use singdist::pipeline::curve::{
 };
 use singdist::problem::{Coordinates, SubProblem};
 use singdist::system::{Expr, System, phc};
-use std::fmt::Write as _;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
@@ -40,64 +39,6 @@ fn phc_available() -> bool {
         .stderr(Stdio::null())
         .status()
         .is_ok()
-}
-
-/// PHCpack's solution-list format: `count dimension`, a banner, then per solution `t`,
-/// `m`, one `name : re im` line per unknown and the closing diagnostics line.
-fn solution_list(names: &[String], solutions: &[Vec<C64>]) -> String {
-    let mut out = format!("{} {}\n{}\n", solutions.len(), names.len(), "=".repeat(59));
-    for (i, x) in solutions.iter().enumerate() {
-        let _ = writeln!(
-            out,
-            "solution {} :\nt :  0.0E+00   0.0E+00\nm : 1\nthe solution for t :",
-            i + 1
-        );
-        for (name, v) in names.iter().zip(x) {
-            let _ = writeln!(out, " {name} : {:.16E} {:.16E}", v.re, v.im);
-        }
-        out.push_str("== err :  0.000E+00 = rco :  1.000E+00 = res :  0.000E+00 ==\n");
-    }
-    out
-}
-
-/// The coordinates (by name) and the closing line of every solution of the last
-/// `THE SOLUTIONS` list of a PHCpack output file (the one with the target values).
-fn last_solution_list(text: &str) -> Vec<(Vec<(String, C64)>, String)> {
-    let Some(start) = text.rfind("THE SOLUTIONS") else {
-        return Vec::new();
-    };
-    text[start..]
-        .split("the solution for t :")
-        .skip(1)
-        .filter_map(|block| {
-            let mut values = Vec::new();
-            for line in block.lines().map(str::trim) {
-                if line.starts_with("==") {
-                    return Some((values, line.to_string()));
-                }
-                let Some((name, numbers)) = line.split_once(':') else {
-                    continue;
-                };
-                let parts: Option<Vec<f64>> =
-                    numbers.split_whitespace().map(|v| v.parse().ok()).collect();
-                if let Some([re, im]) = parts.as_deref() {
-                    values.push((name.trim().to_string(), C64::new(*re, *im)));
-                }
-            }
-            None
-        })
-        .collect()
-}
-
-/// The residual `res` of a PHCpack closing line (`== err : … = rco : … = res : … ==`).
-fn residual_of(closing: &str) -> Option<f64> {
-    closing
-        .split("res :")
-        .nth(1)?
-        .split_whitespace()
-        .next()?
-        .parse()
-        .ok()
 }
 
 fn best_of_3(mut run: impl FnMut()) -> f64 {
@@ -228,7 +169,7 @@ fn main() {
         let solutions = work.join(format!("{stem}.sols"));
         let output = work.join(format!("{stem}.out"));
         std::fs::write(&input, &text).expect("write PHCpack input");
-        std::fs::write(&solutions, solution_list(&order, &starts)).expect("write solutions");
+        std::fs::write(&solutions, phc::write_solutions(&order, &starts)).expect("write solutions");
         // The dialogue of `phc -p` for coefficient-parameter continuation: random-γ
         // homotopy, double precision, the files, the parameter `s` (and a yes), its
         // target value 1 (real and imaginary part, one number a line), then the default
@@ -259,21 +200,16 @@ fn main() {
         };
         let phc_seconds = best_of_3(run_phc);
         let out = std::fs::read_to_string(&output).unwrap_or_default();
-        let found = last_solution_list(&out);
+        let found = phc::read_last_solutions(&out);
         let n = system.variables().len();
         let finite: Vec<Vec<C64>> = found
             .iter()
-            .filter(|(_, closing)| residual_of(closing).is_some_and(|r| r <= 1e-8))
-            .map(|(values, _)| {
+            .filter(|s| s.diagnostic("res").is_some_and(|r| r <= 1e-8))
+            .map(|s| {
                 system
                     .variables()
                     .iter()
-                    .map(|name| {
-                        values
-                            .iter()
-                            .find(|(v, _)| v == name)
-                            .map_or(C64::new(f64::NAN, 0.0), |(_, x)| *x)
-                    })
+                    .map(|name| s.value(name).unwrap_or(C64::new(f64::NAN, 0.0)))
                     .collect::<Vec<C64>>()
             })
             .filter(|x: &Vec<C64>| x.len() == n && x.iter().all(|v| v.re.is_finite()))

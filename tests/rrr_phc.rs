@@ -18,49 +18,6 @@ fn phc_available() -> bool {
         .is_ok()
 }
 
-/// One solution block of a PHCpack solution list: coordinates by name and the closing
-/// line (`== err : … = rco : … = res : … ==`).
-struct PhcSolution {
-    values: Vec<(String, C64)>,
-    closing: String,
-}
-
-/// The solutions of the last `THE SOLUTIONS` list of a PHCpack file (`phc -b` appends
-/// its final list of finite solutions to the input file; the output file's layout
-/// varies between runs).
-fn parse_phc_solutions(text: &str) -> Vec<PhcSolution> {
-    let Some(start) = text.rfind("THE SOLUTIONS") else {
-        return Vec::new();
-    };
-    text[start..]
-        .split("the solution for t :")
-        .skip(1)
-        .filter_map(|block| {
-            let mut values = Vec::new();
-            for line in block.lines() {
-                let line = line.trim();
-                if line.starts_with("==") {
-                    return Some(PhcSolution {
-                        values,
-                        closing: line.to_string(),
-                    });
-                }
-                let Some((name, numbers)) = line.split_once(':') else {
-                    continue;
-                };
-                let parts: Option<Vec<f64>> = numbers
-                    .split_whitespace()
-                    .map(|v| v.parse::<f64>().ok())
-                    .collect();
-                if let Some([re, im]) = parts.as_deref() {
-                    values.push((name.trim().to_string(), C64::new(*re, *im)));
-                }
-            }
-            None
-        })
-        .collect()
-}
-
 /// Runs `phc -b` on `input`, killing it after `limit`; returns the input file afterwards
 /// (with PHCpack's appended solution list), `None` if it did not finish.
 fn run_phc(input: &std::path::Path, output: &std::path::Path, limit: Duration) -> Option<String> {
@@ -116,7 +73,7 @@ fn phc_blackbox_confirms_the_leg_count() {
         let _ = std::fs::remove_dir_all(&directory);
         panic!("phc -b did not finish within 240 s");
     };
-    let solutions = parse_phc_solutions(&result);
+    let solutions = phc::read_last_solutions(&result);
     assert!(
         !solutions.is_empty(),
         "no solution list appended to {}: {} bytes",
@@ -126,13 +83,7 @@ fn phc_blackbox_confirms_the_leg_count() {
     let _ = std::fs::remove_dir_all(&directory);
     for s in &solutions {
         // Inverse condition number of the Jacobian: far from singular.
-        let rco: f64 = s
-            .closing
-            .split("rco :")
-            .nth(1)
-            .and_then(|r| r.split_whitespace().next())
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(0.0);
+        let rco = s.diagnostic("rco").unwrap_or(0.0);
         assert!(rco > 1e-10, "{}", s.closing);
     }
     let finite: Vec<Vec<C64>> = solutions

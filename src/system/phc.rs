@@ -180,3 +180,118 @@ pub fn read(text: &str) -> Result<System, ParseError> {
         other => at_end(ParseErrorKind::InvalidSystem(other.to_string())),
     })
 }
+
+/// One solution of a PHCpack solution list: the coordinates by name, in the order
+/// listed, and the closing diagnostics line (`== err : … = rco : … = res : … ==`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhcSolution {
+    /// `(name, value)` per unknown.
+    pub values: Vec<(String, C64)>,
+    /// The closing line, as PHCpack wrote it.
+    pub closing: String,
+}
+
+impl PhcSolution {
+    /// A diagnostic of the closing line by its label: `err` (last Newton correction),
+    /// `rco` (estimated inverse condition number) or `res` (residual).
+    pub fn diagnostic(&self, label: &str) -> Option<f64> {
+        self.closing
+            .split(&format!("{label} :"))
+            .nth(1)?
+            .split_whitespace()
+            .next()?
+            .parse()
+            .ok()
+    }
+
+    /// The value of unknown `name`.
+    pub fn value(&self, name: &str) -> Option<C64> {
+        self.values.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
+    }
+}
+
+/// The solutions of the last `THE SOLUTIONS` list in a PHCpack file (`phc -b` appends
+/// its final list to the input file; `phc -p` ends its output file with the list at
+/// the target parameters). Each solution block runs from `the solution for t :` to its
+/// closing line; lines `name : re im` give the coordinates.
+pub fn read_last_solutions(text: &str) -> Vec<PhcSolution> {
+    let Some(start) = text.rfind("THE SOLUTIONS") else {
+        return Vec::new();
+    };
+    text[start..]
+        .split("the solution for t :")
+        .skip(1)
+        .filter_map(|block| {
+            let mut values = Vec::new();
+            for line in block.lines().map(str::trim) {
+                if line.starts_with("==") {
+                    return Some(PhcSolution {
+                        values,
+                        closing: line.to_string(),
+                    });
+                }
+                let Some((name, numbers)) = line.split_once(':') else {
+                    continue;
+                };
+                let parts: Option<Vec<f64>> =
+                    numbers.split_whitespace().map(|v| v.parse().ok()).collect();
+                if let Some([re, im]) = parts.as_deref() {
+                    values.push((name.trim().to_string(), C64::new(*re, *im)));
+                }
+            }
+            None
+        })
+        .collect()
+}
+
+/// A PHCpack solution list (start solutions for `phc -p`): `count dimension`, a
+/// banner, then per solution `t : 0 0`, `m : 1`, one `name : re im` line per unknown in
+/// the order of `names` (PHCpack reads them by position: give them in the order of its
+/// symbol table, i.e. of first appearance in the system file, as [`read`] numbers the
+/// unknowns) and a closing line.
+pub fn write_solutions(names: &[String], solutions: &[Vec<C64>]) -> String {
+    use std::fmt::Write as _;
+    let mut out = format!("{} {}\n{}\n", solutions.len(), names.len(), "=".repeat(59));
+    for (i, x) in solutions.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "solution {} :\nt :  0.0E+00   0.0E+00\nm : 1\nthe solution for t :",
+            i + 1
+        );
+        for (name, v) in names.iter().zip(x) {
+            let _ = writeln!(out, " {name} : {:.16E} {:.16E}", v.re, v.im);
+        }
+        out.push_str("== err :  0.000E+00 = rco :  1.000E+00 = res :  0.000E+00 ==\n");
+    }
+    out
+}
+
+#[cfg(test)]
+mod solution_list_tests {
+    use super::*;
+
+    /// A written solution list reads back exactly (values to the last bit, the
+    /// diagnostics of the closing line), after a `THE SOLUTIONS` heading.
+    #[test]
+    fn solution_lists_round_trip() {
+        let names = vec!["x".to_string(), "lambda".to_string()];
+        let solutions = vec![
+            vec![C64::new(1.0 / 3.0, -2.5e-17), C64::new(-7.25e8, 0.1)],
+            vec![C64::new(f64::MIN_POSITIVE, 1.0), C64::new(0.0, -0.0)],
+        ];
+        let text = format!(
+            "2\nx;\nlambda;\n\nTHE SOLUTIONS :\n{}",
+            write_solutions(&names, &solutions)
+        );
+        let read = read_last_solutions(&text);
+        assert_eq!(read.len(), 2);
+        for (s, x) in read.iter().zip(&solutions) {
+            assert_eq!(s.value("x"), Some(x[0]));
+            assert_eq!(s.value("lambda"), Some(x[1]));
+            assert_eq!(s.value("y"), None);
+            assert_eq!(s.diagnostic("rco"), Some(1.0));
+            assert_eq!(s.diagnostic("res"), Some(0.0));
+        }
+        assert!(read_last_solutions("no list here").is_empty());
+    }
+}
