@@ -32,15 +32,6 @@ use singdist::system::{Expr, System, phc};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
-fn phc_available() -> bool {
-    Command::new("phc")
-        .arg("--version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .is_ok()
-}
-
 fn best_of_3(mut run: impl FnMut()) -> f64 {
     (0..3)
         .map(|_| {
@@ -55,17 +46,31 @@ fn main() {
     if std::env::args().any(|a| a == "--list") {
         return;
     }
-    if !phc_available() {
+    if !phc::available() {
         println!("phc_parameter: phc (PHCpack) not found; skipping");
         return;
     }
     let list = std::env::var("SINGDIST_BENCH_METRICS")
         .unwrap_or_else(|_| "plate/plate,rigid/rigid".into());
-    let metrics = Metric::parse_list(&list).expect("SINGDIST_BENCH_METRICS: metric list");
-    let pose_index: usize = std::env::var("SINGDIST_BENCH_POSE")
-        .ok()
-        .map(|v| v.parse().expect("SINGDIST_BENCH_POSE: a pose index"))
-        .unwrap_or(45);
+    let fail = |message: String| -> ! {
+        eprintln!("phc_parameter: {message}");
+        std::process::exit(2)
+    };
+    let metrics =
+        Metric::parse_list(&list).unwrap_or_else(|e| fail(format!("SINGDIST_BENCH_METRICS: {e}")));
+    let pose_index: usize = match std::env::var("SINGDIST_BENCH_POSE") {
+        Ok(v) => v.parse().unwrap_or_else(|_| {
+            fail(format!(
+                "SINGDIST_BENCH_POSE: `{v}` is not a pose index (0..89)"
+            ))
+        }),
+        Err(_) => 45,
+    };
+    if pose_index >= 90 {
+        fail(format!(
+            "SINGDIST_BENCH_POSE: {pose_index} is not a pose index (0..89)"
+        ));
+    }
     let design = example_design();
     let motion = example_motion();
     let options = CurveOptions {
@@ -81,7 +86,7 @@ fn main() {
     )
     .expect("seed stage");
     let samples = sample_motion(&motion, 90).expect("samples");
-    let sample = samples[pose_index.min(samples.len() - 1)];
+    let sample = samples[pose_index];
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()

@@ -9,15 +9,6 @@ use singdist::system::phc;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn phc_available() -> bool {
-    Command::new("phc")
-        .arg("--version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .is_ok()
-}
-
 /// Runs `phc -b` on `input`, killing it after `limit`; returns the input file afterwards
 /// (with PHCpack's appended solution list), `None` if it did not finish.
 fn run_phc(input: &std::path::Path, output: &std::path::Path, limit: Duration) -> Option<String> {
@@ -49,7 +40,7 @@ fn run_phc(input: &std::path::Path, output: &std::path::Path, limit: Duration) -
 /// `systems/rrr_example_README.md`).
 #[test]
 fn phc_blackbox_confirms_the_leg_count() {
-    if !phc_available() {
+    if !phc::available() {
         eprintln!("skipped: `phc` (PHCpack) is not on PATH");
         return;
     }

@@ -181,6 +181,17 @@ pub fn read(text: &str) -> Result<System, ParseError> {
     })
 }
 
+/// Whether PHCpack's `phc` runs here (on `PATH`): cross-checks and side-by-side
+/// timings skip cleanly without it (`apt-get install phcpack` provides it).
+pub fn available() -> bool {
+    std::process::Command::new("phc")
+        .arg("--version")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok()
+}
+
 /// One solution of a PHCpack solution list: the coordinates by name, in the order
 /// listed, and the closing diagnostics line (`== err : … = rco : … = res : … ==`).
 #[derive(Clone, Debug, PartialEq)]
