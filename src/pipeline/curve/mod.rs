@@ -72,12 +72,19 @@ use crate::homotopy::{
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
-use crate::problem::{Coordinates, LagrangeProblem, ProblemError, ProblemId, subproblems_of};
+use crate::problem::{
+    Coordinates, LagrangeProblem, ProblemError, ProblemId, pedal, subproblems_of,
+};
 use crate::random;
 use crate::system::Evaluator;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+
+mod options;
+mod seed;
+pub use options::*;
+pub use seed::*;
 
 /// Errors of the curve pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -117,147 +124,6 @@ pub enum PipelineError {
 pub type StartProvider<'a> =
     &'a (dyn Fn(ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> + Sync);
 
-/// Knobs of the curve pipeline.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CurveOptions {
-    /// Seed of every random choice (τ*, perturbations, detours).
-    pub seed: u64,
-    /// Tracker settings of the user and parameter homotopies
-    /// ([`TrackerOptions::fast`]: on the built-in example 1.5 × faster than the default
-    /// preset with the same endpoints and distances).
-    pub tracker: TrackerOptions,
-    /// Tracker settings of the pose-to-pose paths ([`CurveOptions::chain_length`], the
-    /// rescue pass): the `fast` preset with steps up to 0.5 (two segments through a
-    /// complex midpoint between nearby poses; steps of at most 0.2 made the built-in
-    /// example's `plate/*` curves about 1.2 × slower).
-    #[serde(default = "default_neighbour_tracker")]
-    pub neighbour_tracker: TrackerOptions,
-    /// Tracker settings of the re-runs (safer).
-    pub retry_tracker: TrackerOptions,
-    /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
-    pub retry_attempts: usize,
-    /// Number of detour re-runs of the user homotopy (source → seed) of a sub-problem
-    /// that lost paths: it runs once per curve and every pose inherits what it misses.
-    #[serde(default = "default_seed_retry_attempts")]
-    pub seed_retry_attempts: usize,
-
-    /// Poses per chain of stage 2: one pose of every block of `chain_length`
-    /// consecutive poses is solved from the seed (the one nearest `Re τ*`; the first
-    /// for pose lists), the others forwards and backwards from it, each from its
-    /// predecessors' (in chain order) complete finite solution sets ([`CurveOptions::jump`], or short
-    /// pose-to-pose paths through a random complex midpoint), falling back to the seed
-    /// route wherever that set is incomplete. `1` solves every pose from the seed (the
-    /// reference route). The blocks do not depend on the thread count, so neither do
-    /// the results. Default 1000: a seed-route pose costs about as much as twenty
-    /// chained ones, and the chained poses run their sub-problems and critical points
-    /// in parallel.
-    #[serde(default = "default_chain_length")]
-    pub chain_length: usize,
-    /// Within a chain, solve a pose first by Newton's method from critical points
-    /// extrapolated from the preceding poses, one per complex conjugate pair, without
-    /// tracking; pose-to-pose paths only for what that leaves unaccounted for (see the
-    /// module documentation). `false`: every critical point along a path.
-    #[serde(default = "default_jump")]
-    pub jump: bool,
-    /// Coordinates of the unknown points while tracking ([`Coordinates::Isotropic`] by
-    /// default: critical points far out along isotropic lines stay well-conditioned,
-    /// see [`crate::algebra::Isotropic`]); results are reported in Cartesian ones.
-    #[serde(default = "default_coordinates")]
-    pub coordinates: Coordinates,
-    /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
-    pub real_tolerance: f64,
-    /// Two minimisers within this distance of each other make a cut locus.
-    pub cut_locus_tolerance: f64,
-}
-
-/// Step budget per path of the curve's trackers. On the built-in example (`plate/rigid`)
-/// paths take 18 steps (median), 114 (90 %) and 500 (99 %); the longest follow
-/// critical points far out along isotropic directions (‖x‖ ~ 10⁴–10⁶, κ ~ 10¹⁴–10¹⁶)
-/// in extended precision, which has its own budget
-/// ([`TrackerOptions::max_extended_steps`]). Paths that exhaust it are re-run, then
-/// reported as lost, never dropped silently.
-pub const CURVE_MAX_STEPS: usize = 1500;
-
-/// [`TrackerOptions::extended_after_rejections`] of the curve's first-run trackers: 0,
-/// extended precision only where the step size underflows. In isotropic coordinates
-/// the far-out critical points are well-conditioned up to scaling, and on the built-in
-/// example extended precision switched on after rejections changed no step of any
-/// path (same step counts, same JSON for seeds 1–8) while costing 11 % of the time.
-/// The conservative re-runs keep switching after rejections. (Tracking in Cartesian
-/// coordinates needs the switch after 3 rejections, as in [`TrackerOptions::fast`]:
-/// without it the `rigid/rigid` seed → pose paths near τ = −1 are lost.)
-pub const CURVE_EXTENDED_AFTER_REJECTIONS: usize = 0;
-
-/// [`TrackerOptions::prediction_tolerance`] of the curve's seed-stage and seed → pose
-/// tracker: 10⁻⁴ instead of the fast preset's 10⁻⁵. Path jumps it may cause are caught
-/// (crossings, completeness) and re-run. Measured on the built-in example, seeds 1–8:
-/// 12–16 % fewer LU factorisations over the whole curve, the same distances (to
-/// 3·10⁻¹⁴), and seed 5's lost `rigid/rigid` seed path is found.
-pub const CURVE_PREDICTION_TOLERANCE: f64 = 1e-4;
-
-/// [`TrackerOptions::at_infinity_norm`] of the curve's first-run trackers: 10¹²
-/// instead of 10⁸. On the built-in example the `rigid/rigid` critical points pass close
-/// to infinity near τ ≈ −0.8 (a pole near the real axis): at poses 3 and 4 one of them
-/// is finite with norm between 10⁸ and 10¹⁰ (normalised frame), which 10⁸ classified
-/// at infinity, sending those poses to the seed route; in isotropic coordinates such
-/// points are well-conditioned enough to track. Seeds 1–8: 5 % fewer LU
-/// factorisations, the same distances.
-pub const CURVE_AT_INFINITY_NORM: f64 = 1e12;
-
-impl Default for CurveOptions {
-    fn default() -> Self {
-        CurveOptions {
-            seed: 1,
-            tracker: TrackerOptions {
-                max_steps: CURVE_MAX_STEPS,
-                extended_after_rejections: CURVE_EXTENDED_AFTER_REJECTIONS,
-                prediction_tolerance: CURVE_PREDICTION_TOLERANCE,
-                at_infinity_norm: CURVE_AT_INFINITY_NORM,
-                ..TrackerOptions::fast()
-            },
-            neighbour_tracker: default_neighbour_tracker(),
-            retry_tracker: TrackerOptions {
-                max_steps: CURVE_MAX_STEPS,
-                ..TrackerOptions::conservative()
-            },
-            retry_attempts: 1,
-            seed_retry_attempts: default_seed_retry_attempts(),
-            chain_length: default_chain_length(),
-            jump: default_jump(),
-            coordinates: default_coordinates(),
-            real_tolerance: 1e-8,
-            cut_locus_tolerance: 1e-9,
-        }
-    }
-}
-
-fn default_seed_retry_attempts() -> usize {
-    6
-}
-
-fn default_neighbour_tracker() -> TrackerOptions {
-    TrackerOptions {
-        max_steps: CURVE_MAX_STEPS,
-        initial_step: 0.25,
-        max_step: 0.5,
-        at_infinity_norm: CURVE_AT_INFINITY_NORM,
-        extended_after_rejections: CURVE_EXTENDED_AFTER_REJECTIONS,
-        ..TrackerOptions::fast()
-    }
-}
-
-fn default_coordinates() -> Coordinates {
-    Coordinates::Isotropic
-}
-
-fn default_jump() -> bool {
-    true
-}
-
-fn default_chain_length() -> usize {
-    1000
-}
-
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PathFailure {
@@ -278,52 +144,6 @@ pub struct PathFailure {
     /// have recovered some of them since.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub reasons: BTreeMap<String, usize>,
-}
-
-/// One sub-problem prepared at the seed.
-pub struct SeededProblem {
-    /// Which metric and sub-problem.
-    pub id: ProblemId,
-    /// The compiled Lagrange system.
-    pub problem: LagrangeProblem,
-    /// Seed parameters `p* = (K*, shape constants)` in the normalised frame.
-    pub seed_parameters: Vec<C64>,
-    /// Finite solutions at the seed.
-    pub seed_solutions: Vec<Vec<C64>>,
-    /// Number of paths tracked from the seed to every pose: the seed's finite
-    /// solutions (the generic count, less the paths that end at infinity for this
-    /// design's rigid shapes, e.g. the leg-collapse points of paper Thm 3 case 4 when
-    /// base and platform have an equal corresponding angle).
-    pub start_count: usize,
-}
-
-/// A sub-problem ready for the user homotopy: id, compiled system, source parameters,
-/// seed parameters, start solutions (in the system's coordinates).
-type PreparedProblem = (
-    ProblemId,
-    LagrangeProblem,
-    Vec<C64>,
-    Vec<C64>,
-    Vec<Vec<C64>>,
-);
-
-/// The output of the user homotopy: every sub-problem at the common seed.
-pub struct SeedStage {
-    /// The prepared sub-problems, in the order of [`Metric::all`] and
-    /// [`subproblems_of`].
-    pub problems: Vec<SeededProblem>,
-    /// Sub-problems reported as not applicable for this design (SPEC A.6.3).
-    pub not_applicable: Vec<String>,
-    /// The seed on the complexified motion.
-    pub seed: SeedPoint,
-    /// The normalised frame of every parameter vector of the run.
-    pub normalization: Normalization,
-    /// The seed configuration `K*` (original frame).
-    pub seed_configuration: [C64; 12],
-    /// Paths lost in the user homotopy.
-    pub failures: Vec<PathFailure>,
-    /// Paths tracked in this stage.
-    pub paths_tracked: usize,
 }
 
 /// Result at one pose.
@@ -506,49 +326,6 @@ impl MotionPoint {
         }
     }
 }
-
-/// The seed of stage 1: a point of the complexified motion and a small complex
-/// perturbation of all twelve (normalised) coordinates, so that the fixed real base
-/// does not make the seed special. The perturbation fades linearly along every
-/// seed → pose path.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SeedPoint {
-    /// Where on the complexified motion.
-    pub point: MotionPoint,
-    /// Added to the normalised seed configuration.
-    pub perturbation: [C64; 12],
-}
-
-/// The seed (stage 1, see the module documentation): τ* with real part uniform on the
-/// motion's range and imaginary part 0.1–0.3 × its width (at most 3), or for pose lists
-/// the first pose plus a complex perturbation of size 0.3 (x, y scaled by the design's
-/// length); perturbation of the normalised coordinates of size 0.05.
-pub fn seed_point(design: &Design, motion: &Motion, seed: u64) -> SeedPoint {
-    let mut rng = random::stream(seed, 0x5eed);
-    let [lo, hi] = motion.tau_range();
-    let width = (hi - lo).max(1e-3);
-    let point = match motion {
-        Motion::Analytic(_) => MotionPoint::Tau(C64::new(
-            random::uniform(&mut rng, lo, hi),
-            random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
-        )),
-        Motion::Poses(_) => {
-            let first = motion.pose(lo).unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
-            let scale = design.length_scale();
-            MotionPoint::Pose([
-                C64::new(first.x, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
-                C64::new(first.y, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
-                C64::new(first.phi, 0.0) + random::complex_normal(&mut rng) * 0.3,
-            ])
-        }
-    };
-    let perturbation = std::array::from_fn(|_| random::complex_normal(&mut rng) * 0.05);
-    SeedPoint {
-        point,
-        perturbation,
-    }
-}
-
 /// The parameter path of a seed → pose homotopy (stage 2): along the complexified
 /// motion through `waypoints` (straight segments in τ, or in pose coordinates for pose
 /// lists), `p(t) = (N(K(w(t))) + (1 − t)·δ, shape constants)` with `N` the
@@ -1071,165 +848,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     }
     Retried {
         endpoints,
-        accounted: best,
+        // The union of attempts can exceed the paths (duplicates beyond tolerance).
+        accounted: best.min(expected),
         tracked,
         reasons,
     }
-}
-
-/// Splits the per-problem results of a seed stage into the seeded problems, their
-/// failures and the total number of paths tracked.
-pub(crate) fn split_seed_results<T>(
-    tracked: Vec<(T, Option<PathFailure>, usize)>,
-) -> (Vec<T>, Vec<PathFailure>, usize) {
-    let mut problems = Vec::new();
-    let mut failures = Vec::new();
-    let mut paths_tracked = 0;
-    for (problem, failure, count) in tracked {
-        problems.push(problem);
-        failures.extend(failure);
-        paths_tracked += count;
-    }
-    (problems, failures, paths_tracked)
-}
-
-/// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
-/// solutions from `provider` and tracks them to the common seed (in parallel).
-pub fn seed_stage(
-    design: &Design,
-    motion: &Motion,
-    metrics: &[Metric],
-    options: &CurveOptions,
-    provider: StartProvider<'_>,
-) -> Result<SeedStage, PipelineError> {
-    if metrics.is_empty() {
-        return Err(PipelineError::NoMetrics);
-    }
-    motion
-        .validate()
-        .map_err(|e| PipelineError::Motion(e.to_string()))?;
-    let seed = seed_point(design, motion, options.seed);
-    let first_pose = motion
-        .pose(motion.tau_range()[0])
-        .unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
-    let normalization = Normalization::of(&to_real(&design.configuration(first_pose).to_array()));
-    let k_star = {
-        let at_seed = MotionPath::new(
-            design,
-            motion,
-            vec![seed.point, seed.point],
-            seed.perturbation,
-            normalization,
-            Vec::new(),
-        );
-        let mut k = [C64::new(0.0, 0.0); 12];
-        at_seed.point(C64::new(0.0, 0.0), &mut k);
-        k
-    };
-    // Building and compiling the systems in parallel too (about 60 ms in sequence).
-    let built: Vec<Result<Option<PreparedProblem>, PipelineError>> = problem_ids(metrics)
-        .into_par_iter()
-        .map(|id| {
-            let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
-                Ok(p) => p,
-                Err(ProblemError::NotApplicable { .. }) => return Ok(None),
-                Err(e) => return Err(e.into()),
-            };
-            let start = provider(id).map_err(|message| PipelineError::StartSolutions {
-                problem: id.name(),
-                message,
-            })?;
-            let source = start
-                .parameter_vector(problem.parameter_names())
-                .map_err(|name| PipelineError::StartSolutions {
-                    problem: id.name(),
-                    message: format!("parameter `{name}` missing"),
-                })?;
-            let n = problem.variable_names().len();
-            if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
-                return Err(PipelineError::StartSolutions {
-                    problem: id.name(),
-                    message: format!("a solution has {} entries, expected {n}", bad.len()),
-                });
-            }
-            let seed_parameters = normalized_parameters(&problem, design, &k_star, normalization);
-            let starts: Vec<Vec<C64>> = start
-                .solutions
-                .iter()
-                .map(|x| problem.from_cartesian(x))
-                .collect();
-            Ok(Some((id, problem, source, seed_parameters, starts)))
-        })
-        .collect();
-    let mut prepared = Vec::new();
-    let mut not_applicable = Vec::new();
-    for (id, result) in problem_ids(metrics).into_iter().zip(built) {
-        match result? {
-            Some(problem) => prepared.push(problem),
-            None => not_applicable.push(id.name()),
-        }
-    }
-    let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
-        .into_par_iter()
-        .enumerate()
-        .map(|(index, (id, problem, source, seed_parameters, starts))| {
-            let expected = starts.len();
-            let stream = (index as u64) << 32;
-            let Retried {
-                endpoints: solutions,
-                accounted: best,
-                tracked,
-                reasons,
-            } = track_with_retries(
-                problem.evaluator(),
-                &starts,
-                |attempt| {
-                    let mut points = vec![source.clone()];
-                    if attempt > 0 {
-                        let mut rng = random::stream(options.seed, stream + attempt as u64);
-                        points.push(detour_point(&seed_parameters, &mut rng));
-                    }
-                    points.push(seed_parameters.clone());
-                    PolylinePath::new(points)
-                },
-                options.seed_retry_attempts,
-                TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
-            );
-            let failure = (best < expected).then(|| PathFailure {
-                pose_index: None,
-                tau: None,
-                problem: id.name(),
-                expected,
-                accounted: best,
-                reasons,
-            });
-            // Paths that end at infinity at the seed are critical points that the
-            // design's shape (fixed along the motion) does not have: the poses expect
-            // the seed's finite solutions.
-            let start_count = solutions.len();
-            (
-                SeededProblem {
-                    id,
-                    problem,
-                    seed_parameters,
-                    seed_solutions: solutions,
-                    start_count,
-                },
-                failure,
-                tracked,
-            )
-        })
-        .collect();
-    let (problems, failures, paths_tracked) = split_seed_results(tracked);
-    Ok(SeedStage {
-        problems,
-        not_applicable,
-        seed,
-        normalization,
-        seed_configuration: normalization.restore(&k_star),
-        failures,
-        paths_tracked,
-    })
 }
 
 /// Real critical points of one sub-problem at the real configuration `k`, as
@@ -1264,7 +887,7 @@ fn candidates(
 /// midpoint.
 #[allow(clippy::too_many_arguments)]
 fn route_path<'a>(
-    stage: &SeedStage,
+    (stage, seeded): (&SeedStage, &SeededProblem),
     design: &'a Design,
     motion: &'a Motion,
     (origin, target): (MotionPoint, MotionPoint),
@@ -1288,7 +911,7 @@ fn route_path<'a>(
     let perturbation = if neighbour {
         [C64::new(0.0, 0.0); 12]
     } else {
-        stage.seed.perturbation
+        seeded.seed.perturbation
     };
     MotionPath::new(
         design,
@@ -1340,7 +963,7 @@ fn track_problem(
     let parameters =
         normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
     let (starts, origin, salt) = match route {
-        Route::Seed => (seeded.seed_solutions.as_slice(), stage.seed.point, 0),
+        Route::Seed => (seeded.seed_solutions.as_slice(), seeded.seed.point, 0),
         Route::Neighbour { from, solutions } => (solutions, from, 8),
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
@@ -1360,7 +983,16 @@ fn track_problem(
             let neighbour = matches!(route, Route::Neighbour { .. });
             let ends = (origin, target);
             let shape = parameters[12..].to_vec();
-            route_path(stage, design, motion, ends, neighbour, attempt, rng, shape)
+            route_path(
+                (stage, seeded),
+                design,
+                motion,
+                ends,
+                neighbour,
+                attempt,
+                rng,
+                shape,
+            )
         },
         options.retry_attempts,
         // At a generic real pose every critical point is finite and nonsingular (the
@@ -1608,7 +1240,7 @@ fn jump_problem(
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let rng = random::stream(options.seed, stream.wrapping_mul(16) + 8);
     let path = route_path(
-        stage,
+        (stage, seeded),
         design,
         motion,
         (from, target),
@@ -2101,6 +1733,17 @@ fn assemble_pose(
             finite,
             seeded.start_count,
         ));
+    }
+    for &id in &stage.closed_form {
+        let list: Vec<Candidate> = pedal::closest_by_pedal_points(id, k)
+            .map(|solution| Candidate {
+                distance: id.metric.distance(k, &solution.closest),
+                closest: solution.closest,
+            })
+            .into_iter()
+            .collect();
+        let entry = (id.subproblem, list, 1, 1);
+        by_metric.entry(id.metric.name()).or_default().push(entry);
     }
     let mut results = BTreeMap::new();
     for metric in metrics {

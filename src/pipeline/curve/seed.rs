@@ -1,0 +1,363 @@
+//! Stage 1, the user homotopy: the generic start solutions tracked to the seed.
+
+use super::*;
+use crate::problem::pedal;
+
+/// One sub-problem prepared at the seed.
+pub struct SeededProblem {
+    /// Which metric and sub-problem.
+    pub id: ProblemId,
+    /// The compiled Lagrange system.
+    pub problem: LagrangeProblem,
+    /// This sub-problem's seed: the stage's common one ([`SeedStage::seed`]), or an
+    /// independent one where the common one's finite count could not be confirmed
+    /// ([`seed_stage`]).
+    pub seed: SeedPoint,
+    /// Seed parameters `p* = (K*, shape constants)` in the normalised frame.
+    pub seed_parameters: Vec<C64>,
+    /// Distinct simple finite solutions at the seed, at most [`SeededProblem::generic_count`].
+    pub seed_solutions: Vec<Vec<C64>>,
+    /// The generic number of finite critical points of the family (the start file's
+    /// count): no parameter of the family has more isolated ones.
+    pub generic_count: usize,
+    /// Number of paths tracked from the seed to every pose: the seed's finite
+    /// solutions. Fewer than [`SeededProblem::generic_count`] only where an
+    /// independent seed point confirmed the same count (the others are at infinity
+    /// for this design's fixed rigid shapes, e.g. the leg-collapse points of paper
+    /// Thm 3 case 4 when base and platform have an equal corresponding angle), or
+    /// where the shortfall is reported as a seed-stage [`PathFailure`].
+    pub start_count: usize,
+}
+
+/// A sub-problem ready for the user homotopy: id, compiled system, source parameters,
+/// start solutions (in the system's coordinates).
+type PreparedProblem = (ProblemId, LagrangeProblem, Vec<C64>, Vec<Vec<C64>>);
+
+/// The output of the user homotopy: every sub-problem at the common seed.
+pub struct SeedStage {
+    /// The prepared sub-problems, in the order of [`Metric::all`] and
+    /// [`subproblems_of`].
+    pub problems: Vec<SeededProblem>,
+    /// Sub-problems reported as not applicable for this design (SPEC A.6.3).
+    pub not_applicable: Vec<String>,
+    /// Sub-problems solved in closed form at every pose instead of by homotopy
+    /// ([`crate::problem::pedal`]), in the order of [`problem_ids`].
+    pub closed_form: Vec<ProblemId>,
+    /// The seed on the complexified motion.
+    pub seed: SeedPoint,
+    /// The normalised frame of every parameter vector of the run.
+    pub normalization: Normalization,
+    /// The seed configuration `K*` (original frame).
+    pub seed_configuration: [C64; 12],
+    /// Paths lost in the user homotopy.
+    pub failures: Vec<PathFailure>,
+    /// Paths tracked in this stage.
+    pub paths_tracked: usize,
+}
+
+/// The seed of stage 1: a point of the complexified motion and a small complex
+/// perturbation of all twelve (normalised) coordinates, so that the fixed real base
+/// does not make the seed special. The perturbation fades linearly along every
+/// seed → pose path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeedPoint {
+    /// Where on the complexified motion.
+    pub point: MotionPoint,
+    /// Added to the normalised seed configuration.
+    pub perturbation: [C64; 12],
+}
+
+/// The seed (stage 1, see the module documentation): τ* with real part uniform on the
+/// motion's range and imaginary part 0.1–0.3 × its width (at most 3), or for pose lists
+/// the first pose plus a complex perturbation of size 0.3 (x, y scaled by the design's
+/// length); perturbation of the normalised coordinates of size 0.05.
+pub fn seed_point(design: &Design, motion: &Motion, seed: u64) -> SeedPoint {
+    seed_point_in_stream(design, motion, seed, 0x5eed)
+}
+
+/// [`seed_point`] drawn from random stream `stream` of `seed` (independent seed
+/// points of the same run).
+fn seed_point_in_stream(design: &Design, motion: &Motion, seed: u64, stream: u64) -> SeedPoint {
+    let mut rng = random::stream(seed, stream);
+    let [lo, hi] = motion.tau_range();
+    let width = (hi - lo).max(1e-3);
+    let point = match motion {
+        Motion::Analytic(_) => MotionPoint::Tau(C64::new(
+            random::uniform(&mut rng, lo, hi),
+            random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
+        )),
+        Motion::Poses(_) => {
+            let first = motion.pose(lo).unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
+            let scale = design.length_scale();
+            MotionPoint::Pose([
+                C64::new(first.x, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
+                C64::new(first.y, 0.0) + random::complex_normal(&mut rng) * (0.3 * scale),
+                C64::new(first.phi, 0.0) + random::complex_normal(&mut rng) * 0.3,
+            ])
+        }
+    };
+    let perturbation = std::array::from_fn(|_| random::complex_normal(&mut rng) * 0.05);
+    SeedPoint {
+        point,
+        perturbation,
+    }
+}
+
+/// Splits the per-problem results of a seed stage into the seeded problems, their
+/// failures and the total number of paths tracked.
+pub(crate) fn split_seed_results<T>(
+    tracked: Vec<(T, Option<PathFailure>, usize)>,
+) -> (Vec<T>, Vec<PathFailure>, usize) {
+    let mut problems = Vec::new();
+    let mut failures = Vec::new();
+    let mut paths_tracked = 0;
+    for (problem, failure, count) in tracked {
+        problems.push(problem);
+        failures.extend(failure);
+        paths_tracked += count;
+    }
+    (problems, failures, paths_tracked)
+}
+
+/// Independent seed points a sub-problem may use (the stage's common one first) to
+/// confirm a finite count below the generic one.
+pub const SEED_POINTS: usize = 3;
+
+/// The normalised configuration `N(K(seed)) + δ` of a seed point.
+fn seed_configuration(
+    design: &Design,
+    motion: &Motion,
+    seed: &SeedPoint,
+    normalization: Normalization,
+) -> [C64; 12] {
+    let at_seed = MotionPath::new(
+        design,
+        motion,
+        vec![seed.point, seed.point],
+        seed.perturbation,
+        normalization,
+        Vec::new(),
+    );
+    let mut k = [C64::new(0.0, 0.0); 12];
+    at_seed.point(C64::new(0.0, 0.0), &mut k);
+    k
+}
+
+/// The distinct finite endpoints of a seed solve, at most `limit` of them (a
+/// generic parameter has no more isolated solutions; endpoints reached with winding
+/// are kept once: a parameter homotopy can only start from simple points).
+fn distinct_seed_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
+    let mut out: Vec<Vec<C64>> = Vec::new();
+    for x in endpoints {
+        if out.len() < limit && !out.iter().any(|y| same_endpoint(y, &x)) {
+            out.push(x);
+        }
+    }
+    out
+}
+
+/// One solve of a sub-problem at one seed point.
+struct SeedRun {
+    seed: SeedPoint,
+    parameters: Vec<C64>,
+    solutions: Vec<Vec<C64>>,
+    reasons: BTreeMap<String, usize>,
+}
+
+/// A prepared sub-problem at the seed (the user homotopy). Its start file holds the
+/// generic count `G` of finite critical points. The solutions at the common seed
+/// count only when all `G` are found, or when an independent seed point (another
+/// τ* and perturbation: a different parameter, reached along a different route)
+/// finds exactly as many: the design's fixed rigid shapes can send critical points
+/// to infinity, but then they do so at every seed, while a path lost or wrongly
+/// classified at infinity at one seed is not lost at another. The seed point with
+/// the most solutions serves the poses; a count no two seed points agree on (of
+/// [`SEED_POINTS`]) is a seed-stage [`PathFailure`] (expected `G`).
+#[allow(clippy::too_many_arguments)]
+fn seed_problem(
+    design: &Design,
+    motion: &Motion,
+    normalization: Normalization,
+    common: &SeedPoint,
+    index: usize,
+    (id, problem, source, starts): (ProblemId, LagrangeProblem, Vec<C64>, Vec<Vec<C64>>),
+    options: &CurveOptions,
+) -> (SeededProblem, Option<PathFailure>, usize) {
+    let generic = starts.len();
+    let mut runs: Vec<SeedRun> = Vec::new();
+    let mut tracked = 0;
+    for point in 0..SEED_POINTS {
+        let seed = if point == 0 {
+            common.clone()
+        } else {
+            let stream = 0x5eed_0000_0000 + ((index as u64) << 8) + point as u64;
+            seed_point_in_stream(design, motion, options.seed, stream)
+        };
+        let k_star = seed_configuration(design, motion, &seed, normalization);
+        let parameters = normalized_parameters(&problem, design, &k_star, normalization);
+        let stream = ((index as u64) << 32) + ((point as u64) << 24);
+        let retried = track_with_retries(
+            problem.evaluator(),
+            &starts,
+            |attempt| {
+                let mut points = vec![source.clone()];
+                if attempt > 0 {
+                    let mut rng = random::stream(options.seed, stream + attempt as u64);
+                    points.push(detour_point(&parameters, &mut rng));
+                }
+                points.push(parameters.clone());
+                PolylinePath::new(points)
+            },
+            options.seed_retry_attempts,
+            TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
+        );
+        tracked += retried.tracked;
+        let solutions = distinct_seed_solutions(retried.endpoints, generic);
+        let count = solutions.len();
+        runs.push(SeedRun {
+            seed,
+            parameters,
+            solutions,
+            reasons: retried.reasons,
+        });
+        let agreeing = runs.iter().filter(|r| r.solutions.len() == count).count();
+        let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+        if count == generic || (count == most && agreeing >= 2) {
+            break;
+        }
+    }
+    let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+    let confirmed =
+        most == generic || runs.iter().filter(|r| r.solutions.len() == most).count() >= 2;
+    let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
+    let chosen = runs
+        .into_iter()
+        .find(|r| r.solutions.len() == most)
+        .expect("at least one seed point is solved");
+    let failure = (!confirmed).then(|| {
+        let mut reasons = chosen.reasons.clone();
+        // The shortfall no second seed point confirmed: counted as lost.
+        reasons.insert(
+            format!("SeedCountsDisagree{counts:?}").replace(' ', ""),
+            generic - most,
+        );
+        PathFailure {
+            pose_index: None,
+            tau: None,
+            problem: id.name(),
+            expected: generic,
+            accounted: most,
+            reasons,
+        }
+    });
+    (
+        SeededProblem {
+            id,
+            problem,
+            seed: chosen.seed,
+            seed_parameters: chosen.parameters,
+            start_count: chosen.solutions.len(),
+            seed_solutions: chosen.solutions,
+            generic_count: generic,
+        },
+        failure,
+        tracked,
+    )
+}
+
+/// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
+/// solutions from `provider` and tracks them to the seed (in parallel), confirming
+/// every count below the generic one at an independent seed point
+/// ([`seed_problem`]).
+pub fn seed_stage(
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    options: &CurveOptions,
+    provider: StartProvider<'_>,
+) -> Result<SeedStage, PipelineError> {
+    if metrics.is_empty() {
+        return Err(PipelineError::NoMetrics);
+    }
+    motion
+        .validate()
+        .map_err(|e| PipelineError::Motion(e.to_string()))?;
+    let seed = seed_point(design, motion, options.seed);
+    let first_pose = motion
+        .pose(motion.tau_range()[0])
+        .unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
+    let normalization = Normalization::of(&to_real(&design.configuration(first_pose).to_array()));
+    let k_star = seed_configuration(design, motion, &seed, normalization);
+    let (closed_form, tracked_ids): (Vec<ProblemId>, Vec<ProblemId>) = problem_ids(metrics)
+        .into_iter()
+        .partition(|&id| pedal::has_closed_form(id));
+    // Building and compiling the systems in parallel too (about 60 ms in sequence).
+    let built: Vec<Result<Option<PreparedProblem>, PipelineError>> = tracked_ids
+        .clone()
+        .into_par_iter()
+        .map(|id| {
+            let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
+                Ok(p) => p,
+                Err(ProblemError::NotApplicable { .. }) => return Ok(None),
+                Err(e) => return Err(e.into()),
+            };
+            let start = provider(id).map_err(|message| PipelineError::StartSolutions {
+                problem: id.name(),
+                message,
+            })?;
+            let source = start
+                .parameter_vector(problem.parameter_names())
+                .map_err(|name| PipelineError::StartSolutions {
+                    problem: id.name(),
+                    message: format!("parameter `{name}` missing"),
+                })?;
+            let n = problem.variable_names().len();
+            if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
+                return Err(PipelineError::StartSolutions {
+                    problem: id.name(),
+                    message: format!("a solution has {} entries, expected {n}", bad.len()),
+                });
+            }
+            let starts: Vec<Vec<C64>> = start
+                .solutions
+                .iter()
+                .map(|x| problem.from_cartesian(x))
+                .collect();
+            Ok(Some((id, problem, source, starts)))
+        })
+        .collect();
+    let mut prepared = Vec::new();
+    let mut not_applicable = Vec::new();
+    for (id, result) in tracked_ids.into_iter().zip(built) {
+        match result? {
+            Some(problem) => prepared.push(problem),
+            None => not_applicable.push(id.name()),
+        }
+    }
+    let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
+        .into_par_iter()
+        .enumerate()
+        .map(|(index, prepared)| {
+            seed_problem(
+                design,
+                motion,
+                normalization,
+                &seed,
+                index,
+                prepared,
+                options,
+            )
+        })
+        .collect();
+    let (problems, failures, paths_tracked) = split_seed_results(tracked);
+    Ok(SeedStage {
+        problems,
+        not_applicable,
+        closed_form,
+        seed,
+        normalization,
+        seed_configuration: normalization.restore(&k_star),
+        failures,
+        paths_tracked,
+    })
+}
