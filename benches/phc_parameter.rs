@@ -104,7 +104,7 @@ fn main() {
     {
         let system = seeded.problem.system();
         let start = &seeded.seed_parameters;
-        let target = pose_parameters(&stage, seeded, &design, sample.pose);
+        let target = pose_parameters(&stage, seeded, sample.pose);
         // singdist: the straight parameter segment, the curve's tracker settings.
         let solve_options = SolveOptions {
             tracker: options.tracker.clone(),

@@ -155,12 +155,8 @@ fn rigid_shape_reconstructs_third_point_after_rigid_motion() {
 #[test]
 fn design_validation_names_the_field() {
     let base = [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]];
-    let err = Design::new(base, [[0.0, 0.0], [0.0, 0.0], [1.0, 2.0]]).unwrap_err();
-    assert!(
-        err.to_string()
-            .starts_with("platform[1]: coincides with platform[0]"),
-        "{err}"
-    );
+    // Two coincident anchors are a legitimate robot (paper Lemma 2).
+    assert!(Design::new(base, [[0.0, 0.0], [0.0, 0.0], [1.0, 2.0]]).is_ok());
     let err = Design::new(
         [[0.0, 0.0], [10.0, f64::NAN], [4.0, 8.0]],
         [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
@@ -172,7 +168,7 @@ fn design_validation_names_the_field() {
     let err = Design::new([[1.0, 1.0]; 3], [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]]).unwrap_err();
     assert!(
         err.to_string()
-            .starts_with("base[1]: coincides with base[0]"),
+            .starts_with("base: collapsed to a point (all three anchors coincide)"),
         "{err}"
     );
     // Three distinct but collinear anchors are a valid design.
@@ -281,9 +277,9 @@ fn file_errors_name_file_and_field() {
             "malformed JSON",
         ),
         (
-            "coincident.json",
-            "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[0,0],[0,0],[0,1]]}",
-            "platform[1]: coincides with platform[0]",
+            "collapsed.json",
+            "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[2,1],[2,1],[2,1]]}",
+            "platform: collapsed to a point",
         ),
     ];
     for (name, text, expected) in cases {
@@ -360,37 +356,44 @@ fn generic_formulas_agree_between_real_and_complex_rings() {
 }
 
 #[test]
-fn relabelling_per_lemma_2() {
-    let base = [[0.0, 0.0], [0.0, 0.0], [4.0, 8.0]];
-    let platform = [[0.0, 0.0], [3.0, 0.0], [3.0, 0.0]];
-    assert!(Design::new(base, platform).is_err());
-    let (design, labels) = Design::with_relabelling(base, platform).unwrap();
-    assert_ne!(design.base()[0], design.base()[1]);
-    assert_ne!(design.platform()[0], design.platform()[1]);
-    for i in 0..3 {
-        assert_eq!(design.base()[i], base[labels[i]]);
-        assert_eq!(design.platform()[i], platform[labels[i]]);
+fn conditioned_labelling_takes_the_longest_reference_edge() {
+    // Base anchors 1 and 2 coincide, platform anchors 2 and 3 nearly do.
+    let design = Design::new(
+        [[0.0, 0.0], [0.0, 0.0], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [3.0, 1e-4]],
+    )
+    .unwrap();
+    for (rigid_base, rigid_platform) in [(true, false), (false, true), (true, true)] {
+        let labels = design.conditioned_labelling(rigid_base, rigid_platform);
+        let relabelled = design.relabelled(labels);
+        for i in 0..3 {
+            assert_eq!(relabelled.base()[i], design.base()[labels[i]]);
+            assert_eq!(relabelled.platform()[i], design.platform()[labels[i]]);
+        }
+        let edge =
+            |p: &[[f64; 2]; 3]| ((p[1][0] - p[0][0]).powi(2) + (p[1][1] - p[0][1]).powi(2)).sqrt();
+        if rigid_base {
+            assert!(edge(relabelled.base()) >= 8.0, "{labels:?}");
+            let shape = relabelled.base_shape();
+            assert!(shape.u.is_finite() && shape.v.is_finite() && shape.r2 > 0.0);
+        }
+        if rigid_platform {
+            assert!(edge(relabelled.platform()) >= 1.5, "{labels:?}");
+        }
     }
-    // Rigid shapes are finite after relabelling.
-    let shape = design.base_shape();
-    assert!(shape.u.is_finite() && shape.v.is_finite() && shape.r2 > 0.0);
-    // No relabelling needed: identity.
-    let (_, labels) = Design::with_relabelling(
+    // No rigid part, or a well-conditioned user labelling: the identity.
+    assert_eq!(design.conditioned_labelling(false, false), [0, 1, 2]);
+    let example = Design::new(
         [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]],
         [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
     )
     .unwrap();
-    assert_eq!(labels, [0, 1, 2]);
+    assert_eq!(example.conditioned_labelling(true, true), [0, 1, 2]);
     // A collapsed part is rejected with a clear message.
-    let err = Design::with_relabelling(base, [[1.0, 1.0]; 3]).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        "platform: collapsed to a point (all three anchors coincide)"
-    );
-    let err = Design::with_relabelling([[0.0, f64::INFINITY], [1.0, 0.0], [0.0, 1.0]], platform)
-        .unwrap_err();
+    let err = Design::new(design.base().to_owned(), [[1.0, 1.0]; 3]).unwrap_err();
     assert!(
         err.to_string()
-            .starts_with("base[0].y: not a finite number")
+            .starts_with("platform: collapsed to a point"),
+        "{err}"
     );
 }

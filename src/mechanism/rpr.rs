@@ -31,20 +31,11 @@ pub enum RprError {
         /// The offending value.
         value: f64,
     },
-    /// Two anchors of the same part coincide.
+    /// All three anchors of a part coincide: `S ≡ 0` (architecture singular), and no
+    /// labelling gives the rigid-part representation two distinct reference anchors.
     #[error(
-        "{part}[{second}]: coincides with {part}[{first}] (coincident anchors are not supported)"
+        "{part}: collapsed to a point (all three anchors coincide): the design is singular at every pose"
     )]
-    CoincidentAnchors {
-        /// `base` or `platform`.
-        part: &'static str,
-        /// Index of the first anchor.
-        first: usize,
-        /// Index of the second anchor.
-        second: usize,
-    },
-    /// All three anchors of a part coincide (no labelling can make `A_1 ≠ A_2`).
-    #[error("{part}: collapsed to a point (all three anchors coincide)")]
     Collapsed {
         /// `base` or `platform`.
         part: &'static str,
@@ -66,11 +57,11 @@ pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
 /// A 3-RPR design: base anchors `A_i` (fixed frame) and platform anchors `P_i`
 /// (moving frame), SPEC A.1.
 ///
-/// Invariants: all coordinates finite, `A_1 ≠ A_2` and `P_1 ≠ P_2` (the labelling the
-/// rigid-part representation of SPEC A.5 needs, paper Lemma 2). [`Design::new`] (used
-/// by the file loader) is strict: it rejects any coincident anchors, so leg `i` is
-/// always the user's leg `i`. [`Design::with_relabelling`] accepts coincident pairs
-/// and relabels the legs per Lemma 2, rejecting only a part collapsed to a point.
+/// Invariants: all coordinates finite, and neither part collapsed to a point. Two
+/// coincident anchors of one part are a legitimate robot (Nawratil and
+/// Rasoulzadeh's Lemma 2: a pair of distinct anchors always exists); the
+/// sub-problems of a rigid part take their reference pair from
+/// [`Design::conditioned_labelling`], not from the user's labels.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "DesignFields", into = "DesignFields")]
 pub struct Design {
@@ -114,26 +105,36 @@ fn check_part(part: &'static str, points: &[Point<f64>; 3], scale: f64) -> Resul
             }
         }
     }
-    for second in 1..3 {
-        for first in 0..second {
-            let d = difference(&points[first], &points[second]);
-            if dot(&d, &d).sqrt() <= COINCIDENCE_TOLERANCE * scale {
-                return Err(RprError::CoincidentAnchors {
-                    part,
-                    first,
-                    second,
-                });
-            }
-        }
+    let longest = edges(points).into_iter().fold(0.0f64, f64::max);
+    if longest <= COINCIDENCE_TOLERANCE * scale {
+        return Err(RprError::Collapsed { part });
     }
     Ok(())
 }
+
+/// Edge lengths `|p_2 − p_1|, |p_3 − p_2|, |p_1 − p_3|` of a part.
+fn edges(points: &[Point<f64>; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| {
+        let d = difference(&points[i], &points[(i + 1) % 3]);
+        dot(&d, &d).sqrt()
+    })
+}
+
+/// The six leg labellings, identity first: internal leg `i` is leg `labels[i]`.
+const LABELLINGS: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [0, 2, 1],
+    [1, 0, 2],
+    [2, 1, 0],
+];
 
 impl Design {
     /// Validated design from base anchors `A_i` and platform anchors `P_i`.
     ///
     /// Errors name the field: `base[2].x: not a finite number (NaN)`,
-    /// `platform[1]: coincides with platform[0] …`.
+    /// `platform: collapsed to a point …`.
     pub fn new(base: [Point<f64>; 3], platform: [Point<f64>; 3]) -> Result<Self, RprError> {
         let scale = base
             .iter()
@@ -146,59 +147,48 @@ impl Design {
         Ok(Design { base, platform })
     }
 
-    /// Design that tolerates coincident anchors (SPEC A.5, paper Lemma 2): the legs are
-    /// relabelled, if needed, so that `A_1 ≠ A_2` and `P_1 ≠ P_2`, which the
-    /// point-based representation of rigid parts needs. Returns the design and
-    /// `labels`, where internal leg `i` is the caller's leg `labels[i]` (the identity
-    /// when no relabelling was needed). Rejects non-finite numbers and a base or
-    /// platform collapsed to a point, the only cases where no labelling works.
-    pub fn with_relabelling(
-        base: [Point<f64>; 3],
-        platform: [Point<f64>; 3],
-    ) -> Result<(Self, [usize; 3]), RprError> {
-        let scale = base
-            .iter()
-            .chain(platform.iter())
-            .flatten()
-            .filter(|v| v.is_finite())
-            .fold(1.0_f64, |m, v| m.max(v.abs()));
-        let distinct = |p: &Point<f64>, q: &Point<f64>| {
-            let d = difference(p, q);
-            dot(&d, &d).sqrt() > COINCIDENCE_TOLERANCE * scale
+    /// The leg labelling under which the rigid parts' reference anchors (internal
+    /// legs 1 and 2 of the point-based representation, SPEC A.5) are best
+    /// conditioned: the largest `min` over the rigid parts of `|e| / longest edge`,
+    /// `e` the reference edge (ties: the first of identity, the cyclic shifts, the
+    /// transpositions). With a tiny `e` the shape constants `u, v` grow like `1/|e|`
+    /// and the systems become ill-conditioned; a coincident pair gives no
+    /// representation at all. Any triangle has two edges of at least half its
+    /// longest, so some labelling gives both parts a ratio `≥ 1/2`. Internal leg `i`
+    /// is the user's leg `labels[i]`; the identity when no part is rigid.
+    pub fn conditioned_labelling(&self, rigid_base: bool, rigid_platform: bool) -> [usize; 3] {
+        let ratio = |points: &[Point<f64>; 3], labels: &[usize; 3]| {
+            let d = difference(&points[labels[0]], &points[labels[1]]);
+            let longest = edges(points).into_iter().fold(0.0f64, f64::max);
+            dot(&d, &d).sqrt() / longest
         };
-        for (part, points) in [("base", &base), ("platform", &platform)] {
-            match check_part(part, points, scale) {
-                Err(RprError::CoincidentAnchors { .. }) | Ok(()) => {}
-                Err(other) => return Err(other),
+        let quality = |labels: &[usize; 3]| {
+            let mut q = f64::INFINITY;
+            if rigid_base {
+                q = q.min(ratio(&self.base, labels));
             }
-            if !distinct(&points[0], &points[1])
-                && !distinct(&points[1], &points[2])
-                && !distinct(&points[0], &points[2])
-            {
-                return Err(RprError::Collapsed { part });
+            if rigid_platform {
+                q = q.min(ratio(&self.platform, labels));
+            }
+            q
+        };
+        let mut best = LABELLINGS[0];
+        for labels in LABELLINGS {
+            // Strictly better by more than rounding, so that near-ties keep the
+            // earlier (the user's own labelling first).
+            if quality(&labels) > quality(&best) * (1.0 + 1e-12) {
+                best = labels;
             }
         }
-        const PERMUTATIONS: [[usize; 3]; 6] = [
-            [0, 1, 2],
-            [1, 2, 0],
-            [2, 0, 1],
-            [0, 2, 1],
-            [1, 0, 2],
-            [2, 1, 0],
-        ];
-        let labels = PERMUTATIONS
-            .into_iter()
-            .find(|s| {
-                distinct(&base[s[0]], &base[s[1]]) && distinct(&platform[s[0]], &platform[s[1]])
-            })
-            .ok_or(RprError::Collapsed { part: "base" })?;
-        Ok((
-            Design {
-                base: labels.map(|i| base[i]),
-                platform: labels.map(|i| platform[i]),
-            },
-            labels,
-        ))
+        best
+    }
+
+    /// The same robot with its legs relabelled: internal leg `i` is leg `labels[i]`.
+    pub fn relabelled(&self, labels: [usize; 3]) -> Design {
+        Design {
+            base: labels.map(|i| self.base[i]),
+            platform: labels.map(|i| self.platform[i]),
+        }
     }
 
     /// Base anchors `A_1, A_2, A_3` (fixed frame).

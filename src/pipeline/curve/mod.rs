@@ -83,8 +83,10 @@ use std::collections::BTreeMap;
 
 mod options;
 mod seed;
+mod self_check;
 pub use options::*;
 pub use seed::*;
+pub use self_check::{SELF_CHECK_TOLERANCE, SelfCheck};
 
 /// Errors of the curve pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -188,6 +190,10 @@ pub struct CurveResult {
     /// Total number of critical points continued: paths tracked (seed stage, poses and
     /// re-runs) and Newton continuations from neighbouring poses.
     pub paths_tracked: usize,
+    /// The run's check of a few poses by an independent route
+    /// ([`CurveOptions::self_check`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_check: Option<SelfCheck>,
 }
 
 fn to_real(k: &[f64; 12]) -> [C64; 12] {
@@ -257,15 +263,11 @@ fn normalized_parameters(
     problem.parameters_in_units(design, k_normalized, normalization.scale)
 }
 
-/// Parameters of `seeded`'s system at the real `pose` of `design`, in the stage's
+/// Parameters of `seeded`'s system at the real `pose` (in its labelling), in the stage's
 /// normalised frame: the target of the seed → pose homotopy (`p = (N(K(pose)), shape
 /// constants)`, the seed's being [`SeededProblem::seed_parameters`]).
-pub fn pose_parameters(
-    stage: &SeedStage,
-    seeded: &SeededProblem,
-    design: &Design,
-    pose: Pose,
-) -> Vec<C64> {
+pub fn pose_parameters(stage: &SeedStage, seeded: &SeededProblem, pose: Pose) -> Vec<C64> {
+    let design = &seeded.design;
     let k = design.configuration(pose).to_array();
     let k_normalized = stage.normalization.apply(&to_real(&k));
     normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization)
@@ -858,13 +860,13 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
 /// Real critical points of one sub-problem at the real configuration `k`, as
 /// candidates `(D(K, K′), K′)` for `metric`.
 fn candidates(
-    problem: &LagrangeProblem,
-    metric: Metric,
+    seeded: &SeededProblem,
     endpoints: &[Vec<C64>],
     (parameters, normalization): (&[C64], Normalization),
     k: &[f64; 12],
     real_tolerance: f64,
 ) -> Vec<Candidate> {
+    let problem = &seeded.problem;
     let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
     endpoints
         .iter()
@@ -874,8 +876,9 @@ fn candidates(
                 .restore(&problem.configuration(x, parameters, &mut work))
                 .map(|v| v.re);
             Candidate {
-                distance: metric.distance(k, &k_prime),
-                closest: k_prime,
+                // D is invariant under relabelling the legs of both K and K′.
+                distance: seeded.id.metric.distance(k, &k_prime),
+                closest: seeded.to_user_labels(&k_prime),
             }
         })
         .collect()
@@ -949,7 +952,6 @@ struct ProblemAtPose {
 #[allow(clippy::too_many_arguments)]
 fn track_problem(
     stage: &SeedStage,
-    design: &Design,
     motion: &Motion,
     (index, sample): (usize, SampledPose),
     problem_index: usize,
@@ -957,6 +959,8 @@ fn track_problem(
     options: &CurveOptions,
 ) -> ProblemAtPose {
     let seeded = &stage.problems[problem_index];
+    // The sub-problem's own labelling (its rigid parts' reference anchors).
+    let design = &seeded.design;
     let k = design.configuration(sample.pose).to_array();
     let target = MotionPoint::target(motion, &sample);
     let k_normalized = stage.normalization.apply(&to_real(&k));
@@ -1038,8 +1042,7 @@ fn problem_at_pose(
     options: &CurveOptions,
 ) -> ProblemAtPose {
     let list = candidates(
-        &seeded.problem,
-        seeded.id.metric,
+        seeded,
         &endpoints,
         (parameters, stage.normalization),
         k,
@@ -1222,7 +1225,6 @@ fn conjugate_partners(problem: &LagrangeProblem, set: &[Vec<C64>]) -> Vec<Option
 #[allow(clippy::too_many_arguments)]
 fn jump_problem(
     stage: &SeedStage,
-    design: &Design,
     motion: &Motion,
     (index, sample): (usize, SampledPose),
     problem_index: usize,
@@ -1231,6 +1233,8 @@ fn jump_problem(
     options: &CurveOptions,
 ) -> Option<ProblemAtPose> {
     let seeded = &stage.problems[problem_index];
+    // The sub-problem's own labelling (its rigid parts' reference anchors).
+    let design = &seeded.design;
     let latest = *history.first()?;
     let k = design.configuration(sample.pose).to_array();
     let target = MotionPoint::target(motion, &sample);
@@ -1379,16 +1383,7 @@ pub fn solve_pose(
         .into_par_iter()
         .map(|problem_index| {
             let at = (index, sample);
-            track_problem(
-                stage,
-                design,
-                motion,
-                at,
-                problem_index,
-                Route::Seed,
-                options,
-            )
-            .entry
+            track_problem(stage, motion, at, problem_index, Route::Seed, options).entry
         })
         .collect();
     let k = design.configuration(sample.pose).to_array();
@@ -1407,7 +1402,6 @@ const POSES_PER_BLOCK: usize = 10;
 #[allow(clippy::too_many_arguments)]
 fn solve_problem_in_chain(
     stage: &SeedStage,
-    design: &Design,
     motion: &Motion,
     samples: &[SampledPose],
     (j, sample): (usize, SampledPose),
@@ -1419,16 +1413,7 @@ fn solve_problem_in_chain(
     let from = || MotionPoint::target(motion, &samples[previous]);
     if options.jump && !history.is_empty() {
         let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
-        let jumped = jump_problem(
-            stage,
-            design,
-            motion,
-            at,
-            problem_index,
-            from(),
-            &sets,
-            options,
-        );
+        let jumped = jump_problem(stage, motion, at, problem_index, from(), &sets, options);
         if let Some(result) = jumped {
             return (result, true);
         }
@@ -1438,13 +1423,13 @@ fn solve_problem_in_chain(
             from: from(),
             solutions,
         };
-        track_problem(stage, design, motion, at, problem_index, route, options)
+        track_problem(stage, motion, at, problem_index, route, options)
     });
     match from_neighbour {
         Some(result) if result.complete.is_some() => (result, true),
         neighbour => {
             let seed = Route::Seed;
-            let mut result = track_problem(stage, design, motion, at, problem_index, seed, options);
+            let mut result = track_problem(stage, motion, at, problem_index, seed, options);
             if let Some(neighbour) = neighbour {
                 let tracked = result.entry.3 + neighbour.entry.3;
                 if neighbour.entry.1 > result.entry.1 {
@@ -1526,7 +1511,6 @@ fn solve_chain(
                     let (previous, sets) = (history.0, &history.1);
                     let (result, same_order) = solve_problem_in_chain(
                         stage,
-                        design,
                         motion,
                         samples,
                         (j, samples[j]),
@@ -1605,7 +1589,6 @@ fn solve_chain(
 /// Returns the indices of the poses whose entries changed.
 fn rescue_from_neighbours(
     stage: &SeedStage,
-    design: &Design,
     motion: &Motion,
     samples: &[SampledPose],
     work: &mut [Vec<ProblemAtPose>],
@@ -1642,7 +1625,6 @@ fn rescue_from_neighbours(
             let mut step = |from: usize, to: usize, solutions: &[Vec<C64>]| {
                 let result = track_problem(
                     stage,
-                    design,
                     motion,
                     (to, samples[to]),
                     p,
@@ -1814,12 +1796,24 @@ pub fn compute_curve(
         .collect::<Vec<_>>()
         .into_iter()
         .unzip();
-    for j in rescue_from_neighbours(&stage, design, motion, &samples, &mut work, options) {
+    for j in rescue_from_neighbours(&stage, motion, &samples, &mut work, options) {
         let k = design.configuration(samples[j].pose).to_array();
         let entries = work[j].iter().map(|p| p.entry.clone()).collect();
         results[j] = assemble_pose(&stage, metrics, j, samples[j], &k, entries, options);
         on_pose(&results[j]);
     }
+    let self_check = if options.self_check {
+        let context = (design, motion, metrics);
+        Some(self_check::self_check(
+            context,
+            &samples,
+            &mut results,
+            options,
+            provider,
+        )?)
+    } else {
+        None
+    };
     let mut failures = stage.failures.clone();
     failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
     let paths_tracked =
@@ -1835,6 +1829,7 @@ pub fn compute_curve(
         poses: results,
         failures,
         paths_tracked,
+        self_check,
     })
 }
 

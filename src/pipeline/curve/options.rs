@@ -53,6 +53,14 @@ pub struct CurveOptions {
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
     pub cut_locus_tolerance: f64,
+    /// Re-solve the first and last pose and each metric's closest pose from an
+    /// independent seed stage and compare ([`SelfCheck`]); on by default.
+    #[serde(default = "default_self_check")]
+    pub self_check: bool,
+}
+
+fn default_self_check() -> bool {
+    true
 }
 
 /// Step budget per path of the curve's trackers. On the built-in example (`plate/rigid`)
@@ -112,6 +120,7 @@ impl Default for CurveOptions {
             coordinates: default_coordinates(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
+            self_check: default_self_check(),
         }
     }
 }

@@ -1,14 +1,21 @@
 //! Stage 1, the user homotopy: the generic start solutions tracked to the seed.
 
 use super::*;
+use crate::metric::Part;
 use crate::problem::pedal;
 
 /// One sub-problem prepared at the seed.
 pub struct SeededProblem {
     /// Which metric and sub-problem.
     pub id: ProblemId,
-    /// The compiled Lagrange system.
+    /// The compiled Lagrange system, built for [`SeededProblem::design`].
     pub problem: LagrangeProblem,
+    /// The design with its legs relabelled so that the rigid parts' reference anchors
+    /// are well conditioned ([`Design::conditioned_labelling`]); every configuration
+    /// of this sub-problem is in these labels.
+    pub design: Design,
+    /// Internal leg `i` is the user's leg `labels[i]`.
+    pub labels: [usize; 3],
     /// This sub-problem's seed: the stage's common one ([`SeedStage::seed`]), or an
     /// independent one where the common one's finite count could not be confirmed
     /// ([`seed_stage`]).
@@ -29,9 +36,30 @@ pub struct SeededProblem {
     pub start_count: usize,
 }
 
-/// A sub-problem ready for the user homotopy: id, compiled system, source parameters,
-/// start solutions (in the system's coordinates).
-type PreparedProblem = (ProblemId, LagrangeProblem, Vec<C64>, Vec<Vec<C64>>);
+impl SeededProblem {
+    /// A configuration of this sub-problem's labelling in the user's labels.
+    pub fn to_user_labels(&self, k: &[f64; 12]) -> [f64; 12] {
+        let mut out = [0.0; 12];
+        for (internal, &user) in self.labels.iter().enumerate() {
+            for part in [0, 6] {
+                out[part + 2 * user] = k[part + 2 * internal];
+                out[part + 2 * user + 1] = k[part + 2 * internal + 1];
+            }
+        }
+        out
+    }
+}
+
+/// A sub-problem ready for the user homotopy: id, compiled system, its relabelled
+/// design and labels, source parameters, start solutions (in the system's
+/// coordinates).
+type PreparedProblem = (
+    ProblemId,
+    LagrangeProblem,
+    (Design, [usize; 3]),
+    Vec<C64>,
+    Vec<Vec<C64>>,
+);
 
 /// The output of the user homotopy: every sub-problem at the common seed.
 pub struct SeedStage {
@@ -175,14 +203,14 @@ struct SeedRun {
 /// [`SEED_POINTS`]) is a seed-stage [`PathFailure`] (expected `G`).
 #[allow(clippy::too_many_arguments)]
 fn seed_problem(
-    design: &Design,
     motion: &Motion,
     normalization: Normalization,
     common: &SeedPoint,
     index: usize,
-    (id, problem, source, starts): (ProblemId, LagrangeProblem, Vec<C64>, Vec<Vec<C64>>),
+    (id, problem, (design, labels), source, starts): PreparedProblem,
     options: &CurveOptions,
 ) -> (SeededProblem, Option<PathFailure>, usize) {
+    let design = &design;
     let generic = starts.len();
     let mut runs: Vec<SeedRun> = Vec::new();
     let mut tracked = 0;
@@ -254,6 +282,8 @@ fn seed_problem(
         SeededProblem {
             id,
             problem,
+            design: *design,
+            labels,
             seed: chosen.seed,
             seed_parameters: chosen.parameters,
             start_count: chosen.solutions.len(),
@@ -296,7 +326,12 @@ pub fn seed_stage(
         .clone()
         .into_par_iter()
         .map(|id| {
-            let problem = match LagrangeProblem::for_design_in(id, design, options.coordinates) {
+            let labels = design.conditioned_labelling(
+                id.metric.base == Part::Rigid,
+                id.metric.platform == Part::Rigid,
+            );
+            let design = design.relabelled(labels);
+            let problem = match LagrangeProblem::for_design_in(id, &design, options.coordinates) {
                 Ok(p) => p,
                 Err(ProblemError::NotApplicable { .. }) => return Ok(None),
                 Err(e) => return Err(e.into()),
@@ -323,7 +358,7 @@ pub fn seed_stage(
                 .iter()
                 .map(|x| problem.from_cartesian(x))
                 .collect();
-            Ok(Some((id, problem, source, starts)))
+            Ok(Some((id, problem, (design, labels), source, starts)))
         })
         .collect();
     let mut prepared = Vec::new();
@@ -338,15 +373,7 @@ pub fn seed_stage(
         .into_par_iter()
         .enumerate()
         .map(|(index, prepared)| {
-            seed_problem(
-                design,
-                motion,
-                normalization,
-                &seed,
-                index,
-                prepared,
-                options,
-            )
+            seed_problem(motion, normalization, &seed, index, prepared, options)
         })
         .collect();
     let (problems, failures, paths_tracked) = split_seed_results(tracked);

@@ -1,0 +1,124 @@
+//! The run's own check: a few of its poses solved again by an independent route.
+//!
+//! Homotopy continuation finds every critical point with probability one when no path
+//! fails, but a path that jumps onto another one's track, or a seed whose finite count
+//! two seed points agree on wrongly, would silently hide a minimum. So every curve
+//! re-solves its first and last pose and, per metric, the pose of its smallest
+//! distance from a second seed stage with another seed (another τ*, perturbation and
+//! detours: every path of the check differs from the run's) along the seed route
+//! (no chains, no Newton jumps). Where the check finds a closer real critical point
+//! than the run, the run missed one: the pose reports the check's (smaller, feasible)
+//! result and a [`PathFailure`] `self-check` (exit code 3), since the poses that were
+//! not checked may have missed it too.
+
+use super::*;
+
+/// What the self-check compared.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SelfCheck {
+    /// Seed of the independent seed stage.
+    pub seed: u64,
+    /// Pose indices re-solved.
+    pub poses: Vec<usize>,
+    /// Largest `|D_run − D_check| / max(D_run, D_floor)` over the checked (pose,
+    /// metric) pairs, `D_floor = 10⁻¹² ×` the design's length scale.
+    pub worst_relative_difference: f64,
+    /// (Pose, metric) pairs where the check found a closer singular configuration.
+    pub disagreements: usize,
+}
+
+/// Relative difference above which the check's smaller distance counts as a missed
+/// minimum of the run.
+pub const SELF_CHECK_TOLERANCE: f64 = 1e-8;
+
+/// The seed of the check's stage: the run's seed plus 24,095.
+fn check_seed(seed: u64) -> u64 {
+    seed.wrapping_add(0x5e1f)
+}
+
+/// The poses to check: first, last, and per metric the pose of its smallest distance.
+fn poses_to_check(results: &[PoseResult], metrics: &[Metric]) -> Vec<usize> {
+    let mut poses = Vec::new();
+    if let (Some(first), Some(last)) = (results.first(), results.last()) {
+        poses.push(first.index);
+        poses.push(last.index);
+    }
+    for metric in metrics {
+        let name = metric.name();
+        let smallest = results
+            .iter()
+            .filter_map(|r| r.metrics.get(&name).map(|m| (r.index, m.distance)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        poses.extend(smallest.map(|(j, _)| j));
+    }
+    poses.sort_unstable();
+    poses.dedup();
+    poses
+}
+
+/// Re-solves [`poses_to_check`] from an independent seed stage and folds the
+/// comparison into `results` (see the module documentation; a disagreement is added
+/// to the pose's failures). Returns what was compared.
+pub(super) fn self_check(
+    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    samples: &[SampledPose],
+    results: &mut [PoseResult],
+    options: &CurveOptions,
+    provider: StartProvider<'_>,
+) -> Result<SelfCheck, PipelineError> {
+    let check_options = CurveOptions {
+        seed: check_seed(options.seed),
+        ..options.clone()
+    };
+    let poses = poses_to_check(results, metrics);
+    let stage = seed_stage(design, motion, metrics, &check_options, provider)?;
+    let checked: Vec<PoseResult> = poses
+        .par_iter()
+        .map(|&j| {
+            solve_pose(
+                &stage,
+                design,
+                motion,
+                metrics,
+                j,
+                samples[j],
+                &check_options,
+            )
+        })
+        .collect();
+    let floor = 1e-12 * design.length_scale();
+    let mut worst: f64 = 0.0;
+    let mut disagreements = 0;
+    for check in checked {
+        let Some(run) = results.iter_mut().find(|r| r.index == check.index) else {
+            continue;
+        };
+        for (name, checked_metric) in &check.metrics {
+            let Some(run_metric) = run.metrics.get_mut(name) else {
+                continue;
+            };
+            let difference = run_metric.distance - checked_metric.distance;
+            let relative = difference.abs() / run_metric.distance.max(floor);
+            worst = worst.max(relative);
+            if difference > SELF_CHECK_TOLERANCE * run_metric.distance.max(floor) {
+                *run_metric = checked_metric.clone();
+                let failure = PathFailure {
+                    pose_index: Some(run.index),
+                    tau: Some(run.tau),
+                    problem: format!("{name}:self-check"),
+                    expected: 1,
+                    accounted: 0,
+                    reasons: BTreeMap::from([("SelfCheckFoundCloser".to_string(), 1)]),
+                };
+                run.failures.push(failure);
+                disagreements += 1;
+            }
+        }
+    }
+    Ok(SelfCheck {
+        seed: check_options.seed,
+        poses,
+        worst_relative_difference: worst,
+        disagreements,
+    })
+}
