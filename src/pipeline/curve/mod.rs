@@ -1763,6 +1763,48 @@ pub fn sample_motion(motion: &Motion, n: usize) -> Result<Vec<SampledPose>, Pipe
     Ok(motion.sample(n))
 }
 
+/// Largest step between consecutive poses that a chain continues across: the
+/// largest coordinate change of the normalised configuration (units of the RMS size
+/// of the configuration). Across a larger step the Newton jumps and pose-to-pose
+/// paths of a chain cost more than the seed route (30 scattered poses of the
+/// example design: chained through every step 2.2 × the CPU time of the seed route
+/// per pose), so a new chain starts there. The built-in example's steps are 0.05.
+pub const FAR_POSE_STEP: f64 = 0.25;
+
+/// The chains of stage 2 as index ranges `[first, last)`: at most `chain_length`
+/// poses each ([`CurveOptions::chain_length`]), split where consecutive poses are
+/// farther apart than [`FAR_POSE_STEP`]. Depends on the poses only, not on the
+/// thread count.
+fn chain_blocks(
+    design: &Design,
+    samples: &[SampledPose],
+    chain_length: usize,
+    normalization: Normalization,
+) -> Vec<(usize, usize)> {
+    let normalised =
+        |j: usize| normalization.apply(&to_real(&design.configuration(samples[j].pose).to_array()));
+    let mut blocks = Vec::new();
+    let mut first = 0;
+    let mut previous = samples.first().map(|_| normalised(0));
+    for j in 1..samples.len() {
+        let current = normalised(j);
+        let step = previous.map_or(0.0, |p| {
+            p.iter()
+                .zip(&current)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()))
+        });
+        if j - first >= chain_length.max(1) || step > FAR_POSE_STEP {
+            blocks.push((first, j));
+            first = j;
+        }
+        previous = Some(current);
+    }
+    if !samples.is_empty() {
+        blocks.push((first, samples.len()));
+    }
+    blocks
+}
+
 /// The whole curve: seed stage, then every pose in parallel; `on_pose` is called as
 /// each pose completes (in completion order, e.g. to append partial results).
 pub fn compute_curve(
@@ -1776,12 +1818,10 @@ pub fn compute_curve(
 ) -> Result<CurveResult, PipelineError> {
     let samples = sample_motion(motion, poses)?;
     let stage = seed_stage(design, motion, metrics, options, provider)?;
-    let chain_length = options.chain_length.max(1);
-    let blocks: Vec<usize> = (0..samples.len()).step_by(chain_length).collect();
+    let blocks = chain_blocks(design, &samples, options.chain_length, stage.normalization);
     let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = blocks
         .par_iter()
-        .flat_map_iter(|&first| {
-            let last = (first + chain_length).min(samples.len());
+        .flat_map_iter(|&(first, last)| {
             solve_chain(
                 &stage,
                 design,
