@@ -28,7 +28,7 @@ pub struct SelfCheck {
 }
 
 /// Relative difference above which the check's smaller distance counts as a missed
-/// minimum of the run.
+/// minimum of the run (plus an absolute `10⁻¹²` × the design's length scale).
 pub const SELF_CHECK_TOLERANCE: f64 = 1e-8;
 
 /// The seed of the check's stage: the run's seed plus 24,095.
@@ -100,7 +100,9 @@ pub(super) fn self_check(
             let difference = run_metric.distance - checked_metric.distance;
             let relative = difference.abs() / run_metric.distance.max(floor);
             worst = worst.max(relative);
-            if difference > SELF_CHECK_TOLERANCE * run_metric.distance.max(floor) {
+            // Distances at rounding level (a configuration on the singular set) differ
+            // by rounding only: `floor` is absolute.
+            if difference > SELF_CHECK_TOLERANCE * run_metric.distance + floor {
                 *run_metric = checked_metric.clone();
                 let failure = PathFailure {
                     pose_index: Some(run.index),
@@ -121,4 +123,46 @@ pub(super) fn self_check(
         worst_relative_difference: worst,
         disagreements,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanism::rpr::{example_design, example_motion};
+
+    #[test]
+    fn a_missed_minimum_is_found_and_reported() {
+        let (design, motion) = (example_design(), example_motion());
+        let metrics = ["plate/plate".parse().unwrap()];
+        let options = CurveOptions {
+            self_check: false,
+            ..CurveOptions::default()
+        };
+        let provider = &default_start_solutions;
+        let mut result =
+            compute_curve(&design, &motion, 6, &metrics, &options, provider, &|_| {}).unwrap();
+        let truth = result.poses[5].metrics["plate/plate"].distance;
+        // As if the run had missed the closest critical point at the last pose.
+        result.poses[5]
+            .metrics
+            .get_mut("plate/plate")
+            .unwrap()
+            .distance *= 2.0;
+        let samples = sample_motion(&motion, 6).unwrap();
+        let context = (&design, &motion, &metrics[..]);
+        let check = self_check(context, &samples, &mut result.poses, &options, provider).unwrap();
+        assert_eq!(check.disagreements, 1, "{check:?}");
+        let repaired = result.poses[5].metrics["plate/plate"].distance;
+        assert!(
+            (repaired - truth).abs() <= 1e-10 * truth,
+            "{repaired} vs {truth}"
+        );
+        assert!(
+            result.poses[5]
+                .failures
+                .iter()
+                .any(|f| f.problem == "plate/plate:self-check")
+        );
+        assert!(check.poses.contains(&5));
+    }
 }
