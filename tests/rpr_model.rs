@@ -366,9 +366,9 @@ fn conditioned_labelling_takes_the_longest_reference_edge() {
     for (rigid_base, rigid_platform) in [(true, false), (false, true), (true, true)] {
         let labels = design.conditioned_labelling(rigid_base, rigid_platform);
         let relabelled = design.relabelled(labels);
-        for i in 0..3 {
-            assert_eq!(relabelled.base()[i], design.base()[labels[i]]);
-            assert_eq!(relabelled.platform()[i], design.platform()[labels[i]]);
+        for (i, &user) in labels.iter().enumerate() {
+            assert_eq!(relabelled.base()[i], design.base()[user]);
+            assert_eq!(relabelled.platform()[i], design.platform()[user]);
         }
         let edge =
             |p: &[[f64; 2]; 3]| ((p[1][0] - p[0][0]).powi(2) + (p[1][1] - p[0][1]).powi(2)).sqrt();
