@@ -16,6 +16,8 @@
 //! 7. [`index`]: classic kinematic performance indices (for comparison).
 //! 8. [`optimize`]: genetic algorithm and local constrained refinement.
 //! 9. [`io`]: serde types of input and output files, CSV/JSON/SVG writers.
+//! 10. [`reference`]: an independent yardstick for the pipeline: many-start local
+//!     minimisation of the singularity distances, and a matrix of test designs.
 //!
 //! Arrows point one way: `pipeline → problem → {metric, mechanism, system}`,
 //! `pipeline → homotopy → system`. Nothing numerical depends on [`io`].
@@ -30,6 +32,7 @@ pub mod optimize;
 pub mod pipeline;
 pub mod problem;
 pub mod random;
+pub mod reference;
 pub mod system;
 
 /// Complex double, the scalar of every numerical routine.
