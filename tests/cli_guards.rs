@@ -249,6 +249,7 @@ fn output_paths_are_checked_before_computing() {
         .join("x.csv")
         .display()
         .to_string();
+    let svg = inside("one.svg");
     let (png, txt, pdf, rpng) = (
         inside("x.png"),
         inside("x.txt"),
@@ -297,6 +298,11 @@ fn output_paths_are_checked_before_computing() {
             owned(&["rrr", "curve", "--poses", "50000", "--plot", &rpng]),
             &rpng,
             vec!["--plot", "SVG"],
+        ),
+        (
+            owned(&["curve", "--quiet", "--poses", "1", "--plot", &svg]),
+            &svg,
+            vec!["--plot", "at least 2 poses"],
         ),
         (
             owned(&["map", "--csv", &missing]),

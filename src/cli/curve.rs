@@ -129,6 +129,9 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     }
     if let Some(plot) = &args.plot {
         check_output_file("--plot", plot, &["svg"])?;
+        if samples.len() < 2 {
+            bail!("--plot: need at least 2 poses, got {}", samples.len());
+        }
     }
     let options = CurveOptions {
         seed: args.seed,

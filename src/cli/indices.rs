@@ -165,6 +165,9 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     }
     if let Some(path) = &args.plot {
         check_output_file("--plot", path, &["svg"])?;
+        if samples.len() < 2 {
+            bail!("--plot: need at least 2 poses, got {}", samples.len());
+        }
     }
     if let Some(path) = &args.plot_data {
         check_output_file("--plot-data", path, &["csv"])?;

@@ -132,6 +132,9 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     }
     if let Some(plot) = &args.plot {
         check_output_file("--plot", plot, &["svg"])?;
+        if count < 2 {
+            bail!("--plot: need at least 2 poses, got {}", count);
+        }
     }
     let options = RrrCurveOptions {
         seed: args.seed,
