@@ -44,22 +44,31 @@ enum Command {
 }
 
 fn main() {
+    use cli::outcome::{EXIT_ERROR, Outcome, one_line_message};
     let cli = Cli::parse();
+    let complete = |result: anyhow::Result<()>| result.map(|()| Outcome::Complete);
     let result = match cli.command {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
         Command::Indices(args) => cli::indices::run(args),
         Command::Compare(args) => cli::indices::run_compare(args),
-        Command::System(cmd) => cli::system::run(cmd),
+        Command::System(cmd) => complete(cli::system::run(cmd)),
         Command::Solve(args) => cli::solve::run(args),
-        Command::AbInitio(args) => cli::ab_initio::run(args),
-        Command::Prrr(cmd) => cli::prrr::run(cmd),
-        Command::Map(args) => cli::map::run(args),
-        Command::Schemes(args) => cli::schemes::run(args),
+        Command::AbInitio(args) => complete(cli::ab_initio::run(args)),
+        Command::Prrr(cmd) => complete(cli::prrr::run(cmd)),
+        Command::Map(args) => complete(cli::map::run(args)),
+        Command::Schemes(args) => complete(cli::schemes::run(args)),
         Command::Rrr(cmd) => cli::rrr::run(cmd),
     };
-    if let Err(error) = result {
-        eprintln!("singdist: error: {error:#}");
-        std::process::exit(1);
+    match result {
+        Ok(outcome) => {
+            use std::io::Write;
+            let _ = std::io::stdout().flush();
+            std::process::exit(outcome.exit_code());
+        }
+        Err(error) => {
+            eprintln!("singdist: error: {}", one_line_message(&error));
+            std::process::exit(EXIT_ERROR);
+        }
     }
 }

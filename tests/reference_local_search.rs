@@ -168,7 +168,7 @@ fn design_matrix_is_deterministic_and_every_motion_crosses_the_singularity() {
     assert_ne!(cases, design_matrix(2));
     for case in &cases {
         assert!(!case.crossings.is_empty(), "{}: no crossing", case.name);
-        let design = case.relabelled_design().expect("not collapsed").0;
+        let design = case.design().expect("not collapsed");
         let motion = case.analytic_motion();
         for &tau in &case.crossings {
             let s = |t: f64| {

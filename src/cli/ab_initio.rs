@@ -1,5 +1,7 @@
 //! `singdist ab-initio`: compute, store and verify the generic start solutions.
 
+use super::output::{check_output_folder, write_file};
+use super::resources::thread_count;
 use anyhow::{Context, bail};
 use clap::Args;
 use singdist::pipeline::ab_initio::{self, AbInitioOptions, embedded_start_solutions};
@@ -26,14 +28,14 @@ pub struct AbInitioArgs {
     /// Directory of the start-solution files.
     #[arg(long, default_value = "supplementary/start")]
     dir: PathBuf,
-    /// Number of threads (default: all cores).
+    /// Number of threads (default: all cores; more than the cores is clamped to them).
     #[arg(long)]
     threads: Option<usize>,
 }
 
 /// Runs `singdist ab-initio`.
 pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
-    if let Some(threads) = args.threads {
+    if let Some(threads) = thread_count(args.threads)? {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build_global()
@@ -47,6 +49,9 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
         (None, true) => ProblemId::all(),
         (None, false) => bail!("give --problem NAME or --all"),
     };
+    if !args.verify {
+        check_output_folder("--dir", &args.dir, true)?;
+    }
     let mut failures = 0;
     let started = Instant::now();
     for id in ids {
@@ -117,8 +122,7 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
         );
         failures += usize::from(!ok);
         std::fs::create_dir_all(&args.dir).with_context(|| format!("{}", args.dir.display()))?;
-        std::fs::write(&path, serde_json::to_string_pretty(&file)?)
-            .with_context(|| format!("{}", path.display()))?;
+        write_file("--dir", &path, serde_json::to_string_pretty(&file)?)?;
     }
     eprintln!("total {:.2} s", started.elapsed().as_secs_f64());
     if failures > 0 {

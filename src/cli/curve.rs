@@ -2,22 +2,23 @@
 //! nine extrinsic metrics (SPEC A.9): JSON / CSV table, SVG plot, compact table on
 //! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
-use anyhow::{Context, Result, bail};
+use super::failures::{lost_paths, warn_failures};
+use super::outcome::Outcome;
+use super::output::{PartialFile, check_output_file, is_csv, write_file};
+use super::resources::{check_metric_pose_count, with_threads};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use singdist::io::{load_design, load_motion};
-use singdist::mechanism::rpr::{Design, Motion, example_design, example_motion};
+use singdist::mechanism::rpr::{
+    Design, Motion, SampledPose, check_sampled_poses, example_design, example_motion,
+};
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, PathFailure, PoseResult, compute_curve, default_start_solutions,
-    sample_motion, singular_parameters,
+    CurveOptions, CurveResult, PoseResult, compute_curve, default_start_solutions, sample_motion,
+    singular_parameters,
 };
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-
-/// Exit code of a run that completed but lost paths at some pose.
-pub const EXIT_PATH_FAILURES: i32 = 3;
 
 /// Arguments of `singdist curve`.
 #[derive(Args, Debug)]
@@ -29,13 +30,16 @@ pub struct CurveArgs {
     /// Motion file (analytic motion or explicit pose list); default: the built-in example.
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given).
+    /// Number of poses evenly spaced in τ (pose lists are used as given); poses ×
+    /// metrics at most 100,000 (every pose's results stay in memory until the end).
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
     /// Metrics: `all`, or names like `plate/plate bars/rigid` (or comma separated).
     #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
     metric: Vec<String>,
-    /// Output table: `.json` (full detail) or `.csv` (signed distance per metric).
+    /// Output table: `.json` (full detail) or `.csv` (signed distance per metric, and
+    /// `lost_paths` per pose: paths lost there plus those lost at the seed, which
+    /// affect every pose). Checked, like `--plot`, before the computation.
     /// Partial results are appended to `FILE.partial` (JSON lines, each with its pose
     /// `index`) while running, in the order poses complete: the chain's start pose
     /// (nearest Re τ*) first, then forwards and backwards from it, block by block. A
@@ -46,7 +50,7 @@ pub struct CurveArgs {
     /// SVG plot of the signed distance curves against τ, singular poses marked.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Seed of every random choice (results are identical for any thread count).
@@ -93,92 +97,49 @@ pub fn parse_metrics(values: &[String]) -> Result<Vec<Metric>> {
     Ok(metrics)
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (or the global pool).
-pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T> {
-    match threads {
-        Some(0) => bail!("--threads: must be at least 1"),
-        Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .context("--threads: cannot start the worker pool")?;
-            Ok(pool.install(f))
-        }
-        None => Ok(f()),
+/// Number of poses a run of `motion` with `--poses poses` has (pose lists: their length).
+pub fn pose_count(motion: &Motion, poses: usize) -> usize {
+    match motion {
+        Motion::Poses(list) => list.poses.len(),
+        Motion::Analytic(_) => poses,
     }
 }
 
-/// Prints a warning listing lost paths; returns whether there were any.
-pub fn warn_failures(failures: &[PathFailure]) -> bool {
-    if failures.is_empty() {
-        return false;
-    }
-    let list: Vec<String> = failures
-        .iter()
-        .map(|f| {
-            let why = if f.reasons.is_empty() {
-                String::new()
-            } else {
-                let reasons: Vec<String> =
-                    f.reasons.iter().map(|(r, n)| format!("{r} {n}")).collect();
-                format!(" (reference route: {})", reasons.join(", "))
-            };
-            let lost = f.expected - f.accounted;
-            match (f.pose_index, f.tau) {
-                (Some(j), Some(tau)) => format!(
-                    "pose {j} (tau = {tau:.6}) {}: {lost} of {} paths failed{why}",
-                    f.problem, f.expected
-                ),
-                _ => format!(
-                    "seed {}: {lost} of {} paths failed{why}",
-                    f.problem, f.expected
-                ),
-            }
-        })
-        .collect();
-    const SHOWN: usize = 8;
-    let more = list.len().saturating_sub(SHOWN);
-    eprintln!(
-        "singdist: warning: {} (pose, sub-problem) group(s) lost paths after re-runs (results may miss critical points; all listed under `failures` in the output): {}{}",
-        failures.len(),
-        list[..list.len().min(SHOWN)].join("; "),
-        if more > 0 {
-            format!("; … and {more} more")
-        } else {
-            String::new()
-        }
-    );
-    true
+/// Checks every sampled pose of the motion (finite, within the input range); errors
+/// name the motion file (or `motion` for the built-in one).
+pub fn check_samples(motion: Option<&Path>, samples: &[SampledPose]) -> Result<()> {
+    check_sampled_poses(samples).map_err(|e| match motion {
+        Some(path) => anyhow!("{}: {e}", path.display()),
+        None => anyhow!("motion: {e}"),
+    })
 }
 
 /// Runs `singdist curve`.
-pub fn run(args: CurveArgs) -> Result<()> {
+pub fn run(args: CurveArgs) -> Result<Outcome> {
     let (design, motion) = load_inputs(args.design.as_deref(), args.motion.as_deref())?;
     let metrics = parse_metrics(&args.metric)?;
+    check_metric_pose_count(pose_count(&motion, args.poses), metrics.len())?;
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
+    check_samples(args.motion.as_deref(), &samples)?;
     if args.chain == 0 {
         bail!("--chain: must be at least 1");
+    }
+    if let Some(out) = &args.out {
+        check_output_file("--out", out, &["json", "csv"])?;
+    }
+    if let Some(plot) = &args.plot {
+        check_output_file("--plot", plot, &["svg"])?;
+        if samples.len() < 2 {
+            bail!("--plot: need at least 2 poses, got {}", samples.len());
+        }
     }
     let options = CurveOptions {
         seed: args.seed,
         chain_length: args.chain,
         ..CurveOptions::default()
     };
-    let partial_path = args.out.as_ref().map(|p| {
-        let mut name = p.clone().into_os_string();
-        name.push(".partial");
-        PathBuf::from(name)
-    });
-    if let Some(out) = &args.out {
-        match out.extension().and_then(|e| e.to_str()) {
-            Some("json") | Some("csv") => {}
-            _ => bail!("--out: {}: expected a .json or .csv file", out.display()),
-        }
-    }
-    let partial = match &partial_path {
-        Some(path) => Some(Mutex::new(std::fs::File::create(path).with_context(
-            || format!("--out: {}: cannot create the partial file", path.display()),
-        )?)),
+    let partial = match &args.out {
+        Some(out) => Some(PartialFile::create("--out", out)?),
         None => None,
     };
     let progress = if args.quiet {
@@ -200,13 +161,11 @@ pub fn run(args: CurveArgs) -> Result<()> {
         if let Some(file) = &partial
             && let Ok(line) = serde_json::to_string(pose)
         {
-            let mut file = file.lock().unwrap_or_else(|e| e.into_inner());
-            // A failed append only loses the partial copy; the final file is written anyway.
-            let _ = writeln!(file, "{line}");
+            file.append_line(&line);
         }
     };
     let started = std::time::Instant::now();
-    let result = with_threads(args.threads, || {
+    let computed = with_threads(args.threads, || {
         compute_curve(
             &design,
             &motion,
@@ -216,16 +175,23 @@ pub fn run(args: CurveArgs) -> Result<()> {
             &default_start_solutions,
             &on_pose,
         )
-    })??;
+    })
+    .and_then(|r| Ok(r?));
     progress.finish_and_clear();
+    let result = match computed {
+        Ok(result) => result,
+        Err(error) => return Err(abandon(partial, error)),
+    };
     let elapsed = started.elapsed().as_secs_f64();
     let singular = singular_parameters(&design, &motion, &samples);
     match &args.out {
         Some(path) => {
-            write_output(path, &result, &metrics)?;
-            if let Some(p) = &partial_path {
+            if let Err(error) = write_output(path, &result, &metrics) {
+                return Err(abandon(partial, error));
+            }
+            if let Some(partial) = partial {
                 // The final file supersedes the partial one.
-                let _ = std::fs::remove_file(p);
+                partial.finish();
             }
         }
         None => print_table(&result, &metrics, &singular),
@@ -243,27 +209,34 @@ pub fn run(args: CurveArgs) -> Result<()> {
             result.paths_tracked as f64 / elapsed.max(1e-9)
         );
     }
-    if warn_failures(&result.failures) {
-        std::process::exit(EXIT_PATH_FAILURES);
+    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
+}
+
+/// The error of a failed run, naming (or removing, if empty) its partial file.
+fn abandon(partial: Option<PartialFile>, error: anyhow::Error) -> anyhow::Error {
+    match partial {
+        Some(partial) => partial.abandon(error),
+        None => error,
     }
-    Ok(())
 }
 
 fn write_output(path: &Path, result: &CurveResult, metrics: &[Metric]) -> Result<()> {
-    let is_csv = path.extension().and_then(|e| e.to_str()) == Some("csv");
-    let text = if is_csv {
+    let text = if is_csv(path) {
         csv_text(result, metrics)?
     } else {
         serde_json::to_string_pretty(result).context("serialising the curve")?
     };
-    std::fs::write(path, text).with_context(|| format!("--out: {}: cannot write", path.display()))
+    write_file("--out", path, text)
 }
 
-/// CSV: `tau, x, y, phi, S`, then one column per metric (signed distance).
+/// CSV: `tau, x, y, phi, S`, then one column per metric (signed distance), then
+/// `lost_paths`: the paths lost at that pose (its own failures plus the seed stage's,
+/// which affect every pose; 0 when every critical point was found).
 pub fn csv_text(result: &CurveResult, metrics: &[Metric]) -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header: Vec<String> = ["tau", "x", "y", "phi", "S"].map(String::from).to_vec();
     header.extend(metrics.iter().map(Metric::name));
+    header.push("lost_paths".into());
     writer.write_record(&header)?;
     for pose in &result.poses {
         let mut row: Vec<String> = vec![
@@ -281,6 +254,7 @@ pub fn csv_text(result: &CurveResult, metrics: &[Metric]) -> Result<String> {
                     .unwrap_or_default(),
             );
         }
+        row.push(lost_paths(&pose.failures, &result.failures).to_string());
         writer.write_record(&row)?;
     }
     let bytes = writer.into_inner().context("writing CSV")?;

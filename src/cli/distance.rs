@@ -3,10 +3,13 @@
 //! distance, attaining sub-problem, closest configuration K′, cut-locus flag and every
 //! sub-problem's own minimum.
 
-use super::curve::{EXIT_PATH_FAILURES, load_inputs, parse_metrics, warn_failures, with_threads};
+use super::curve::{load_inputs, parse_metrics};
+use super::failures::warn_failures;
+use super::outcome::Outcome;
+use super::resources::with_threads;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use singdist::mechanism::rpr::{Motion, Pose, PoseList};
+use singdist::mechanism::rpr::{Motion, Pose, PoseList, check_input_number};
 use singdist::pipeline::curve::{CurveOptions, compute_curve, default_start_solutions};
 use std::path::PathBuf;
 
@@ -25,7 +28,7 @@ pub struct DistanceArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Seed of every random choice.
@@ -33,7 +36,9 @@ pub struct DistanceArgs {
     seed: u64,
 }
 
-/// Parses `x,y,phi` into a pose; errors name the option and the component.
+/// Parses `x,y,phi` into a pose; each number must be finite and within ±1e12
+/// ([`singdist::mechanism::MAX_INPUT_MAGNITUDE`]); errors name the option and the
+/// component (`--pose: x: 1e308 is outside ±1e12`).
 pub fn parse_pose(text: &str) -> Result<Pose> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     if parts.len() != 3 {
@@ -43,17 +48,16 @@ pub fn parse_pose(text: &str) -> Result<Pose> {
     for (k, (part, name)) in parts.iter().zip(["x", "y", "phi"]).enumerate() {
         let v: f64 = part
             .parse()
+            .ok()
             .with_context(|| format!("--pose: {name}: `{part}` is not a number"))?;
-        if !v.is_finite() {
-            bail!("--pose: {name}: must be finite, got {v}");
-        }
+        check_input_number(|| name.to_string(), v).context("--pose")?;
         values[k] = v;
     }
     Ok(Pose::new(values[0], values[1], values[2]))
 }
 
 /// Runs `singdist distance`.
-pub fn run(args: DistanceArgs) -> Result<()> {
+pub fn run(args: DistanceArgs) -> Result<Outcome> {
     let pose = parse_pose(&args.pose)?;
     let (design, _) = load_inputs(args.design.as_deref(), None)?;
     let metrics = parse_metrics(&args.metric)?;
@@ -128,8 +132,5 @@ pub fn run(args: DistanceArgs) -> Result<()> {
             }
         }
     }
-    if warn_failures(&result.failures) {
-        std::process::exit(EXIT_PATH_FAILURES);
-    }
-    Ok(())
+    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
 }

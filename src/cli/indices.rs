@@ -7,7 +7,12 @@
 //! can be compared pose by pose (paper Figs. 14–16). Lost homotopy paths of the metric
 //! computation are reported on stderr, in the output, and by exit code 3 (as `curve`).
 
-use super::curve::{EXIT_PATH_FAILURES, parse_metrics, warn_failures, with_threads};
+use super::curve::{check_samples, parse_metrics, pose_count};
+use super::distance::parse_pose;
+use super::failures::warn_failures;
+use super::outcome::Outcome;
+use super::output::{check_output_file, extension, write_file};
+use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -18,7 +23,7 @@ use singdist::index::rpr::{
 };
 use singdist::io::{load_design, load_motion};
 use singdist::mechanism::rpr::{
-    Design, Motion, Pose, PoseList, SampledPose, example_design, example_motion,
+    Design, Motion, PoseList, SampledPose, example_design, example_motion,
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
@@ -39,7 +44,8 @@ pub struct IndicesArgs {
     /// Motion file (poses or analytic motion); default: the built-in example.
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (analytic motions; pose lists are used as given).
+    /// Number of poses evenly spaced in τ (analytic motions; pose lists are used as given);
+    /// at most 1,000,000, and poses × metrics at most 100,000 with metric distances.
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
     /// Table of every index along the motion: `.csv` or `.json` (default: CSV on stdout).
@@ -75,7 +81,8 @@ pub struct IndicesArgs {
     /// Seed of every random choice of the metric computation (as `curve --seed`).
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
-    /// Worker threads of the metric computation (default: all cores).
+    /// Worker threads of the metric computation (default: all cores; more than the
+    /// cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// CSV of the plotted data: τ and every curve divided by its maximum along the
@@ -89,7 +96,7 @@ pub struct IndicesArgs {
 
 /// Runs `singdist compare`: `indices` with the metric distances (all nine unless
 /// `--with-metrics` names some).
-pub fn run_compare(mut args: IndicesArgs) -> Result<()> {
+pub fn run_compare(mut args: IndicesArgs) -> Result<Outcome> {
     if args.with_metrics.is_none() {
         args.with_metrics = Some(vec!["all".to_string()]);
     }
@@ -97,7 +104,7 @@ pub fn run_compare(mut args: IndicesArgs) -> Result<()> {
 }
 
 /// Runs `singdist indices`.
-pub fn run(args: IndicesArgs) -> Result<()> {
+pub fn run(args: IndicesArgs) -> Result<Outcome> {
     let ds: DsAggregate = args.ds.parse().context("--ds")?;
     let cn: CnVariant = args.cn.parse().context("--cn")?;
     if !args.cylinder_half_width.is_finite() || args.cylinder_half_width < 0.0 {
@@ -148,7 +155,23 @@ pub fn run(args: IndicesArgs) -> Result<()> {
     if args.poses == 0 {
         bail!("--poses: expected at least 1");
     }
+    let count = pose_count(&motion, args.poses);
+    check_pose_count(count, MAX_POSES, "every row stays in memory until the end")?;
+    check_metric_pose_count(count, metrics.len())?;
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
+    check_samples(args.motion.as_deref(), &samples)?;
+    if let Some(path) = &args.out {
+        check_output_file("--out", path, &["csv", "json"])?;
+    }
+    if let Some(path) = &args.plot {
+        check_output_file("--plot", path, &["svg"])?;
+        if samples.len() < 2 {
+            bail!("--plot: need at least 2 poses, got {}", samples.len());
+        }
+    }
+    if let Some(path) = &args.plot_data {
+        check_output_file("--plot-data", path, &["csv"])?;
+    }
     let curve = metric_curve(&design, &motion, args.poses, &metrics, &args)?;
     let table = motion_table(&design, &samples, &options, curve.as_ref(), &metrics)?;
     match &args.out {
@@ -167,15 +190,12 @@ pub fn run(args: IndicesArgs) -> Result<()> {
     finish(curve.as_ref())
 }
 
-/// Warns about lost paths of the metric computation and exits with
-/// [`EXIT_PATH_FAILURES`] if there were any (after every output was written).
-fn finish(curve: Option<&CurveResult>) -> Result<()> {
-    if let Some(curve) = curve
-        && warn_failures(&curve.failures)
-    {
-        std::process::exit(EXIT_PATH_FAILURES);
-    }
-    Ok(())
+/// Warns about lost paths of the metric computation (after every output was written);
+/// [`Outcome::PathsLost`] if there were any.
+fn finish(curve: Option<&CurveResult>) -> Result<Outcome> {
+    Ok(Outcome::paths_lost_if(
+        curve.is_some_and(|curve| warn_failures(&curve.failures)),
+    ))
 }
 
 /// The metric distances along the motion ([`compute_curve`] with the `curve` command's
@@ -313,22 +333,6 @@ fn motion_table(
     })
 }
 
-fn parse_pose(text: &str) -> Result<Pose> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
-        bail!("--pose: expected x,y,phi (three numbers), got `{text}`");
-    }
-    let mut v = [0.0; 3];
-    for (k, (part, name)) in parts.iter().zip(["x", "y", "phi"]).enumerate() {
-        v[k] = part
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .with_context(|| format!("--pose: {name}: expected a finite number, got `{part}`"))?;
-    }
-    Ok(Pose::new(v[0], v[1], v[2]))
-}
-
 /// Column headers with the variant named where a Choice was made; then per metric
 /// `NAME` (distance) and `NAME_signed` (signed distance), and `metric_failures`.
 fn headers(options: &IndexOptions, metric_names: &[String]) -> Vec<String> {
@@ -431,11 +435,7 @@ fn metrics_json(
 }
 
 fn write_table(path: &Path, table: &Table, options: &IndexOptions) -> Result<()> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let text = match extension.as_deref() {
+    let text = match extension(path).as_deref() {
         Some("csv") => csv_text(table, options)?,
         Some("json") => {
             let rows: Vec<serde_json::Value> = table
@@ -469,7 +469,7 @@ fn write_table(path: &Path, table: &Table, options: &IndexOptions) -> Result<()>
             path.display()
         ),
     };
-    std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
+    write_file("--out", path, text)
 }
 
 fn single_pose_json(
@@ -595,8 +595,7 @@ fn write_plot_data(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result
         writer.write_record(&record)?;
     }
     let text = String::from_utf8(writer.into_inner()?)?;
-    std::fs::write(path, text)
-        .with_context(|| format!("--plot-data {}: cannot write", path.display()))
+    write_file("--plot-data", path, text)
 }
 
 /// Parameter values where S changes sign (linear interpolation) or vanishes.

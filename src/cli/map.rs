@@ -1,10 +1,12 @@
 //! `singdist map`: conditioning maps of the 3RRR and 3-PRRR (SPEC D.4, seed 001).
 
+use super::output::check_output_file;
 use anyhow::{Context, bail};
 use clap::Args;
 use singdist::index::map::{MapOptions, ModeSelection, conditioning_map};
 use singdist::index::prrr::LciVariant;
 use singdist::mechanism::prrr::{PrrrDesign, Robot, parse_modes};
+use singdist::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use std::path::PathBuf;
 
 /// Arguments of `singdist map`.
@@ -60,8 +62,10 @@ fn parse_range(text: &str, option: &str) -> anyhow::Result<(f64, f64)> {
     let hi: f64 = hi
         .parse()
         .with_context(|| format!("--{option}: upper bound `{hi}`"))?;
-    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-        bail!("--{option}: [{lo}, {hi}] must be finite with lo < hi");
+    if !(within_input_range(lo) && within_input_range(hi) && lo < hi) {
+        bail!(
+            "--{option}: [{lo}, {hi}] must be finite, within ±{MAX_INPUT_MAGNITUDE:e}, with lo < hi"
+        );
     }
     Ok((lo, hi))
 }
@@ -103,6 +107,12 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
         modes,
         variant,
     };
+    if let Some(path) = &args.csv {
+        check_output_file("--csv", path, &["csv"])?;
+    }
+    if let Some(path) = &args.out {
+        check_output_file("--out", path, &["svg"])?;
+    }
     let start = std::time::Instant::now();
     let map = conditioning_map(&design, &options)?;
     let seconds = start.elapsed().as_secs_f64();

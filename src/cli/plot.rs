@@ -26,15 +26,29 @@ pub struct Layout<'a> {
     pub y_range: (f64, f64),
 }
 
-/// Writes the curves as an SVG file at `path`, marking the singular τ values.
+/// Writes the curves as an SVG file at `path`, marking the singular τ values. The plot
+/// is drawn in memory first, so a failed write leaves no half-written file.
 pub fn plot_against_tau(
     path: &Path,
     layout: &Layout,
     curves: &[Curve],
     singular: &[f64],
 ) -> Result<()> {
-    let root = SVGBackend::new(path, (1100, 700)).into_drawing_area();
-    let draw = |e: DrawingAreaErrorKind<_>| anyhow!("{}: plotting failed: {e:?}", path.display());
+    let mut svg = String::new();
+    draw_against_tau(&mut svg, layout, curves, singular)
+        .map_err(|e| anyhow!("--plot: {}: plotting failed: {e}", path.display()))?;
+    super::output::write_file("--plot", path, svg)
+}
+
+/// Draws the plot of [`plot_against_tau`] into `svg`.
+fn draw_against_tau(
+    svg: &mut String,
+    layout: &Layout,
+    curves: &[Curve],
+    singular: &[f64],
+) -> Result<()> {
+    let root = SVGBackend::with_string(svg, (1100, 700)).into_drawing_area();
+    let draw = |e: DrawingAreaErrorKind<_>| anyhow!("{e}");
     root.fill(&WHITE).map_err(draw)?;
     let (t0, t1) = layout.tau_range;
     let (lo, hi) = layout.y_range;

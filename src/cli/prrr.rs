@@ -1,9 +1,11 @@
 //! `singdist prrr`: 3-PRRR indices at one pose (SPEC D.2) and redundancy resolution (SPEC D.3).
 
+use super::output::{check_writable, write_file};
 use anyhow::{Context, bail};
 use clap::{Args, Subcommand};
 use singdist::index::prrr::{LciVariant, all_indices};
 use singdist::mechanism::prrr::{Pose, PrrrDesign, Robot, parse_modes};
+use singdist::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use singdist::optimize::redundancy::{
     Aggregate, RedundancyProblem, Resolution, Scheme, TaskIndex, Trajectory, resolve,
 };
@@ -100,8 +102,8 @@ pub fn parse_triple(text: &str, option: &str) -> anyhow::Result<[f64; 3]> {
         *value = part
             .parse::<f64>()
             .with_context(|| format!("--{option}: `{part}` is not a number"))?;
-        if !value.is_finite() {
-            bail!("--{option}: `{part}` is not finite");
+        if !within_input_range(*value) {
+            bail!("--{option}: `{part}` must be finite and within ±{MAX_INPUT_MAGNITUDE:e}");
         }
     }
     Ok(out)
@@ -152,8 +154,8 @@ fn run_index(args: IndexArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&value)?);
     } else {
         println!(
-            "preset {} ({robot:?}), pose ({x}, {y}, {alpha}), delta {delta:?}, modes {}",
-            args.preset, args.modes
+            "preset {} ({}), pose ({x}, {y}, {alpha}), delta ({}, {}, {}), modes {}",
+            args.preset, args.robot, delta[0], delta[1], delta[2], args.modes
         );
         println!("lci   1/κ(Ā⁻¹B̄) = {:.6}", indices.lci_inv_a_b);
         println!("lci_a 1/κ(Ā)     = {:.6}", indices.lci_a);
@@ -251,6 +253,12 @@ fn run_resolve(args: ResolveArgs) -> anyhow::Result<()> {
     let indices = choices(&args.index, &TaskIndex::ALL, "index")?;
     let aggregate: Aggregate = args.aggregate.parse().context("--aggregate")?;
     let modes = parse_modes(&args.modes).context("--modes")?;
+    if let Some(path) = &args.out {
+        check_writable("--out", path)?;
+    }
+    if let Some(path) = &args.profile {
+        check_writable("--profile", path)?;
+    }
     let genetic = GeneticOptions {
         population: args.population,
         generations: args.generations,
@@ -355,11 +363,10 @@ fn run_resolve(args: ResolveArgs) -> anyhow::Result<()> {
         } else {
             csv_text()?
         };
-        std::fs::write(path, text).with_context(|| format!("--out {}", path.display()))?;
+        write_file("--out", path, text)?;
     }
     if let Some(path) = &args.profile {
-        std::fs::write(path, profile.into_inner()?)
-            .with_context(|| format!("--profile {}", path.display()))?;
+        write_file("--profile", path, profile.into_inner()?)?;
     }
     if args.json {
         println!("{}", json_text()?);

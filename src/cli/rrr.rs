@@ -7,7 +7,11 @@
 //! - `rrr ab-initio`: computes, certifies and writes the start-solution files
 //!   `rrr-parallel.json`, `rrr-leg1.json` … (or verifies the embedded ones).
 
-use super::curve::with_threads;
+use super::curve::{check_samples, pose_count};
+use super::failures::{lost_paths, warn_failures};
+use super::outcome::Outcome;
+use super::output::{check_output_file, check_output_folder, is_csv, write_file};
+use super::resources::{MAX_RRR_POSES, check_pose_count, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use singdist::io::load_motion;
@@ -22,9 +26,6 @@ use singdist::pipeline::rrr_curve::{
 };
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use std::path::{Path, PathBuf};
-
-/// Exit code of a run that completed but lost paths.
-pub const EXIT_PATH_FAILURES: i32 = 3;
 
 /// `singdist rrr` subcommands.
 #[derive(Subcommand, Debug)]
@@ -46,7 +47,7 @@ pub struct RrrCurveArgs {
     /// circular translation (`systems/rrr_example_motion.json`).
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given).
+    /// Number of poses evenly spaced in τ (pose lists are used as given); at most 100,000.
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
     /// Output table: `.json` (full detail) or `.csv` (the curves).
@@ -55,7 +56,7 @@ pub struct RrrCurveArgs {
     /// SVG plot of the four signed curves and the scaled parallel determinant.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Seed of every random choice (results are identical for any thread count).
@@ -95,10 +96,10 @@ pub struct RrrAbInitioArgs {
 }
 
 /// Runs `singdist rrr …`.
-pub fn run(command: RrrCommand) -> Result<()> {
+pub fn run(command: RrrCommand) -> Result<Outcome> {
     match command {
         RrrCommand::Curve(args) => run_curve(args),
-        RrrCommand::AbInitio(args) => run_ab_initio(args),
+        RrrCommand::AbInitio(args) => run_ab_initio(args).map(|()| Outcome::Complete),
     }
 }
 
@@ -114,12 +115,25 @@ fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTr
     RrrTrajectory::new(design, modes, motion).context("--motion")
 }
 
-fn run_curve(args: RrrCurveArgs) -> Result<()> {
+fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let trajectory = load_trajectory(args.design.as_deref(), args.motion.as_deref())?;
+    let count = pose_count(trajectory.motion(), args.poses);
+    check_pose_count(
+        count,
+        MAX_RRR_POSES,
+        "every pose's critical points stay in memory until the end",
+    )?;
+    check_samples(
+        args.motion.as_deref(),
+        &trajectory.motion().sample(args.poses),
+    )?;
     if let Some(out) = &args.out {
-        match out.extension().and_then(|e| e.to_str()) {
-            Some("json") | Some("csv") => {}
-            _ => bail!("--out: {}: expected a .json or .csv file", out.display()),
+        check_output_file("--out", out, &["json", "csv"])?;
+    }
+    if let Some(plot) = &args.plot {
+        check_output_file("--plot", plot, &["svg"])?;
+        if count < 2 {
+            bail!("--plot: need at least 2 poses, got {}", count);
         }
     }
     let options = RrrCurveOptions {
@@ -138,13 +152,12 @@ fn run_curve(args: RrrCurveArgs) -> Result<()> {
     let elapsed = started.elapsed().as_secs_f64();
     match &args.out {
         Some(path) => {
-            let text = if path.extension().and_then(|e| e.to_str()) == Some("csv") {
+            let text = if is_csv(path) {
                 csv_text(&result)?
             } else {
                 serde_json::to_string_pretty(&result).context("serialising the curve")?
             };
-            std::fs::write(path, text)
-                .with_context(|| format!("--out: {}: cannot write", path.display()))?;
+            write_file("--out", path, text)?;
         }
         None => print_table(&result),
     }
@@ -160,14 +173,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<()> {
             result.paths_tracked as f64 / elapsed.max(1e-9)
         );
     }
-    if !result.failures.is_empty() {
-        eprintln!(
-            "singdist: warning: {} (pose, sub-problem) group(s) lost paths after re-runs (listed under `failures` in the JSON output)",
-            result.failures.len()
-        );
-        std::process::exit(EXIT_PATH_FAILURES);
-    }
-    Ok(())
+    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
 }
 
 fn cell(v: Option<f64>) -> String {
@@ -175,7 +181,8 @@ fn cell(v: Option<f64>) -> String {
 }
 
 /// CSV: `tau, x, y, phi, parallel, leg1, leg2, leg3, distance, nearest,
-/// parallel_determinant_abs_scaled`.
+/// parallel_determinant_abs_scaled, lost_paths` (`lost_paths`: paths lost at that pose
+/// plus those lost at the seed, which affect every pose).
 pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -190,6 +197,7 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
         "distance",
         "nearest",
         "parallel_determinant_abs_scaled",
+        "lost_paths",
     ])?;
     for p in &result.poses {
         writer.write_record([
@@ -204,6 +212,7 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
             cell(p.distance),
             p.nearest.clone().unwrap_or_default(),
             p.parallel_determinant_abs_scaled.to_string(),
+            lost_paths(&p.failures, &result.failures).to_string(),
         ])?;
     }
     let bytes = writer.into_inner().context("writing CSV")?;
@@ -320,6 +329,9 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
     };
     options.monodromy.trace_test = !args.no_trace_test;
     options.monodromy.max_stagnant_loops = args.stagnant_loops;
+    if let Some(dir) = &args.out_dir {
+        check_output_folder("--out-dir", dir, false)?;
+    }
     for kind in kinds {
         let problem = RrrProblem::new(kind)?;
         if args.verify {
@@ -363,12 +375,14 @@ fn print_summary(
     started: std::time::Instant,
 ) {
     println!(
-        "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {:?}, {} loops, {} failed paths, passed {}) in {:.1} s",
+        "{}: {} solutions, max residual {:.2e}, certificate {} (trace residual {}, {} loops, {} failed paths, passed {}) in {:.1} s",
         file.problem,
         file.solutions.len(),
         file.max_residual,
         file.certificate.kind,
-        file.certificate.trace_residual,
+        file.certificate
+            .trace_residual
+            .map_or("not run".to_string(), |t| format!("{t:.1e}")),
         file.certificate.loops,
         file.certificate.failed_paths,
         file.certificate.passed,
@@ -383,6 +397,5 @@ fn write_start_file(
 ) -> Result<()> {
     let path = dir.join(format!("{}.json", kind.file_stem()));
     let text = serde_json::to_string(file).context("serialising start solutions")?;
-    std::fs::write(&path, text)
-        .with_context(|| format!("--out-dir: {}: cannot write", path.display()))
+    write_file("--out-dir", &path, text)
 }

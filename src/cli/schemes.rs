@@ -6,6 +6,7 @@
 //! [`singdist::index::actuation::ExampleGeometry`]: base radius 5, `(a, b, c) = (1.5, 3.0, 3.5)`,
 //! grid `[−5, 5]²`, positive working modes, no joint limits.
 
+use super::output::{check_output_file, write_file};
 use anyhow::{Context, bail};
 use clap::Args;
 use singdist::index::actuation::{
@@ -180,6 +181,12 @@ pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
         hw = half_width,
     );
 
+    if let Some(path) = &args.out {
+        check_output_file("--out", path, &["csv", "json"])?;
+    }
+    if let Some(path) = &args.plot {
+        check_output_file("--plot", path, &["svg"])?;
+    }
     let mut rows = Vec::new();
     let mut maps: Vec<LociMap> = Vec::new();
     for &deg in &orientations_deg {
@@ -352,15 +359,14 @@ fn write_table(path: &std::path::Path, rows: &[Row]) -> anyhow::Result<()> {
     match extension.as_str() {
         "json" => {
             let text = serde_json::to_string_pretty(rows)?;
-            std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))?;
+            write_file("--out", path, text)?;
         }
         "csv" => {
-            let mut writer = csv::Writer::from_path(path)
-                .with_context(|| format!("writing {}", path.display()))?;
+            let mut writer = csv::Writer::from_writer(Vec::new());
             for row in rows {
                 writer.serialize(row)?;
             }
-            writer.flush()?;
+            write_file("--out", path, writer.into_inner()?)?;
         }
         other => bail!(
             "--out {}: unknown extension `{other}` (use .csv or .json)",

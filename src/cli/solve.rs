@@ -1,16 +1,20 @@
 //! `singdist solve`: all isolated solutions of a square polynomial system in a Bertini
 //! input file, by the total-degree homotopy (default) or by monodromy with a trace test
-//! on the constant-term family (`--monodromy`).
+//! on the constant-term family (`--monodromy`). Exit code 3 when paths failed (listed
+//! with their reasons on stderr).
 
+use super::outcome::Outcome;
+use super::resources::thread_count;
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
 use singdist::C64;
 use singdist::homotopy::{
-    MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary, solve_by_monodromy,
-    solve_total_degree,
+    FailureReason, MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary,
+    solve_by_monodromy, solve_total_degree,
 };
 use singdist::system::{System, bertini};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -22,7 +26,7 @@ pub struct SolveArgs {
     /// Print `{"summary": …, "solutions": […]}` as JSON instead of the text summary.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long)]
     pub threads: Option<usize>,
     /// Seed of every random choice; the same seed gives the same result on any
@@ -67,8 +71,60 @@ fn status_name(status: PathStatus) -> String {
         PathStatus::Nonsingular => "nonsingular".into(),
         PathStatus::Singular => "singular".into(),
         PathStatus::AtInfinity => "at_infinity".into(),
-        PathStatus::Failed(reason) => format!("failed: {reason:?}"),
+        PathStatus::Failed(reason) => format!("failed: {}", reason_name(reason)),
     }
+}
+
+/// The name of a failure reason (as in the `reasons` of `curve`'s failures).
+fn reason_name(reason: FailureReason) -> &'static str {
+    match reason {
+        FailureReason::InvalidStartPoint => "InvalidStartPoint",
+        FailureReason::StepSizeTooSmall => "StepSizeTooSmall",
+        FailureReason::TooManySteps => "TooManySteps",
+        FailureReason::DivergedBeforeEndgame => "DivergedBeforeEndgame",
+        FailureReason::WindingNumberTooLarge => "WindingNumberTooLarge",
+        FailureReason::EndgameDidNotConverge => "EndgameDidNotConverge",
+        FailureReason::NonFiniteValue => "NonFiniteValue",
+        FailureReason::CorrectorDidNotConverge => "CorrectorDidNotConverge",
+    }
+}
+
+/// Prints a one-line warning listing the failed paths with their reasons; returns
+/// whether any path failed.
+fn warn_failed_paths(result: &SolveResult) -> bool {
+    let failed: Vec<(usize, FailureReason)> = result
+        .paths
+        .iter()
+        .filter_map(|p| match p.status {
+            PathStatus::Failed(reason) => Some((p.path_index, reason)),
+            _ => None,
+        })
+        .collect();
+    if failed.is_empty() {
+        return false;
+    }
+    let mut reasons: BTreeMap<&str, usize> = BTreeMap::new();
+    for (_, reason) in &failed {
+        *reasons.entry(reason_name(*reason)).or_insert(0) += 1;
+    }
+    let reasons: Vec<String> = reasons.iter().map(|(r, n)| format!("{r} {n}")).collect();
+    const SHOWN: usize = 20;
+    let mut paths: Vec<String> = failed
+        .iter()
+        .take(SHOWN)
+        .map(|(j, _)| j.to_string())
+        .collect();
+    if failed.len() > SHOWN {
+        paths.push(format!("… and {} more", failed.len() - SHOWN));
+    }
+    eprintln!(
+        "singdist: warning: {} of {} paths failed ({}): paths {}; solutions may be missing",
+        failed.len(),
+        result.paths.len(),
+        reasons.join(", "),
+        paths.join(", ")
+    );
+    true
 }
 
 fn parse_assignment(text: &str) -> anyhow::Result<(String, C64)> {
@@ -81,7 +137,7 @@ fn parse_assignment(text: &str) -> anyhow::Result<(String, C64)> {
 }
 
 /// Runs `singdist solve`.
-pub fn run(args: SolveArgs) -> anyhow::Result<()> {
+pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| format!("cannot read {}", args.file.display()))?;
     let mut system: System =
@@ -115,8 +171,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<()> {
         ..SolveOptions::default()
     };
     let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = args.threads {
-        anyhow::ensure!(threads >= 1, "--threads must be at least 1");
+    if let Some(threads) = thread_count(args.threads)? {
         builder = builder.num_threads(threads);
     }
     let pool = builder.build().context("cannot start the thread pool")?;
@@ -184,7 +239,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<()> {
         text.push_str(&format!("time          {seconds:.3} s\n"));
         emit(&text)?;
     }
-    Ok(())
+    Ok(Outcome::paths_lost_if(warn_failed_paths(&result)))
 }
 
 /// Writes to standard output; a closed pipe (`| head`) ends quietly.

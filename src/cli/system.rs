@@ -1,5 +1,6 @@
 //! `singdist system`: inspect and convert polynomial system files.
 
+use super::output::{check_writable, write_file};
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
 use singdist::system::{System, bertini, phc};
@@ -93,6 +94,9 @@ pub fn run(command: SystemCommand) -> anyhow::Result<()> {
             out,
             set,
         } => {
+            if let Some(path) = &out {
+                check_writable("--out", path)?;
+            }
             let system = read_system(&file, from)?;
             let mut values = Vec::new();
             for assignment in &set {
@@ -115,8 +119,7 @@ pub fn run(command: SystemCommand) -> anyhow::Result<()> {
                 Format::Phc => phc::write(&system, &values)?,
             };
             match out {
-                Some(path) => std::fs::write(&path, text)
-                    .with_context(|| format!("cannot write {}", path.display()))?,
+                Some(path) => write_file("--out", &path, text)?,
                 None => print!("{text}"),
             }
             Ok(())

@@ -15,6 +15,7 @@
 //! Homogenisation: `Ā` divides the third column of A by `L_c`, `B̄` multiplies the prismatic
 //! columns by `p/(2π)` (pitch p per turn).
 
+use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use nalgebra::{Matrix3, SMatrix};
 use std::f64::consts::PI;
 use thiserror::Error;
@@ -244,9 +245,10 @@ impl PrrrDesign {
         ];
         for (field, values) in angles {
             if values.iter().any(|v| !v.is_finite()) {
+                let list: Vec<String> = values.iter().map(f64::to_string).collect();
                 return Err(PrrrError::InvalidDesign {
                     field,
-                    reason: format!("{values:?} must be finite"),
+                    reason: format!("[{}] must be finite", list.join(", ")),
                 });
             }
         }
@@ -311,24 +313,31 @@ impl PrrrDesign {
     /// `(μ_i, ρ_i) = C_i − A_i`, `θ_i = atan2(ρ_i, μ_i) + σ_i acos((μ_i²+ρ_i²+l_1²−l_2²)/(2 l_1 √(μ_i²+ρ_i²)))`,
     /// `B_i = A_i + l_1 e(θ_i)`, `β_i = atan2(C_i − B_i)`.
     /// Errors: [`PrrrError::Unreachable`] when the acos argument leaves [−1, 1];
-    /// [`PrrrError::InvalidInput`] for non-finite pose or δ. Never returns NaN. Allocation-free.
+    /// [`PrrrError::InvalidInput`] for a non-finite pose or δ, or one beyond
+    /// ±[`MAX_INPUT_MAGNITUDE`]. Never returns NaN. Allocation-free.
     pub fn inverse_kinematics(
         &self,
         pose: &Pose,
         delta: &[f64; 3],
         modes: &[WorkingMode; 3],
     ) -> Result<PrrrConfiguration, PrrrError> {
-        if !(pose.x.is_finite() && pose.y.is_finite() && pose.alpha.is_finite()) {
-            return Err(PrrrError::InvalidInput {
-                field: "pose",
-                reason: format!("{pose:?} must be finite"),
-            });
-        }
-        if delta.iter().any(|d| !d.is_finite()) {
-            return Err(PrrrError::InvalidInput {
-                field: "delta",
-                reason: format!("{delta:?} must be finite"),
-            });
+        let inputs = [
+            ("pose", "x", pose.x),
+            ("pose", "y", pose.y),
+            ("pose", "alpha", pose.alpha),
+            ("delta", "[0]", delta[0]),
+            ("delta", "[1]", delta[1]),
+            ("delta", "[2]", delta[2]),
+        ];
+        for (field, part, value) in inputs {
+            if !within_input_range(value) {
+                return Err(PrrrError::InvalidInput {
+                    field,
+                    reason: format!(
+                        "{part} = {value:e} must be finite and within ±{MAX_INPUT_MAGNITUDE:e}"
+                    ),
+                });
+            }
         }
         let mut configuration = PrrrConfiguration {
             pose: *pose,

@@ -17,6 +17,7 @@
 
 use crate::C64;
 use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
+use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -27,6 +28,14 @@ pub enum RprError {
     #[error("{field}: not a finite number ({value})")]
     NotFinite {
         /// The field, e.g. `base[1].y`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A number is finite but beyond ±[`MAX_INPUT_MAGNITUDE`].
+    #[error("{field}: {value:e} is outside ±{max:e}", max = MAX_INPUT_MAGNITUDE)]
+    OutOfRange {
+        /// The field, e.g. `base[1].x` or `poses[0][0]`.
         field: String,
         /// The offending value.
         value: f64,
@@ -94,6 +103,49 @@ impl From<Design> for DesignFields {
     }
 }
 
+/// Checks that `value` is finite and within ±[`MAX_INPUT_MAGNITUDE`]; the error names
+/// `field()`.
+pub fn check_input_number(field: impl FnOnce() -> String, value: f64) -> Result<(), RprError> {
+    if !value.is_finite() {
+        return Err(RprError::NotFinite {
+            field: field(),
+            value,
+        });
+    }
+    if !within_input_range(value) {
+        return Err(RprError::OutOfRange {
+            field: field(),
+            value,
+        });
+    }
+    Ok(())
+}
+
+/// Every anchor coordinate finite and within ±[`MAX_INPUT_MAGNITUDE`] (checked before
+/// anything else, so a huge coordinate is never mistaken for coincident anchors).
+fn check_anchor_numbers(
+    base: &[Point<f64>; 3],
+    platform: &[Point<f64>; 3],
+) -> Result<(), RprError> {
+    for (part, points) in [("base", base), ("platform", platform)] {
+        for (i, point) in points.iter().enumerate() {
+            for (axis, value) in ["x", "y"].iter().zip(point) {
+                check_input_number(|| format!("{part}[{i}].{axis}"), *value)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks one pose: `x`, `y`, `φ` finite and within ±[`MAX_INPUT_MAGNITUDE`]; errors
+/// name `{field}[k]` (k = 0, 1, 2 for x, y, φ).
+pub fn check_pose(field: &str, pose: Pose) -> Result<(), RprError> {
+    for (k, v) in <[f64; 3]>::from(pose).iter().enumerate() {
+        check_input_number(|| format!("{field}[{k}]"), *v)?;
+    }
+    Ok(())
+}
+
 fn check_part(part: &'static str, points: &[Point<f64>; 3], scale: f64) -> Result<(), RprError> {
     for (i, point) in points.iter().enumerate() {
         for (axis, value) in ["x", "y"].iter().zip(point) {
@@ -134,8 +186,10 @@ impl Design {
     /// Validated design from base anchors `A_i` and platform anchors `P_i`.
     ///
     /// Errors name the field: `base[2].x: not a finite number (NaN)`,
+    /// `base[1].x: 1e308 is outside ±1e12` (checked first),
     /// `platform: collapsed to a point …`.
     pub fn new(base: [Point<f64>; 3], platform: [Point<f64>; 3]) -> Result<Self, RprError> {
+        check_anchor_numbers(&base, &platform)?;
         let scale = base
             .iter()
             .chain(platform.iter())
@@ -554,21 +608,11 @@ impl MotionCoordinate {
 
     fn validate(&self, field: &str) -> Result<(), RprError> {
         for (k, c) in self.polynomial.iter().enumerate() {
-            if !c.is_finite() {
-                return Err(RprError::NotFinite {
-                    field: format!("{field}.polynomial[{k}]"),
-                    value: *c,
-                });
-            }
+            check_input_number(|| format!("{field}.polynomial[{k}]"), *c)?;
         }
         for (j, t) in self.cosines.iter().enumerate() {
             for (k, v) in <[f64; 3]>::from(*t).iter().enumerate() {
-                if !v.is_finite() {
-                    return Err(RprError::NotFinite {
-                        field: format!("{field}.cosines[{j}][{k}]"),
-                        value: *v,
-                    });
-                }
+                check_input_number(|| format!("{field}.cosines[{j}][{k}]"), *v)?;
             }
         }
         Ok(())
@@ -618,8 +662,8 @@ pub struct SampledPose {
 }
 
 impl Motion {
-    /// Checks finiteness of every number, a non-empty pose list and `τ_start < τ_end`;
-    /// errors name the field.
+    /// Checks that every number is finite and within ±[`MAX_INPUT_MAGNITUDE`], a
+    /// non-empty pose list and `τ_start < τ_end`; errors name the field.
     pub fn validate(&self) -> Result<(), RprError> {
         match self {
             Motion::Poses(list) => {
@@ -630,20 +674,15 @@ impl Motion {
                     });
                 }
                 for (j, pose) in list.poses.iter().enumerate() {
-                    for (k, v) in <[f64; 3]>::from(*pose).iter().enumerate() {
-                        if !v.is_finite() {
-                            return Err(RprError::NotFinite {
-                                field: format!("poses[{j}][{k}]"),
-                                value: *v,
-                            });
-                        }
-                    }
+                    check_pose(&format!("poses[{j}]"), *pose)?;
                 }
                 Ok(())
             }
             Motion::Analytic(m) => {
                 let [lo, hi] = m.tau_range;
-                if !lo.is_finite() || !hi.is_finite() || lo >= hi {
+                check_input_number(|| "tau_range[0]".into(), lo)?;
+                check_input_number(|| "tau_range[1]".into(), hi)?;
+                if lo >= hi {
                     return Err(RprError::InvalidMotion {
                         field: "tau_range".into(),
                         reason: format!(
@@ -741,6 +780,18 @@ impl Motion {
             }
         }
     }
+}
+
+/// Checks the poses of a sampled analytic motion (finite coefficients can still give
+/// huge or overflowing values at some τ): each `x`, `y`, `φ` finite and within
+/// ±[`MAX_INPUT_MAGNITUDE`]; errors name the coordinate and τ (`y(tau = 3.5)`).
+pub fn check_sampled_poses(samples: &[SampledPose]) -> Result<(), RprError> {
+    for s in samples {
+        for (name, v) in ["x", "y", "phi"].iter().zip(<[f64; 3]>::from(s.pose)) {
+            check_input_number(|| format!("{name}(tau = {})", s.tau), v)?;
+        }
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------

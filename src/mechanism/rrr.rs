@@ -42,6 +42,7 @@ use crate::algebra::{
     Point as RingPoint, Ring, cross as algebra_cross, difference as algebra_difference,
 };
 use crate::mechanism::rpr::{self, AnalyticMotion, CosineTerm, MotionCoordinate};
+use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use crate::metric::{segment_distance_sq, triangle_distance_sq};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -56,6 +57,14 @@ pub enum RrrError {
     /// A number that must be finite is NaN or infinite.
     #[error("{field} must be finite, got {value}")]
     NonFinite {
+        /// Field path, e.g. `base[1].x` or `pose.phi`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A number is finite but beyond ±[`MAX_INPUT_MAGNITUDE`].
+    #[error("{field}: {value:e} is outside ±{max:e}", max = MAX_INPUT_MAGNITUDE)]
+    OutOfRange {
         /// Field path, e.g. `base[1].x` or `pose.phi`.
         field: String,
         /// The offending value.
@@ -172,15 +181,27 @@ impl RrrPose {
             ("pose.y", self.y),
             ("pose.phi", self.phi),
         ] {
-            if !value.is_finite() {
-                return Err(RrrError::NonFinite {
-                    field: field.to_string(),
-                    value,
-                });
-            }
+            check_number(field, value)?;
         }
         Ok(())
     }
+}
+
+/// `value` finite and within ±[`MAX_INPUT_MAGNITUDE`]; errors name `field`.
+fn check_number(field: &str, value: f64) -> Result<(), RrrError> {
+    if !value.is_finite() {
+        return Err(RrrError::NonFinite {
+            field: field.to_string(),
+            value,
+        });
+    }
+    if !within_input_range(value) {
+        return Err(RrrError::OutOfRange {
+            field: field.to_string(),
+            value,
+        });
+    }
+    Ok(())
 }
 
 /// A validated general planar 3-RRR design (SPEC Part C / D.5).
@@ -194,23 +215,13 @@ pub struct RrrDesign {
 
 fn check_point(field: &str, p: Point) -> Result<(), RrrError> {
     for (axis, value) in [("x", p.x), ("y", p.y)] {
-        if !value.is_finite() {
-            return Err(RrrError::NonFinite {
-                field: format!("{field}.{axis}"),
-                value,
-            });
-        }
+        check_number(&format!("{field}.{axis}"), value)?;
     }
     Ok(())
 }
 
 fn check_length(field: &str, value: f64) -> Result<(), RrrError> {
-    if !value.is_finite() {
-        return Err(RrrError::NonFinite {
-            field: field.to_string(),
-            value,
-        });
-    }
+    check_number(field, value)?;
     if value <= 0.0 {
         return Err(RrrError::NonPositive {
             field: field.to_string(),
@@ -240,7 +251,7 @@ impl RrrDesign {
     /// General design: base joints `O_i` (fixed frame), proximal lengths `|O_iB_i|`, distal
     /// lengths `|B_iC_i|`, platform joints `C_i` in the moving frame (origin = operation point).
     ///
-    /// Errors: any non-finite number, a non-positive length, or two coincident base (or
+    /// Errors: any non-finite number or one beyond ±[`MAX_INPUT_MAGNITUDE`], a non-positive length, or two coincident base (or
     /// platform) joints, naming the field (`base[i].x`, `proximal[i]`, `distal[i]`,
     /// `platform[i].y`, …).
     pub fn new(

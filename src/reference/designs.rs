@@ -8,9 +8,8 @@
 //! base or platform; two coincident anchors; a platform 100 times smaller or larger
 //! than the base. Everything is deterministic for a given seed (ChaCha8 streams).
 //!
-//! Designs with coincident anchors are built as raw anchor arrays: [`Design::new`]
-//! may reject them, [`Design::with_relabelling`] accepts them (see
-//! [`DesignCase::design`] and [`DesignCase::relabelled_design`]).
+//! Designs with coincident anchors are legitimate robots ([`Design::new`] accepts
+//! them; only a part collapsed to a point is rejected).
 
 use crate::algebra::Point;
 use crate::mechanism::rpr::{
@@ -41,15 +40,9 @@ pub struct DesignCase {
 }
 
 impl DesignCase {
-    /// The design as the strict constructor sees it (coincident anchors rejected).
+    /// The validated design.
     pub fn design(&self) -> Result<Design, RprError> {
         Design::new(self.base, self.platform)
-    }
-
-    /// The design with the legs relabelled if two anchors coincide (the labels map
-    /// internal leg `i` to the case's leg `labels[i]`).
-    pub fn relabelled_design(&self) -> Result<(Design, [usize; 3]), RprError> {
-        Design::with_relabelling(self.base, self.platform)
     }
 
     /// [`DesignCase::motion`] as a [`Motion`].
