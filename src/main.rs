@@ -20,6 +20,8 @@ enum Command {
     Curve(cli::curve::CurveArgs),
     /// Singularity distances of a 3-RPR at one pose, in full detail.
     Distance(cli::distance::DistanceArgs),
+    /// Drawing (SVG) of a 3-RPR at one pose with each metric's closest singular configuration.
+    Draw(cli::draw::DrawArgs),
     /// Kinematic performance indices of a 3-RPR along a motion or at one pose.
     Indices(cli::indices::IndicesArgs),
     /// Indices and metric distances side by side (`indices --with-metrics all`).
@@ -48,6 +50,7 @@ fn main() {
     let result = match cli.command {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
+        Command::Draw(args) => cli::draw::run(args),
         Command::Indices(args) => cli::indices::run(args),
         Command::Compare(args) => cli::indices::run_compare(args),
         Command::System(cmd) => cli::system::run(cmd),

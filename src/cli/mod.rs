@@ -4,6 +4,7 @@
 pub mod ab_initio;
 pub mod curve;
 pub mod distance;
+pub mod draw;
 pub mod indices;
 pub mod map;
 pub mod plot;

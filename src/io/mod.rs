@@ -1,6 +1,8 @@
 //! Serde types of every input and output file, and the CSV / JSON / SVG writers.
 
+pub mod draw;
 pub mod rpr;
 pub mod rrr;
+pub mod svg;
 
 pub use rpr::{load_design, load_motion};
