@@ -5,6 +5,7 @@
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use singdist::io::report::{report_html, rpr_report};
 use singdist::io::{load_design, load_motion};
 use singdist::mechanism::rpr::{Design, Motion, example_design, example_motion};
 use singdist::metric::Metric;
@@ -46,6 +47,11 @@ pub struct CurveArgs {
     /// SVG plot of the signed distance curves against τ, singular poses marked.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
+    /// Self-contained HTML report: the curves against τ with a slider on τ, and the
+    /// drawing of the manipulator K and each metric's closest singular configuration K′
+    /// at the chosen τ (no network access needed to view it).
+    #[arg(long, value_name = "FILE.html")]
+    html: Option<PathBuf>,
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -232,6 +238,12 @@ pub fn run(args: CurveArgs) -> Result<()> {
     }
     if let Some(path) = &args.plot {
         plot(path, &result, &metrics, &singular)?;
+    }
+    if let Some(path) = &args.html {
+        let names: Vec<String> = metrics.iter().map(Metric::name).collect();
+        let report = rpr_report(&design, &result, &names, &singular);
+        std::fs::write(path, report_html(&report))
+            .with_context(|| format!("--html: {}: cannot write", path.display()))?;
     }
     if !args.quiet {
         eprintln!(

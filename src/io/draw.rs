@@ -106,9 +106,9 @@ impl Extent {
     /// Grows the box to contain `p` (non-finite points are ignored).
     pub fn include(&mut self, p: [f64; 2]) {
         if p[0].is_finite() && p[1].is_finite() {
-            for axis in 0..2 {
-                self.min[axis] = self.min[axis].min(p[axis]);
-                self.max[axis] = self.max[axis].max(p[axis]);
+            for ((lo, hi), v) in self.min.iter_mut().zip(self.max.iter_mut()).zip(p) {
+                *lo = lo.min(v);
+                *hi = hi.max(v);
             }
         }
     }

@@ -65,6 +65,18 @@ pub fn short(value: f64) -> String {
     }
 }
 
+/// `value` with at most `decimals` digits after the point, trailing zeros dropped and
+/// zero as `0` (for axis labels of plotters charts, whose tick values may be ±1e-17).
+pub fn plain(value: f64, decimals: usize) -> String {
+    let text = number(value, decimals);
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    };
+    if text == "-0" { "0".into() } else { text }
+}
+
 /// Label of an axis tick: `number(value, decimals)`, and plain `0` for zero.
 pub fn tick_label(value: f64, decimals: usize) -> String {
     let text = number(value, decimals);
@@ -174,6 +186,8 @@ mod tests {
         assert_eq!(short(125.2974914), "125.3");
         assert_eq!(short(-0.0859123), "-0.08591");
         assert_eq!(short(0.0), "0");
+        assert_eq!(plain(-2.7e-17, 3), "0");
+        assert_eq!(plain(-0.25, 3), "-0.25");
     }
 
     #[test]
