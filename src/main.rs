@@ -23,9 +23,9 @@ enum Command {
     /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
     /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
     /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
-    /// configuration K′ under a metric PLATFORM/BASE, each part `plate` (anchors move
-    /// freely), `bars` (side lengths may change) or `rigid` (congruent), in the design's
-    /// length unit; signed D carries the sign of S.
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Curve(cli::curve::CurveArgs),
     /// Singularity distances of a 3-RPR at one pose, in full detail.
     ///
@@ -34,9 +34,9 @@ enum Command {
     /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
     /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
     /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
-    /// configuration K′ under a metric PLATFORM/BASE, each part `plate` (anchors move
-    /// freely), `bars` (side lengths may change) or `rigid` (congruent), in the design's
-    /// length unit; signed D carries the sign of S.
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Distance(cli::distance::DistanceArgs),
     /// Drawing (SVG) of a 3-RPR at one pose with each metric's closest singular configuration.
     ///
@@ -45,9 +45,9 @@ enum Command {
     /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
     /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
     /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
-    /// configuration K′ under a metric PLATFORM/BASE, each part `plate` (anchors move
-    /// freely), `bars` (side lengths may change) or `rigid` (congruent), in the design's
-    /// length unit; signed D carries the sign of S.
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Draw(cli::draw::DrawArgs),
     /// Kinematic performance indices of a 3-RPR along a motion or at one pose.
     ///

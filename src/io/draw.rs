@@ -1,8 +1,8 @@
 //! Drawings of a 3-RPR configuration and its closest singular configurations, as SVG
 //! text: the base triangle `a_1 a_2 a_3`, the platform triangle `b_1 b_2 b_3` and the
 //! three legs `a_i b_i` of `K`, and per metric the closest singular configuration `K′`
-//! (Ferrari, Zhang, Roth-Schranz style overlays: one colour and dash pattern per
-//! metric, the distance `D(K, K′)` in the legend).
+//! overlaid (one colour and dash pattern per metric, the distance `D(K, K′)` in the
+//! legend).
 //!
 //! A `K′` of the singularity sub-problem has concurrent or parallel leg lines
 //! (`S(K′) = det[b_i − a_i | a_i × b_i] = 0`, Hunt, "Kinematic geometry of mechanisms",
@@ -726,6 +726,32 @@ mod tests {
             LegMeeting::Direction(d) => assert!(d[0].abs() < 1e-12 && (d[1] - 1.0).abs() < 1e-12),
             other => panic!("expected a direction, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn parallel_leg_lines_are_drawn_as_an_arrow() {
+        let k = [0.0, 0.0, 10.0, 0.0, 4.0, 8.0, 4.0, 3.0, 7.0, 3.0, 5.0, 5.0];
+        // Three vertical legs: parallel leg lines, no meeting point.
+        let parallel = [0.0, 0.0, 3.0, 0.0, 1.0, 2.0, 0.0, 3.0, 3.0, 5.0, 1.0, 7.0];
+        let scene = Scene {
+            title: "parallel legs".into(),
+            configuration: k,
+            overlays: vec![ClosestOverlay {
+                metric: "plate/plate".into(),
+                distance: 3.0,
+                subproblem: "singularity".into(),
+                closest: parallel,
+            }],
+            length_unit: "m".into(),
+        };
+        let svg = scene_svg(&scene, &scene_extent(&scene));
+        assert_eq!(svg.matches(r#"class="meet-direction""#).count(), 1);
+        assert_eq!(svg.matches(r#"<circle class="meet""#).count(), 0);
+        assert!(
+            svg.contains("leg lines parallel, along (0.000, 1.000)"),
+            "{svg}"
+        );
+        std::fs::write(std::env::temp_dir().join("singdist-parallel-legs.svg"), svg).ok();
     }
 
     #[test]
