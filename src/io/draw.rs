@@ -264,7 +264,15 @@ struct Canvas {
 
 impl Canvas {
     fn new(extent: &Extent) -> Self {
-        let (left, top, plot_width, plot_height) = (70.0, 48.0, 600.0, 560.0);
+        Canvas::in_area(extent, (70.0, 48.0, 600.0, 560.0))
+    }
+
+    /// `extent` (padded by 6 %) shown at one scale in the pixel rectangle
+    /// `(left, top, width, height)`.
+    fn in_area(
+        extent: &Extent,
+        (left, top, plot_width, plot_height): (f64, f64, f64, f64),
+    ) -> Self {
         let pad = 0.06 * extent.size();
         let (w, h) = (
             extent.max[0] - extent.min[0] + 2.0 * pad,
@@ -611,7 +619,8 @@ fn axes(out: &mut String, canvas: &Canvas, unit: &str) {
     );
 }
 
-fn legend(out: &mut String, canvas: &Canvas, scene: &Scene) {
+/// Writes the legend right of the drawing; returns the y of its lower end.
+fn legend(out: &mut String, canvas: &Canvas, scene: &Scene) -> f64 {
     let x = canvas.left + canvas.plot_width + 24.0;
     let mut y = canvas.top + 8.0;
     out.push_str("<g id=\"legend\" font-size=\"13\">\n");
@@ -658,8 +667,8 @@ fn legend(out: &mut String, canvas: &Canvas, scene: &Scene) {
         );
         y += 40.0;
     }
-    let _ = y;
     out.push_str("</g>\n");
+    y
 }
 
 /// The scene as a standalone SVG document showing `extent` (pass
@@ -667,37 +676,124 @@ fn legend(out: &mut String, canvas: &Canvas, scene: &Scene) {
 /// share a view).
 pub fn scene_svg(scene: &Scene, extent: &Extent) -> String {
     let canvas = Canvas::new(extent);
-    let mut out = String::new();
+    let mut body = String::new();
     let _ = writeln!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" class="rpr-drawing" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif">"#,
-        px(canvas.width),
-        px(canvas.height)
-    );
-    let _ = writeln!(
-        out,
+        body,
         r##"<rect width="100%" height="100%" fill="#fff"/><text class="title" x="{}" y="26" font-size="17">{}</text>"##,
         px(canvas.left),
         escape(&scene.title)
     );
-    axes(&mut out, &canvas, &scene.length_unit);
+    axes(&mut body, &canvas, &scene.length_unit);
     let _ = writeln!(
-        out,
+        body,
         r#"<clipPath id="plot-area"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath><g clip-path="url(#plot-area)">"#,
         px(canvas.left),
         px(canvas.top),
         px(canvas.plot_width),
         px(canvas.plot_height)
     );
-    draw_configuration(&mut out, &canvas, &scene.configuration);
+    draw_configuration(&mut body, &canvas, &scene.configuration);
     let near = anchors_extent(scene);
     for overlay in &scene.overlays {
-        draw_overlay(&mut out, &canvas, overlay, &near);
+        draw_overlay(&mut body, &canvas, overlay, &near);
     }
-    out.push_str("</g>\n");
-    legend(&mut out, &canvas, scene);
+    body.push_str("</g>\n");
+    let legend_bottom = legend(&mut body, &canvas, scene);
+    let mut height = canvas.height;
+    let area = (
+        canvas.left + canvas.plot_width + 24.0,
+        legend_bottom + 34.0,
+        320.0,
+        250.0,
+    );
+    let zoom = zoom_canvas(&platform_extent(scene), area);
+    if zoom.scale >= ZOOM_AT_LEAST * canvas.scale {
+        height = height.max(area.1 + area.3 + 16.0);
+        zoom_inset(&mut body, scene, &zoom, canvas.scale);
+    }
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" class="rpr-drawing" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif">"#,
+        px(canvas.width),
+        px(height)
+    );
+    out.push_str(&body);
     out.push_str("</svg>\n");
     out
+}
+
+/// A zoom inset is drawn when it enlarges the platform region at least this much.
+const ZOOM_AT_LEAST: f64 = 2.0;
+
+/// The box around the platform anchors of `K` and of each `K′` (and the leg lines'
+/// meeting points near them): the region the zoom inset shows.
+fn platform_extent(scene: &Scene) -> Extent {
+    let mut e = Extent::empty();
+    for k in std::iter::once(&scene.configuration).chain(scene.overlays.iter().map(|o| &o.closest))
+    {
+        for j in 3..6 {
+            e.include(anchor(k, j));
+        }
+    }
+    let (centre, size) = (e.centre(), e.size());
+    for overlay in &scene.overlays {
+        if overlay.subproblem == "singularity"
+            && let LegMeeting::Point(p) = leg_meeting(&overlay.closest)
+            && norm(sub(p, centre)) <= size
+        {
+            e.include(p);
+        }
+    }
+    e
+}
+
+/// The canvas of the zoom inset: `zoom` with a 12 % margin (room for the anchor
+/// labels) in the pixel rectangle `area`.
+fn zoom_canvas(zoom: &Extent, area: (f64, f64, f64, f64)) -> Canvas {
+    let margin = 0.12 * zoom.size();
+    let padded = Extent {
+        min: [zoom.min[0] - margin, zoom.min[1] - margin],
+        max: [zoom.max[0] + margin, zoom.max[1] + margin],
+    };
+    Canvas::in_area(&padded, area)
+}
+
+/// The platform region of the scene enlarged on `canvas`; every
+/// class of the inset is prefixed `zoom-` (and `g#K` becomes `g#K-zoom`) so the main
+/// drawing's elements keep their meaning.
+fn zoom_inset(out: &mut String, scene: &Scene, canvas: &Canvas, main_scale: f64) {
+    let mut inset = String::new();
+    let (l, t, w, h) = (
+        canvas.left,
+        canvas.top,
+        canvas.plot_width,
+        canvas.plot_height,
+    );
+    let _ = writeln!(
+        inset,
+        r##"<text x="{}" y="{}" font-size="13" fill="#444">zoom on the platform (× {}, same units)</text><rect class="frame" x="{}" y="{}" width="{}" height="{}" fill="#fff" stroke="#888"/><clipPath id="zoom-area"><rect x="{3}" y="{4}" width="{5}" height="{6}"/></clipPath><g clip-path="url(#zoom-area)">"##,
+        px(l),
+        px(t - 8.0),
+        number(canvas.scale / main_scale, 1),
+        px(l),
+        px(t),
+        px(w),
+        px(h)
+    );
+    draw_configuration(&mut inset, canvas, &scene.configuration);
+    let near = platform_extent(scene);
+    for overlay in &scene.overlays {
+        draw_overlay(&mut inset, canvas, overlay, &near);
+    }
+    inset.push_str("</g>\n");
+    out.push_str("<g class=\"zoom\">\n");
+    out.push_str(
+        &inset
+            .replace("class=\"", "class=\"zoom-")
+            .replace("id=\"K\"", "id=\"K-zoom\""),
+    );
+    out.push_str("</g>\n");
 }
 
 #[cfg(test)]
@@ -785,6 +881,19 @@ mod tests {
         assert_eq!(svg.matches(r#"class="platform""#).count(), 3);
         assert_eq!(svg.matches(r#"<g class="closest""#).count(), 2);
         assert_eq!(svg.matches(r#"class="degenerate-point""#).count(), 1);
+        // The platform is not small enough for a zoom inset to help.
+        assert_eq!(svg.matches(r#"<g class="zoom">"#).count(), 0);
+        // A platform a tenth of the base's size gets one, with classes of its own.
+        let mut small = scene.clone();
+        small.configuration = [0.0, 0.0, 10.0, 0.0, 4.0, 8.0, 4.0, 3.0, 4.3, 3.0, 4.1, 3.2];
+        for overlay in &mut small.overlays {
+            overlay.closest[6..].copy_from_slice(&small.configuration[6..]);
+        }
+        let svg = scene_svg(&small, &scene_extent(&small));
+        assert_eq!(svg.matches(r#"<g class="zoom">"#).count(), 1);
+        assert_eq!(svg.matches(r#"<g id="K-zoom""#).count(), 1);
+        assert_eq!(svg.matches(r#"<g class="zoom-closest""#).count(), 2);
+        assert_eq!(svg.matches(r#"<g class="closest""#).count(), 2);
         for label in ["a1", "a2", "a3", "b1", "b2", "b3"] {
             assert!(svg.contains(&format!(">{label}</text>")), "{label}");
         }

@@ -263,7 +263,7 @@ const SCRIPT: &str = r#"(function () {
   }
   var hidden = {};
   function applyVisibility() {
-    drawing.querySelectorAll('g.closest').forEach(function (g) {
+    drawing.querySelectorAll('g.closest, g.zoom-closest').forEach(function (g) {
       g.style.display = hidden[g.getAttribute('data-metric')] ? 'none' : '';
     });
     chart.querySelectorAll('polyline.curve').forEach(function (line) {
