@@ -17,12 +17,62 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Singularity-distance curves of a 3-RPR along a motion (the main job).
+    ///
+    /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
+    /// (x, y, φ), position in the design's length unit, φ in radians. K: the
+    /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
+    /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
+    /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Curve(cli::curve::CurveArgs),
     /// Singularity distances of a 3-RPR at one pose, in full detail.
+    ///
+    /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
+    /// (x, y, φ), position in the design's length unit, φ in radians. K: the
+    /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
+    /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
+    /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Distance(cli::distance::DistanceArgs),
+    /// Drawing (SVG) of a 3-RPR at one pose with each metric's closest singular configuration.
+    ///
+    /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
+    /// (x, y, φ), position in the design's length unit, φ in radians. K: the
+    /// configuration (anchors a1..a3 of the base, b1..b3 of the platform). S(K): the
+    /// singularity polynomial det[b_i − a_i | a_i × b_i] (S = 0: leg lines concurrent or
+    /// parallel; unit: length⁴). D(K, K′): the distance to the closest singular
+    /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
+    /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
+    /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
+    Draw(cli::draw::DrawArgs),
     /// Kinematic performance indices of a 3-RPR along a motion or at one pose.
+    ///
+    /// M = |det J| (manipulability, J the inverse Jacobian of unit leg lines); S the
+    /// singularity polynomial (length⁴, S = 0 at singular poses); IR the incircle
+    /// radius of the triangle of the leg lines (length); TI = min_i |cos α_i| with α_i
+    /// the pressure angles (transmission index, 1); DS the pressure-angle index of
+    /// Gómez et al., reconstructed (1); MTI = min(TI, TI*) and MDS = min(DS, DS*), *
+    /// with base and platform exchanged; CN the control number and MCN = 1/√λ_max;
+    /// orientation_distance (rad) and position_distance (length) to the nearest singular
+    /// orientation / position; cylinder_radius the singularity-free cylinder radius.
+    /// τ: the motion parameter; lengths in the design's unit.
     Indices(cli::indices::IndicesArgs),
     /// Indices and metric distances side by side (`indices --with-metrics all`).
+    ///
+    /// M = |det J| (manipulability, J the inverse Jacobian of unit leg lines); S the
+    /// singularity polynomial (length⁴, S = 0 at singular poses); IR the incircle
+    /// radius of the triangle of the leg lines (length); TI = min_i |cos α_i| with α_i
+    /// the pressure angles (transmission index, 1); DS the pressure-angle index of
+    /// Gómez et al., reconstructed (1); MTI = min(TI, TI*) and MDS = min(DS, DS*), *
+    /// with base and platform exchanged; CN the control number and MCN = 1/√λ_max;
+    /// orientation_distance (rad) and position_distance (length) to the nearest singular
+    /// orientation / position; cylinder_radius the singularity-free cylinder radius.
+    /// τ: the motion parameter; lengths in the design's unit.
+    /// D: the metric distances to the closest singular configuration (see `curve --help`).
     Compare(cli::indices::IndicesArgs),
     /// Inspect and export polynomial systems (Bertini input format).
     #[command(subcommand)]
@@ -50,6 +100,7 @@ fn main() {
     let result = match cli.command {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
+        Command::Draw(args) => cli::draw::run(args),
         Command::Indices(args) => cli::indices::run(args),
         Command::Compare(args) => cli::indices::run_compare(args),
         Command::System(cmd) => complete(cli::system::run(cmd)),

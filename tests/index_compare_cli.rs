@@ -207,8 +207,13 @@ fn metric_columns_match_curve_vanish_at_the_singular_pose_and_plot_data_are_scal
         assert!((a - d / max).abs() < 1e-11);
     }
     let svg = std::fs::read_to_string(&svg).unwrap();
-    assert!(svg.contains("D plate/plate (/ ") && svg.contains("divided by its maximum"));
-    assert_eq!(svg.matches("singular pose").count(), 2);
+    assert!(svg.contains(">plate/plate (max ") && svg.contains("divided by its maximum"));
+    // Small multiples: the metric distances have a panel of their own; every panel
+    // marks the two singular poses.
+    assert!(svg.contains(">metric distances D(K, K′)"));
+    let panels = svg.matches(r#"<g class="panel""#).count();
+    assert!(panels >= 2, "{panels} panels");
+    assert_eq!(svg.matches(r#"class="marker""#).count(), 2 * panels);
 }
 
 #[test]

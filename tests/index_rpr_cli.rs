@@ -90,7 +90,35 @@ fn motion_table_plot_and_errors() {
         .collect();
     assert_eq!(s.windows(2).filter(|w| w[0] * w[1] < 0.0).count(), 2);
     let svg = std::fs::read_to_string(&svg_path).unwrap();
-    assert!(svg.contains("<svg") && svg.matches("singular pose").count() == 2);
+    // Small multiples: every panel marks both singular poses and names them once in
+    // its legend, at the τ that `curve` reports (roots of S along the motion, not
+    // interpolated between the 40 samples).
+    let panels = svg.matches(r#"<g class="panel""#).count();
+    assert!(panels >= 3, "{panels} panels");
+    assert_eq!(svg.matches(r#"class="marker""#).count(), 2 * panels);
+    let curve = singdist(&[
+        "curve",
+        "--poses",
+        "3",
+        "--metric",
+        "plate/plate",
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&curve.stdout);
+    let roots: Vec<f64> = stdout
+        .rsplit("singular poses at tau = ")
+        .next()
+        .unwrap()
+        .trim()
+        .split(", ")
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert_eq!(roots.len(), 2, "{stdout}");
+    let legend = format!(
+        "singular pose, S = 0 (τ = {:.4}, {:.4})",
+        roots[0], roots[1]
+    );
+    assert_eq!(svg.matches(&legend).count(), panels, "`{legend}` per panel");
 
     let json_path = temp("indices.json");
     let out = singdist(&[

@@ -9,6 +9,7 @@ use super::resources::{check_metric_pose_count, with_threads};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use singdist::io::report::{report_html, rpr_report};
 use singdist::io::{load_design, load_motion};
 use singdist::mechanism::rpr::{
     Design, Motion, SampledPose, check_sampled_poses, example_design, example_motion,
@@ -50,6 +51,11 @@ pub struct CurveArgs {
     /// SVG plot of the signed distance curves against τ, singular poses marked.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
+    /// Self-contained HTML report: the curves against τ with a slider on τ, and the
+    /// drawing of the manipulator K and each metric's closest singular configuration K′
+    /// at the chosen τ (no network access needed to view it).
+    #[arg(long, value_name = "FILE.html")]
+    html: Option<PathBuf>,
     /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -133,6 +139,9 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
             bail!("--plot: need at least 2 poses, got {}", samples.len());
         }
     }
+    if let Some(html) = &args.html {
+        check_output_file("--html", html, &["html"])?;
+    }
     let options = CurveOptions {
         seed: args.seed,
         chain_length: args.chain,
@@ -198,6 +207,11 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     }
     if let Some(path) = &args.plot {
         plot(path, &result, &metrics, &singular)?;
+    }
+    if let Some(path) = &args.html {
+        let names: Vec<String> = metrics.iter().map(Metric::name).collect();
+        let report = rpr_report(&design, &result, &names, &singular);
+        write_file("--html", path, report_html(&report))?;
     }
     if !args.quiet {
         eprintln!(

@@ -9,8 +9,11 @@ use super::outcome::Outcome;
 use super::resources::with_threads;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use singdist::mechanism::rpr::{Motion, Pose, PoseList, check_input_number};
-use singdist::pipeline::curve::{CurveOptions, compute_curve, default_start_solutions};
+use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, check_input_number};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{
+    CurveOptions, CurveResult, compute_curve, default_start_solutions,
+};
 use std::path::PathBuf;
 
 /// Arguments of `singdist distance`.
@@ -56,27 +59,55 @@ pub fn parse_pose(text: &str) -> Result<Pose> {
     Ok(Pose::new(values[0], values[1], values[2]))
 }
 
+/// The curve pipeline on the single pose `pose` (what `distance` prints and `draw`
+/// draws): one [`PoseResult`](singdist::pipeline::curve::PoseResult) in `poses`.
+pub fn solve_pose(
+    design: &Design,
+    pose: Pose,
+    metrics: &[Metric],
+    seed: u64,
+    threads: Option<usize>,
+) -> Result<CurveResult> {
+    let motion = Motion::Poses(PoseList { poses: vec![pose] });
+    let options = CurveOptions {
+        seed,
+        ..CurveOptions::default()
+    };
+    with_threads(threads, || {
+        compute_curve(
+            design,
+            &motion,
+            1,
+            metrics,
+            &options,
+            &default_start_solutions,
+            &|_| {},
+        )
+    })?
+    .map_err(Into::into)
+}
+
+/// The twelve coordinates of a configuration as `a1 (x, y)  a2 (x, y) … b3 (x, y)`.
+pub fn labelled_points(k: &[f64; 12]) -> String {
+    (0..6)
+        .map(|j| {
+            let name = if j < 3 {
+                format!("a{}", j + 1)
+            } else {
+                format!("b{}", j - 2)
+            };
+            format!("{name} ({:.6}, {:.6})", k[2 * j], k[2 * j + 1])
+        })
+        .collect::<Vec<_>>()
+        .join("  ")
+}
+
 /// Runs `singdist distance`.
 pub fn run(args: DistanceArgs) -> Result<Outcome> {
     let pose = parse_pose(&args.pose)?;
     let (design, _) = load_inputs(args.design.as_deref(), None)?;
     let metrics = parse_metrics(&args.metric)?;
-    let motion = Motion::Poses(PoseList { poses: vec![pose] });
-    let options = CurveOptions {
-        seed: args.seed,
-        ..CurveOptions::default()
-    };
-    let result = with_threads(args.threads, || {
-        compute_curve(
-            &design,
-            &motion,
-            1,
-            &metrics,
-            &options,
-            &default_start_solutions,
-            &|_| {},
-        )
-    })??;
+    let result = solve_pose(&design, pose, &metrics, args.seed, args.threads)?;
     let Some(at) = result.poses.first() else {
         bail!("no result for the pose");
     };
@@ -109,15 +140,7 @@ pub fn run(args: DistanceArgs) -> Result<Outcome> {
                 m.subproblem,
                 if m.cut_locus { " [cut locus]" } else { "" }
             );
-            println!(
-                "{:>14}K' = [{}]",
-                "",
-                m.closest
-                    .iter()
-                    .map(|v| format!("{v:.6}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
+            println!("{:>14}closest K' = {}", "", labelled_points(&m.closest));
             for (sub, d) in &m.subproblems {
                 println!(
                     "{:>14}{sub}: {} ({} real of {} finite / {} expected)",

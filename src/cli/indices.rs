@@ -21,6 +21,7 @@ use singdist::index::rpr::{
     CnVariant, DEFAULT_CYLINDER_HALF_WIDTH, DsAggregate, INDEX_COLUMN_NAMES, IndexOptions,
     RprIndices, compute_indices, index_columns,
 };
+use singdist::io::chart::{Chart, Panel};
 use singdist::io::{load_design, load_motion};
 use singdist::mechanism::rpr::{
     Design, Motion, PoseList, SampledPose, example_design, example_motion,
@@ -28,7 +29,7 @@ use singdist::mechanism::rpr::{
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
     CurveOptions, CurveResult, PathFailure, PoseResult, compute_curve, default_start_solutions,
-    sample_motion,
+    sample_motion, singular_parameters,
 };
 use singdist::pipeline::postprocess::MetricDistance;
 use std::collections::BTreeMap;
@@ -181,7 +182,8 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     if args.plot.is_some() || args.plot_data.is_some() {
         let curves = scaled_curves(&table);
         if let Some(path) = &args.plot {
-            plot(path, &table, &curves)?;
+            let singular = singular_parameters(&design, &motion, &samples);
+            plot(path, &table, &curves, &singular)?;
         }
         if let Some(path) = &args.plot_data {
             write_plot_data(path, &table, &curves)?;
@@ -598,62 +600,73 @@ fn write_plot_data(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result
     write_file("--plot-data", path, text)
 }
 
-/// Parameter values where S changes sign (linear interpolation) or vanishes.
-fn singular_taus(rows: &[Row]) -> Vec<f64> {
-    let mut out = Vec::new();
-    for pair in rows.windows(2) {
-        let (s0, s1) = (pair[0].indices.s, pair[1].indices.s);
-        if s0 == 0.0 {
-            out.push(pair[0].tau);
-        } else if s0 * s1 < 0.0 {
-            out.push(pair[0].tau + (pair[1].tau - pair[0].tau) * s0 / (s0 - s1));
-        }
+/// The panel of an index (small multiples, each curve divided by its maximum):
+/// transmission and pressure-angle indices, manipulability / conditioning, the
+/// index-based singularity distances, and the metric distances D.
+fn panel_of(label: &str) -> usize {
+    match label {
+        "TI" | "MTI" | "DS" | "MDS" | "IR" => 0,
+        "M" | "|S|" | "CN" | "MCN" => 1,
+        "orientation_distance" | "position_distance" | "cylinder_radius" => 2,
+        _ => 3,
     }
-    if let Some(last) = rows.last()
-        && last.indices.s == 0.0
-    {
-        out.push(last.tau);
-    }
-    out
 }
 
-fn plot(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result<()> {
+const PANEL_TITLES: [&str; 4] = [
+    "transmission: TI = min |cos α_i| (pressure angles α_i), DS, their minima MTI, MDS; IR = incircle radius",
+    "manipulability M = |det J|, singularity polynomial |S|, control number CN, MCN = 1/√λ_max",
+    "index-based singularity distances: orientation (rad), position, singularity-free cylinder radius",
+    "metric distances D(K, K′) to the closest singular configuration (platform/base metric)",
+];
+
+fn plot(path: &Path, table: &Table, curves: &[ScaledCurve], singular: &[f64]) -> Result<()> {
     let rows = &table.rows;
     if rows.len() < 2 {
         bail!("--plot: need at least 2 poses");
     }
-    let curves: Vec<super::plot::Curve> = curves
-        .iter()
-        .map(|curve| {
-            // Split at undefined values so gaps stay gaps.
-            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for (row, value) in rows.iter().zip(&curve.values) {
-                match value {
-                    Some(v) => {
-                        if let Some(segment) = segments.last_mut() {
-                            segment.push((row.tau, *v));
-                        }
+    let mut groups: Vec<Vec<super::plot::Curve>> =
+        (0..PANEL_TITLES.len()).map(|_| Vec::new()).collect();
+    for curve in curves {
+        // Split at undefined values so gaps stay gaps.
+        let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+        for (row, value) in rows.iter().zip(&curve.values) {
+            match value {
+                Some(v) => {
+                    if let Some(segment) = segments.last_mut() {
+                        segment.push((row.tau, *v));
                     }
-                    None => segments.push(Vec::new()),
                 }
+                None => segments.push(Vec::new()),
             }
-            super::plot::Curve {
-                label: format!("{} (/ {:.4e})", curve.label, curve.max),
-                segments,
-            }
+        }
+        let label = curve.label.strip_prefix("D ").unwrap_or(&curve.label);
+        groups[panel_of(&curve.label)].push(super::plot::Curve {
+            label: format!("{label} (max {})", singdist::io::svg::short(curve.max)),
+            segments,
+        });
+    }
+    let panels = groups
+        .into_iter()
+        .zip(PANEL_TITLES)
+        .filter(|(group, _)| !group.is_empty())
+        .map(|(group, title)| Panel {
+            title: title.to_string(),
+            y_title: "value / its maximum (1)".into(),
+            series: super::plot::series_of(group),
+            y_range: Some((0.0, 1.05)),
         })
         .collect();
-    let caption = if table.metric_names.is_empty() {
+    let title = if table.metric_names.is_empty() {
         "3-RPR kinematic indices along the motion (each curve divided by its maximum)"
     } else {
         "3-RPR indices and metric distances D along the motion (each curve divided by its maximum)"
     };
-    let layout = super::plot::Layout {
-        caption,
-        y_description: "value / its max along the motion",
+    let chart = Chart {
+        title: title.into(),
+        x_title: super::plot::TAU_AXIS.into(),
         tau_range: (rows[0].tau, rows[rows.len() - 1].tau),
-        y_range: (0.0, 1.05),
+        panels,
+        markers: super::plot::singular_markers(singular),
     };
-    let singular = singular_taus(rows);
-    super::plot::plot_against_tau(path, &layout, &curves, &singular)
+    super::plot::write_chart(path, &chart)
 }

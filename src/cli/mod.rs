@@ -6,6 +6,7 @@
 pub mod ab_initio;
 pub mod curve;
 pub mod distance;
+pub mod draw;
 pub mod failures;
 pub mod indices;
 pub mod map;

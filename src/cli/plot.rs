@@ -1,9 +1,12 @@
-//! SVG line plots against the motion parameter τ, shared by `curve` and `indices`:
-//! labelled curves (split into segments where a value is undefined), a vertical marker
-//! at each singular pose (S = 0), and a legend.
+//! SVG line plots against the motion parameter τ, shared by `curve`, `indices` and
+//! `rrr curve`: thin wrappers around [`singdist::io::chart`] (panels with their own
+//! axes, a colour and dash pattern per curve, legends outside the data, singular poses
+//! marked).
 
-use anyhow::{Result, anyhow};
-use plotters::prelude::*;
+use anyhow::Result;
+use singdist::io::chart::{Chart, Marker, Panel, Series, chart_svg};
+use singdist::io::svg::{metric_style, series_style};
+use singdist::metric::Metric;
 use std::path::Path;
 
 /// One labelled curve: segments of `(τ, value)` points, with gaps between segments.
@@ -14,7 +17,7 @@ pub struct Curve {
     pub segments: Vec<Vec<(f64, f64)>>,
 }
 
-/// Caption, axis text and ranges of a plot.
+/// Caption, axis text and ranges of a one-panel plot.
 pub struct Layout<'a> {
     /// Title above the plot.
     pub caption: &'a str,
@@ -26,90 +29,82 @@ pub struct Layout<'a> {
     pub y_range: (f64, f64),
 }
 
-/// Writes the curves as an SVG file at `path`, marking the singular τ values. The plot
-/// is drawn in memory first, so a failed write leaves no half-written file.
+/// Title of the τ axis.
+pub const TAU_AXIS: &str = "motion parameter τ (as in the motion file)";
+
+/// The series of `curves`: a 3-RPR metric keeps its own style (the same in every
+/// picture), any other curve takes the next free one.
+pub fn series_of(curves: Vec<Curve>) -> Vec<Series> {
+    let metric_names: Vec<String> = Metric::all().iter().map(Metric::name).collect();
+    let mut next = 0;
+    curves
+        .into_iter()
+        .map(|curve| {
+            let name = curve.label.split(' ').next().unwrap_or_default();
+            let style = if metric_names.iter().any(|m| m == name) {
+                metric_style(name)
+            } else {
+                next += 1;
+                series_style(next - 1)
+            };
+            Series {
+                label: curve.label,
+                style,
+                segments: curve.segments,
+            }
+        })
+        .collect()
+}
+
+/// Markers at the singular poses (S = 0).
+pub fn singular_markers(singular: &[f64]) -> Vec<Marker> {
+    singular
+        .iter()
+        .map(|&tau| Marker {
+            tau,
+            label: "singular pose, S = 0".into(),
+            dash: "5 3",
+        })
+        .collect()
+}
+
+/// Writes the chart as an SVG file at `path` (drawn in memory first, so a failed
+/// write leaves no half-written file).
+pub fn write_chart(path: &Path, chart: &Chart) -> Result<()> {
+    super::output::write_file("--plot", path, chart_svg(chart))
+}
+
+/// Writes the curves as a one-panel SVG plot at `path`, marking the singular τ values.
 pub fn plot_against_tau(
     path: &Path,
     layout: &Layout,
     curves: &[Curve],
     singular: &[f64],
 ) -> Result<()> {
-    let mut svg = String::new();
-    draw_against_tau(&mut svg, layout, curves, singular)
-        .map_err(|e| anyhow!("--plot: {}: plotting failed: {e}", path.display()))?;
-    super::output::write_file("--plot", path, svg)
-}
-
-/// Draws the plot of [`plot_against_tau`] into `svg`.
-fn draw_against_tau(
-    svg: &mut String,
-    layout: &Layout,
-    curves: &[Curve],
-    singular: &[f64],
-) -> Result<()> {
-    let root = SVGBackend::with_string(svg, (1100, 700)).into_drawing_area();
-    let draw = |e: DrawingAreaErrorKind<_>| anyhow!("{e}");
-    root.fill(&WHITE).map_err(draw)?;
-    let (t0, t1) = layout.tau_range;
-    let (lo, hi) = layout.y_range;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(layout.caption, ("sans-serif", 20))
-        .margin(15)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(t0.min(t1)..t0.max(t1), lo..hi)
-        .map_err(draw)?;
-    chart
-        .configure_mesh()
-        .x_desc("motion parameter tau")
-        .y_desc(layout.y_description)
-        .draw()
-        .map_err(draw)?;
-    let colors = [
-        BLUE,
-        RED,
-        GREEN,
-        MAGENTA,
-        CYAN,
-        BLACK,
-        full_palette::ORANGE,
-        full_palette::BROWN,
-        full_palette::PURPLE,
-        full_palette::TEAL,
-        full_palette::PINK,
-        full_palette::GREY,
-    ];
-    for (curve, &color) in curves.iter().zip(colors.iter().cycle()) {
-        let mut first = true;
-        for segment in curve.segments.iter().filter(|s| !s.is_empty()) {
-            let series = chart
-                .draw_series(LineSeries::new(segment.clone(), color.stroke_width(2)))
-                .map_err(draw)?;
-            if first {
-                series.label(curve.label.clone()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-                first = false;
-            }
-        }
-    }
-    for &tau in singular {
-        chart
-            .draw_series(LineSeries::new(
-                vec![(tau, lo), (tau, hi)],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(draw)?
-            .label(format!("singular pose (S = 0) at tau = {tau:.4}"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y - 6), (x, y + 6)], BLACK.stroke_width(1)));
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(draw)?;
-    root.present().map_err(draw)?;
-    Ok(())
+    let curves = curves
+        .iter()
+        .map(|c| Curve {
+            label: c.label.clone(),
+            segments: c.segments.clone(),
+        })
+        .collect();
+    // A length axis says its unit; "signed" is explained by the caption and legend.
+    let y_title = if layout.y_description.starts_with("signed distance D") {
+        "signed distance D (design length unit)".to_string()
+    } else {
+        layout.y_description.to_string()
+    };
+    let chart = Chart {
+        title: layout.caption.to_string(),
+        x_title: TAU_AXIS.into(),
+        tau_range: layout.tau_range,
+        panels: vec![Panel {
+            title: String::new(),
+            y_title,
+            series: series_of(curves),
+            y_range: Some(layout.y_range),
+        }],
+        markers: singular_markers(singular),
+    };
+    write_chart(path, &chart)
 }

@@ -14,6 +14,7 @@ use super::output::{check_output_file, check_output_folder, is_csv, write_file};
 use super::resources::{MAX_RRR_POSES, check_pose_count, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
+use singdist::io::chart::{Chart, Marker, Panel};
 use singdist::io::load_motion;
 use singdist::io::rrr::load_rrr_design;
 use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
@@ -268,50 +269,70 @@ fn plot(path: &Path, result: &RrrCurveResult) -> Result<()> {
     let t0 = result.poses[0].tau;
     let t1 = result.poses[result.poses.len() - 1].tau;
     type Getter = fn(&singdist::pipeline::rrr_curve::RrrPoseResult) -> Option<f64>;
-    let series: [(&str, Getter); 6] = [
-        ("parallel (signed)", |p| p.parallel),
-        ("leg 1 (signed)", |p| p.leg1),
-        ("leg 2 (signed)", |p| p.leg2),
-        ("leg 3 (signed)", |p| p.leg3),
-        ("singularity distance (min |value|)", |p| p.distance),
-        ("|parallel determinant| / max", |p| {
-            Some(p.parallel_determinant_abs_scaled)
-        }),
-    ];
-    let mut lo: f64 = 0.0;
-    let mut hi: f64 = 0.0;
-    let curves: Vec<super::plot::Curve> = series
-        .iter()
-        .map(|(label, get)| {
-            let mut segments = vec![Vec::new()];
-            for p in &result.poses {
-                match get(p) {
-                    Some(v) => {
-                        lo = lo.min(v);
-                        hi = hi.max(v);
-                        if let Some(segment) = segments.last_mut() {
-                            segment.push((p.tau, v));
-                        }
+    let curve = |label: &str, get: Getter| {
+        let mut segments = vec![Vec::new()];
+        for p in &result.poses {
+            match get(p) {
+                Some(v) => {
+                    if let Some(segment) = segments.last_mut() {
+                        segment.push((p.tau, v));
                     }
-                    None => segments.push(Vec::new()),
                 }
+                None => segments.push(Vec::new()),
             }
-            super::plot::Curve {
-                label: label.to_string(),
-                segments,
-            }
+        }
+        super::plot::Curve {
+            label: label.to_string(),
+            segments,
+        }
+    };
+    let distances = vec![
+        curve("parallel singularity (signed)", |p| p.parallel),
+        curve("leg 1 singularity (signed)", |p| p.leg1),
+        curve("leg 2 singularity (signed)", |p| p.leg2),
+        curve("leg 3 singularity (signed)", |p| p.leg3),
+        curve("nearest singularity (min |D|)", |p| p.distance),
+    ];
+    let determinant = vec![curve("|det J_parallel| / its maximum", |p| {
+        Some(p.parallel_determinant_abs_scaled)
+    })];
+    let mut markers: Vec<Marker> = result
+        .parallel_singular_parameters
+        .iter()
+        .map(|&tau| Marker {
+            tau,
+            label: "parallel singularity".into(),
+            dash: "5 3",
         })
         .collect();
-    let pad = 0.05 * (hi - lo).max(1e-9);
-    let mut singular = result.parallel_singular_parameters.clone();
-    singular.extend(result.leg_singular_parameters.iter().flatten());
-    let layout = super::plot::Layout {
-        caption: "3-RRR signed distances to parallel and leg singularities",
-        y_description: "signed distance D (all-deformable metric)",
+    for (leg, taus) in result.leg_singular_parameters.iter().enumerate() {
+        markers.extend(taus.iter().map(|&tau| Marker {
+            tau,
+            label: format!("leg {} singularity", leg + 1),
+            dash: ["1 3", "8 3 2 3", "12 3"][leg % 3],
+        }));
+    }
+    let chart = Chart {
+        title: "3-RRR signed distances to parallel and leg singularities along the motion".into(),
+        x_title: super::plot::TAU_AXIS.into(),
         tau_range: (t0, t1),
-        y_range: (lo - pad, hi + pad),
+        panels: vec![
+            Panel {
+                title: "signed distance D, all-deformable metric".into(),
+                y_title: "D (design length unit)".into(),
+                series: super::plot::series_of(distances),
+                y_range: None,
+            },
+            Panel {
+                title: "parallel-singularity determinant (dimensionless)".into(),
+                y_title: "|det J| / max (1)".into(),
+                series: super::plot::series_of(determinant),
+                y_range: Some((0.0, 1.05)),
+            },
+        ],
+        markers,
     };
-    super::plot::plot_against_tau(path, &layout, &curves, &singular)
+    super::plot::write_chart(path, &chart)
 }
 
 fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {

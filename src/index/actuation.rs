@@ -842,11 +842,26 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
     let columns = columns.min(maps.len());
     let rows = maps.len().div_ceil(columns);
     let panel = 300u32;
-    let root =
-        SVGBackend::new(path, (panel * columns as u32, panel * rows as u32)).into_drawing_area();
+    let root = SVGBackend::new(path, (panel * columns as u32, panel * rows as u32 + 40))
+        .into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(e.to_string()))?;
-    let areas = root.split_evenly((rows, columns));
     let grey = RGBColor(215, 215, 215);
+    // Colour key across the top, inside the figure.
+    let (key, body) = root.split_vertically(40);
+    let entries: [(RGBColor, &str); 3] = [
+        (grey, "reachable"),
+        (BLUE, "Type I loci: det J_q = 0 (a leg O_i B_i C_i aligned)"),
+        (RED, "Type II loci: det J_x = 0 (parallel singularity)"),
+    ];
+    let mut x = 10;
+    for (colour, text) in entries {
+        key.draw(&Rectangle::new([(x, 13), (x + 16, 29)], colour.filled()))
+            .map_err(|e| plot_error(e.to_string()))?;
+        key.draw(&Text::new(text, (x + 22, 14), ("sans-serif", 15)))
+            .map_err(|e| plot_error(e.to_string()))?;
+        x += 30 + 8 * text.len() as i32;
+    }
+    let areas = body.split_evenly((rows, columns));
     for (map, area) in maps.iter().zip(areas.iter()) {
         let g = &map.grid;
         let mut chart = ChartBuilder::on(area)
@@ -860,8 +875,8 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
                 ("sans-serif", 14),
             )
             .margin(6)
-            .x_label_area_size(22)
-            .y_label_area_size(30)
+            .x_label_area_size(36)
+            .y_label_area_size(44)
             .build_cartesian_2d(g.x_min..g.x_max, g.y_min..g.y_max)
             .map_err(|e| plot_error(e.to_string()))?;
         chart
@@ -869,6 +884,12 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
             .disable_mesh()
             .x_labels(5)
             .y_labels(5)
+            .x_desc("x (design length unit)")
+            .y_desc("y")
+            .label_style(("sans-serif", 12))
+            .axis_desc_style(("sans-serif", 12))
+            .x_label_formatter(&|v| crate::io::svg::plain(*v, 2))
+            .y_label_formatter(&|v| crate::io::svg::plain(*v, 2))
             .draw()
             .map_err(|e| plot_error(e.to_string()))?;
         let hx = 0.5 * (g.x_max - g.x_min) / (g.nx - 1) as f64;

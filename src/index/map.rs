@@ -492,7 +492,7 @@ fn draw_svg(
     let dx = (o.x_range.1 - o.x_range.0) / (o.nx - 1) as f64;
     let dy = (o.y_range.1 - o.y_range.0) / (o.ny - 1) as f64;
     for ((title, value, (lo, hi)), area) in panels.iter().zip(&areas) {
-        let (main, bar) = area.split_horizontally(size - 70);
+        let (main, bar) = area.split_horizontally(size - 90);
         let mut chart = ChartBuilder::on(&main)
             .caption(title, ("sans-serif", 15))
             .margin(8)
@@ -508,6 +508,10 @@ fn draw_svg(
             .disable_mesh()
             .x_desc("x (m)")
             .y_desc("y (m)")
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 14))
+            .x_label_formatter(&|v| crate::io::svg::plain(*v, 3))
+            .y_label_formatter(&|v| crate::io::svg::plain(*v, 3))
             .draw()
             .map_err(|e| e.to_string())?;
         let span = if hi > lo { hi - lo } else { 1.0 };
@@ -526,7 +530,7 @@ fn draw_svg(
             .margin_top(30)
             .margin_bottom(38)
             .margin_right(8)
-            .y_label_area_size(40)
+            .y_label_area_size(50)
             .build_cartesian_2d(0.0..1.0, *lo..*hi)
             .map_err(|e| e.to_string())?;
         legend
@@ -534,6 +538,8 @@ fn draw_svg(
             .disable_mesh()
             .disable_x_axis()
             .y_labels(6)
+            .label_style(("sans-serif", 13))
+            .y_label_formatter(&|v| crate::io::svg::plain(*v, 3))
             .draw()
             .map_err(|e| e.to_string())?;
         let steps = 100;

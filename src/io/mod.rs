@@ -1,6 +1,10 @@
 //! Serde types of every input and output file, and the CSV / JSON / SVG writers.
 
+pub mod chart;
+pub mod draw;
+pub mod report;
 pub mod rpr;
 pub mod rrr;
+pub mod svg;
 
 pub use rpr::{load_design, load_motion};

@@ -1,0 +1,146 @@
+//! `singdist curve --html`: a self-contained page (no network resources) whose slider
+//! redraws K and each metric's K′, checked in headless Chromium where it is installed
+//! (the browser part is skipped with a note where it is not).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("singdist-report-html-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+fn write_report(path: &Path, metrics: &[&str]) {
+    let mut args = vec![
+        "curve",
+        "--poses",
+        "6",
+        "--quiet",
+        "--html",
+        path.to_str().expect("utf-8 path"),
+        "--metric",
+    ];
+    args.extend_from_slice(metrics);
+    let run = Command::new(env!("CARGO_BIN_EXE_singdist"))
+        .args(&args)
+        .stdout(Stdio::null())
+        .output()
+        .expect("the binary runs");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}
+
+fn chromium() -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    for dir in std::env::split_paths(&path) {
+        for name in ["chromium", "chromium-browser", "google-chrome"] {
+            let candidate = dir.join(name);
+            if candidate.is_file() {
+                return Some(candidate);
+            }
+        }
+    }
+    None
+}
+
+/// `--dump-dom` of `url` in headless Chromium (killed after two minutes). The DOM
+/// goes to a file: it is larger than a pipe's buffer.
+fn dump_dom(browser: &Path, url: &str) -> String {
+    let profile = temp("chromium-profile");
+    let dom_path = temp("dom.html");
+    let dom_file = std::fs::File::create(&dom_path).expect("DOM file");
+    let mut child = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--no-first-run",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg("--dump-dom")
+        .arg(url)
+        .stdout(dom_file)
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("chromium starts");
+    let started = Instant::now();
+    while child.try_wait().expect("wait on chromium").is_none() {
+        if started.elapsed() > Duration::from_secs(120) {
+            let _ = child.kill();
+            panic!("chromium did not finish within 120 s");
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    std::fs::read_to_string(&dom_path).expect("the DOM was dumped")
+}
+
+#[test]
+fn report_page_is_self_contained() {
+    let path = temp("static.html");
+    write_report(&path, &["plate/plate", "bars/rigid"]);
+    let html = std::fs::read_to_string(&path).expect("the page is written");
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    for forbidden in ["<link", " src=", "https://", "url(http", "import("] {
+        assert!(
+            !html.contains(forbidden),
+            "the page refers to an outside resource: `{forbidden}`"
+        );
+    }
+    // Only the SVG namespace URI, which is a name, not a download.
+    let http = html.matches("http://").count();
+    assert_eq!(http, html.matches("http://www.w3.org/2000/svg").count());
+    assert_eq!(html.matches(r#"id="tau-slider""#).count(), 1);
+    assert_eq!(html.matches(r#"<polyline class="curve""#).count(), 2);
+}
+
+#[test]
+fn slider_redraws_the_closest_configurations_in_headless_chromium() {
+    let Some(browser) = chromium() else {
+        println!("note: no chromium on PATH, the headless browser check is skipped");
+        return;
+    };
+    let metrics = ["plate/plate", "bars/rigid", "rigid/rigid"];
+    let path = temp("slider.html");
+    write_report(&path, &metrics);
+    let dom = dump_dom(&browser, &format!("file://{}#test", path.display()));
+    let start = dom
+        .find(r#"<pre id="test-result">"#)
+        .expect("the page was rendered")
+        + r#"<pre id="test-result">"#.len();
+    let end = start + dom[start..].find("</pre>").expect("test result closed");
+    let text = dom[start..end]
+        .replace("&quot;", "\"")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&");
+    assert!(
+        !text.is_empty(),
+        "the test script did not run (a script error before it?)"
+    );
+    let result: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}: {text}"));
+    assert_eq!(result["poses"], 6, "{text}");
+    assert_eq!(result["slider"], 5, "{text}");
+    assert_eq!(result["drawing_changed"], true, "{text}");
+    assert_eq!(result["cursor_moved"], true, "{text}");
+    assert_eq!(result["closest_drawn"], metrics.len(), "{text}");
+    assert_eq!(result["legs_of_k"], 3, "{text}");
+    assert_eq!(
+        result["visible_after_untick"],
+        metrics.len() - 1,
+        "unticking a metric hides its K′: {text}"
+    );
+    assert_eq!(
+        result["errors"],
+        serde_json::json!([]),
+        "console errors: {text}"
+    );
+}
