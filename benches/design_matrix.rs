@@ -22,6 +22,7 @@
 //! - `SINGDIST_MATRIX_SEEDS`: last seed of the seed comparison, seeds 2..=N (default 5; 1 = none);
 //! - `SINGDIST_MATRIX_SEED_CLASSES`: classes of the seed comparison (default
 //!   `random-scale-1,equilateral-both-aligned,tiny-platform`);
+//! - `SINGDIST_MATRIX_COMPARE`: `all` compares the reference at every pose, not five;
 //! - `SINGDIST_MATRIX_REPORT`: defects with `|relative| ≥` this are listed (default 1e-7);
 //! - `SINGDIST_MATRIX_OUT`: file for one JSON line per compared (class, motion, pose, metric).
 
@@ -196,7 +197,11 @@ fn compare_poses(
         };
         d(a).total_cmp(&d(b))
     })?;
-    let mut chosen = vec![0, n - 1, smallest, n / 3, (2 * n) / 3];
+    let mut chosen = if std::env::var("SINGDIST_MATRIX_COMPARE").as_deref() == Ok("all") {
+        (0..n).collect()
+    } else {
+        vec![0, n - 1, smallest, n / 3, (2 * n) / 3]
+    };
     chosen.sort_unstable();
     chosen.dedup();
     let started = Instant::now();
