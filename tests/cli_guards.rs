@@ -129,14 +129,14 @@ fn numbers_beyond_the_input_range_are_refused_with_file_field_and_index() {
 #[test]
 fn errors_print_their_cause_once() {
     let dir = folder("once");
-    let coincident = write(
+    let collapsed = write(
         &dir,
-        "coinc.json",
-        r#"{"base": [[0,0],[0,0],[4,8]], "platform": [[0,0],[3,0],[1,2]]}"#,
+        "collapsed.json",
+        r#"{"base": [[0,0],[10,0],[4,8]], "platform": [[1,2],[1,2],[1,2]]}"#,
     );
-    let r = run(&["curve", "--quiet", "--design", &coincident]);
-    assert_one_line_error(&r, &["coinc.json: base[1]: coincides with base[0]"]);
-    assert_eq!(r.stderr.matches("coincides").count(), 1, "{}", r.stderr);
+    let r = run(&["curve", "--quiet", "--design", &collapsed]);
+    assert_one_line_error(&r, &["collapsed.json: platform: collapsed to a point"]);
+    assert_eq!(r.stderr.matches("collapsed").count(), 2, "{}", r.stderr);
 
     let rrr = write(
         &dir,

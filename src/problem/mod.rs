@@ -20,6 +20,7 @@
 //! (`A1x … B3y`) followed by the shape constants of the rigid parts.
 
 mod build;
+pub mod equilateral;
 pub mod pedal;
 pub mod rrr;
 

@@ -115,7 +115,7 @@ pub fn closest_by_pedal_points(id: ProblemId, k: &[f64; 12]) -> Option<PedalSolu
 /// points' displacements `d_i` ([`Metric::distance_sq`] is a quadratic form in the
 /// displacements and does not depend on `K`), from its values at unit displacements:
 /// `Q_ii = D²(e_i)`, `Q_ij = (D²(e_i + e_j) − Q_ii − Q_jj) / 2` (exact: small rationals).
-fn quadratic_form(metric: Metric) -> [[f64; 6]; 6] {
+pub(super) fn quadratic_form(metric: Metric) -> [[f64; 6]; 6] {
     let origin = [0.0; 12];
     let displaced = |points: &[usize]| {
         let mut k = origin;

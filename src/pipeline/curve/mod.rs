@@ -73,7 +73,7 @@ use crate::homotopy::{
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
 use crate::problem::{
-    Coordinates, LagrangeProblem, ProblemError, ProblemId, pedal, subproblems_of,
+    Coordinates, LagrangeProblem, ProblemError, ProblemId, equilateral, pedal, subproblems_of,
 };
 use crate::random;
 use crate::system::Evaluator;
@@ -1717,10 +1717,13 @@ fn assemble_pose(
         ));
     }
     for &id in &stage.closed_form {
-        let list: Vec<Candidate> = pedal::closest_by_pedal_points(id, k)
-            .map(|solution| Candidate {
-                distance: id.metric.distance(k, &solution.closest),
-                closest: solution.closest,
+        let closest = pedal::closest_by_pedal_points(id, k)
+            .map(|solution| solution.closest)
+            .or_else(|| equilateral::closest_on_circle(id, k));
+        let list: Vec<Candidate> = closest
+            .map(|closest| Candidate {
+                distance: id.metric.distance(k, &closest),
+                closest,
             })
             .into_iter()
             .collect();

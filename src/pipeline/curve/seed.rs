@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::metric::Part;
-use crate::problem::pedal;
+use crate::problem::{equilateral, pedal};
 
 /// One sub-problem prepared at the seed.
 pub struct SeededProblem {
@@ -69,7 +69,8 @@ pub struct SeedStage {
     /// Sub-problems reported as not applicable for this design (SPEC A.6.3).
     pub not_applicable: Vec<String>,
     /// Sub-problems solved in closed form at every pose instead of by homotopy
-    /// ([`crate::problem::pedal`]), in the order of [`problem_ids`].
+    /// ([`crate::problem::pedal`], [`crate::problem::equilateral`]: where the critical
+    /// points are not isolated), in the order of [`problem_ids`].
     pub closed_form: Vec<ProblemId>,
     /// The seed on the complexified motion.
     pub seed: SeedPoint,
@@ -318,9 +319,10 @@ pub fn seed_stage(
         .unwrap_or_else(|| Pose::new(0.0, 0.0, 0.0));
     let normalization = Normalization::of(&to_real(&design.configuration(first_pose).to_array()));
     let k_star = seed_configuration(design, motion, &seed, normalization);
+    let k_first = design.configuration(first_pose).to_array();
     let (closed_form, tracked_ids): (Vec<ProblemId>, Vec<ProblemId>) = problem_ids(metrics)
         .into_iter()
-        .partition(|&id| pedal::has_closed_form(id));
+        .partition(|&id| pedal::has_closed_form(id) || equilateral::on_circle(id, &k_first));
     // Building and compiling the systems in parallel too (about 60 ms in sequence).
     let built: Vec<Result<Option<PreparedProblem>, PipelineError>> = tracked_ids
         .clone()
