@@ -174,3 +174,49 @@ fn curve_reports_its_self_check() {
     assert!(check.worst_relative_difference < 1e-10, "{check:?}");
     assert_ne!(check.seed, result.seed);
 }
+
+/// Both parts equilateral, rotated against each other, and base anchors 1 and 2 only
+/// 10⁻⁴ apart: no lost path, and every distance at most the best of 200 local
+/// minimisations of the independent reference (+1e-9 relative), its closest
+/// configuration feasible.
+#[test]
+fn symmetric_and_close_anchor_designs_match_the_independent_reference() {
+    use singdist::reference::local_search::{ReferenceOptions, reference_distances};
+    let h = 3f64.sqrt() / 2.0;
+    let equilateral = Design::new(
+        [[0.0, 0.0], [10.0, 0.0], [5.0, 10.0 * h]],
+        [[0.0, 0.0], [1.5 + 1.5, 3.0 * h], [-1.5, 3.0 * h]].map(|p| [p[0] - 0.5, p[1] - 1.0]),
+    )
+    .unwrap();
+    let close = Design::new(
+        [[0.0, 0.0], [1e-4, 0.0], [4.0, 8.0]],
+        [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
+    )
+    .unwrap();
+    let metrics = Metric::all();
+    let options = ReferenceOptions::default();
+    for (name, design, metrics) in [
+        ("equilateral", equilateral, &metrics[..]),
+        (
+            "close base 1-2",
+            close,
+            &["plate/rigid", "rigid/rigid"].map(|m| m.parse().unwrap())[..],
+        ),
+    ] {
+        let pose = Pose::new(4.0, 3.5, 0.4);
+        let result = at_poses(&design, &[pose], metrics, 1);
+        assert!(result.failures.is_empty(), "{name}: {:?}", result.failures);
+        let k = design.configuration(pose).to_array();
+        for reference in reference_distances(&design, &k, metrics, &options) {
+            let metric = reference.metric.name();
+            let got = result.poses[0].metrics[&metric].distance;
+            assert!(
+                got <= reference.distance * (1.0 + 1e-9) + 1e-12,
+                "{name} {metric}: pipeline {got} above the reference {}",
+                reference.distance
+            );
+            let closest = result.poses[0].metrics[&metric].closest;
+            assert!(relative(reference.metric.distance(&k, &closest), got) < 1e-9);
+        }
+    }
+}

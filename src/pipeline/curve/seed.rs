@@ -150,7 +150,7 @@ pub(crate) fn split_seed_results<T>(
 
 /// Independent seed points a sub-problem may use (the stage's common one first) to
 /// confirm a finite count below the generic one.
-pub const SEED_POINTS: usize = 3;
+pub const SEED_POINTS: usize = 5;
 
 /// The normalised configuration `N(K(seed)) + δ` of a seed point.
 fn seed_configuration(
