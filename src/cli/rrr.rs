@@ -17,7 +17,9 @@ use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
 use singdist::io::load_motion;
 use singdist::io::rrr::load_rrr_design;
-use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
+use singdist::mechanism::rrr::{
+    EXAMPLE_MODES, RrrMotion, RrrTrajectory, example_design, example_motion,
+};
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
     trace_certificate, verify_rrr_start_solutions,
@@ -35,6 +37,9 @@ pub enum RrrCommand {
     Curve(RrrCurveArgs),
     /// Compute (or verify) the generic start solutions of the four 3-RRR sub-problems.
     AbInitio(RrrAbInitioArgs),
+    /// SVG drawing of the 3-RRR at a pose with its closest parallel-singular and
+    /// leg-singular configurations.
+    Draw(super::rrr_draw::RrrDrawArgs),
 }
 
 /// Arguments of `singdist rrr curve`.
@@ -101,19 +106,26 @@ pub fn run(command: RrrCommand) -> Result<Outcome> {
     match command {
         RrrCommand::Curve(args) => run_curve(args),
         RrrCommand::AbInitio(args) => run_ab_initio(args).map(|()| Outcome::Complete),
+        RrrCommand::Draw(args) => super::rrr_draw::run(args),
     }
 }
 
 fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTrajectory> {
-    let (design, modes) = match design {
-        Some(path) => load_rrr_design(path)?,
-        None => (example_design(), EXAMPLE_MODES),
-    };
     let motion = match motion {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    RrrTrajectory::new(design, modes, motion).context("--motion")
+    trajectory_of(design, motion).context("--motion")
+}
+
+/// The design file's (or the built-in example's) 3-RRR with its working modes, moved
+/// along `motion`.
+pub(super) fn trajectory_of(design: Option<&Path>, motion: RrrMotion) -> Result<RrrTrajectory> {
+    let (design, modes) = match design {
+        Some(path) => load_rrr_design(path)?,
+        None => (example_design(), EXAMPLE_MODES),
+    };
+    Ok(RrrTrajectory::new(design, modes, motion)?)
 }
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
