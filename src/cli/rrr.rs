@@ -16,6 +16,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
 use singdist::io::load_motion;
+use singdist::io::report::{report_html, rrr_report};
 use singdist::io::rrr::load_rrr_design;
 use singdist::mechanism::rrr::{
     EXAMPLE_MODES, RrrMotion, RrrTrajectory, example_design, example_motion,
@@ -25,7 +26,8 @@ use singdist::pipeline::rrr_ab_initio::{
     trace_certificate, verify_rrr_start_solutions,
 };
 use singdist::pipeline::rrr_curve::{
-    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, default_rrr_start_solutions,
+    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, configurations_at,
+    default_rrr_start_solutions,
 };
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use std::path::{Path, PathBuf};
@@ -62,6 +64,11 @@ pub struct RrrCurveArgs {
     /// SVG plot of the four signed curves and the scaled parallel determinant.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
+    /// Self-contained HTML report: the four signed distances against τ with a slider
+    /// on τ, and the drawing of the 3-RRR and its closest singular configurations at
+    /// the chosen τ (no network access needed).
+    #[arg(long, value_name = "FILE.html")]
+    html: Option<PathBuf>,
     /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -149,6 +156,9 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
             bail!("--plot: need at least 2 poses, got {}", count);
         }
     }
+    if let Some(html) = &args.html {
+        check_output_file("--html", html, &["html"])?;
+    }
     let options = RrrCurveOptions {
         seed: args.seed,
         ..RrrCurveOptions::default()
@@ -176,6 +186,18 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     }
     if let Some(path) = &args.plot {
         plot(path, &result)?;
+    }
+    if let Some(path) = &args.html {
+        let taus: Vec<f64> = result.poses.iter().map(|p| p.tau).collect();
+        let configurations: Vec<_> = configurations_at(&trajectory, &taus)?
+            .into_iter()
+            .map(|(_, _, k)| k)
+            .collect();
+        write_file(
+            "--html",
+            path,
+            report_html(&rrr_report(&configurations, &result)),
+        )?;
     }
     if !args.quiet {
         eprintln!(
