@@ -13,7 +13,7 @@ fn temp(name: &str) -> PathBuf {
 }
 
 fn write_report(path: &Path, metrics: &[&str]) {
-    let mut args = vec![
+    let mut args: Vec<&str> = vec![
         "curve",
         "--poses",
         "6",
@@ -23,8 +23,25 @@ fn write_report(path: &Path, metrics: &[&str]) {
         "--metric",
     ];
     args.extend_from_slice(metrics);
+    run_singdist(&args);
+}
+
+/// `rrr curve --poses 6 --html path`.
+fn write_rrr_report(path: &Path) {
+    run_singdist(&[
+        "rrr",
+        "curve",
+        "--poses",
+        "6",
+        "--quiet",
+        "--html",
+        path.to_str().expect("utf-8 path"),
+    ]);
+}
+
+fn run_singdist(args: &[&str]) {
     let run = Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(&args)
+        .args(args)
         .stdout(Stdio::null())
         .output()
         .expect("the binary runs");
@@ -48,11 +65,18 @@ fn chromium() -> Option<PathBuf> {
     None
 }
 
-/// `--dump-dom` of `url` in headless Chromium (killed after two minutes). The DOM
+/// `--dump-dom` of `page` (with the hash `#test`) in headless Chromium (killed after two minutes). The DOM
 /// goes to a file: it is larger than a pipe's buffer.
-fn dump_dom(browser: &Path, url: &str) -> String {
-    let profile = temp("chromium-profile");
-    let dom_path = temp("dom.html");
+fn dump_dom(browser: &Path, page: &Path) -> String {
+    // One profile and DOM file per page: the tests run in parallel.
+    let stem = page
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("page")
+        .to_string();
+    let profile = temp(&format!("chromium-profile-{stem}"));
+    let dom_path = temp(&format!("dom-{stem}.html"));
+    let url = format!("file://{}#test", page.display());
     let dom_file = std::fs::File::create(&dom_path).expect("DOM file");
     let mut child = Command::new(browser)
         .args([
@@ -66,7 +90,7 @@ fn dump_dom(browser: &Path, url: &str) -> String {
         ])
         .arg(format!("--user-data-dir={}", profile.display()))
         .arg("--dump-dom")
-        .arg(url)
+        .arg(&url)
         .stdout(dom_file)
         .stderr(Stdio::null())
         .spawn()
@@ -80,6 +104,28 @@ fn dump_dom(browser: &Path, url: &str) -> String {
         std::thread::sleep(Duration::from_millis(100));
     }
     std::fs::read_to_string(&dom_path).expect("the DOM was dumped")
+}
+
+/// The JSON the page's `#test` mode writes into `<pre id="test-result">`, and its text.
+fn test_result(browser: &Path, path: &Path) -> (serde_json::Value, String) {
+    let dom = dump_dom(browser, path);
+    let start = dom
+        .find(r#"<pre id="test-result">"#)
+        .expect("the page was rendered")
+        + r#"<pre id="test-result">"#.len();
+    let end = start + dom[start..].find("</pre>").expect("test result closed");
+    let text = dom[start..end]
+        .replace("&quot;", "\"")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&");
+    assert!(
+        !text.is_empty(),
+        "the test script did not run (a script error before it?)"
+    );
+    let result: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}: {text}"));
+    (result, text)
 }
 
 #[test]
@@ -110,23 +156,7 @@ fn slider_redraws_the_closest_configurations_in_headless_chromium() {
     let metrics = ["plate/plate", "bars/rigid", "rigid/rigid"];
     let path = temp("slider.html");
     write_report(&path, &metrics);
-    let dom = dump_dom(&browser, &format!("file://{}#test", path.display()));
-    let start = dom
-        .find(r#"<pre id="test-result">"#)
-        .expect("the page was rendered")
-        + r#"<pre id="test-result">"#.len();
-    let end = start + dom[start..].find("</pre>").expect("test result closed");
-    let text = dom[start..end]
-        .replace("&quot;", "\"")
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&amp;", "&");
-    assert!(
-        !text.is_empty(),
-        "the test script did not run (a script error before it?)"
-    );
-    let result: serde_json::Value =
-        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}: {text}"));
+    let (result, text) = test_result(&browser, &path);
     assert_eq!(result["poses"], 6, "{text}");
     assert_eq!(result["slider"], 5, "{text}");
     assert_eq!(result["drawing_changed"], true, "{text}");
@@ -138,6 +168,38 @@ fn slider_redraws_the_closest_configurations_in_headless_chromium() {
         metrics.len() - 1,
         "unticking a metric hides its K′: {text}"
     );
+    assert_eq!(
+        result["errors"],
+        serde_json::json!([]),
+        "console errors: {text}"
+    );
+}
+
+#[test]
+fn rrr_report_is_self_contained_and_its_slider_redraws_in_headless_chromium() {
+    let path = temp("rrr.html");
+    write_rrr_report(&path);
+    let html = std::fs::read_to_string(&path).expect("the page is written");
+    for forbidden in ["<link", " src=", "https://", "url(http", "import("] {
+        assert!(!html.contains(forbidden), "outside resource: `{forbidden}`");
+    }
+    assert_eq!(html.matches(r#"<polyline class="curve""#).count(), 4);
+    for label in ["parallel singular at", "leg 1 singular at"] {
+        assert!(html.contains(label), "marker `{label}`");
+    }
+    let Some(browser) = chromium() else {
+        println!("note: no chromium on PATH, the headless browser check is skipped");
+        return;
+    };
+    let (result, text) = test_result(&browser, &path);
+    assert_eq!(result["poses"], 6, "{text}");
+    assert_eq!(result["slider"], 5, "{text}");
+    assert_eq!(result["drawing_changed"], true, "{text}");
+    assert_eq!(result["cursor_moved"], true, "{text}");
+    // Parallel, leg 1, leg 2, leg 3; K has three proximal and three distal links.
+    assert_eq!(result["closest_drawn"], 4, "{text}");
+    assert_eq!(result["legs_of_k"], 6, "{text}");
+    assert_eq!(result["visible_after_untick"], 3, "{text}");
     assert_eq!(
         result["errors"],
         serde_json::json!([]),

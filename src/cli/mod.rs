@@ -16,6 +16,7 @@ pub mod plot;
 pub mod prrr;
 pub mod resources;
 pub mod rrr;
+pub mod rrr_draw;
 pub mod schemes;
 pub mod solve;
 pub mod system;

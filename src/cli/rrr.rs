@@ -16,14 +16,18 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
 use singdist::io::load_motion;
+use singdist::io::report::{report_html, rrr_report};
 use singdist::io::rrr::load_rrr_design;
-use singdist::mechanism::rrr::{EXAMPLE_MODES, RrrTrajectory, example_design, example_motion};
+use singdist::mechanism::rrr::{
+    EXAMPLE_MODES, RrrMotion, RrrTrajectory, example_design, example_motion,
+};
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
     trace_certificate, verify_rrr_start_solutions,
 };
 use singdist::pipeline::rrr_curve::{
-    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, default_rrr_start_solutions,
+    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, configurations_at,
+    default_rrr_start_solutions,
 };
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use std::path::{Path, PathBuf};
@@ -35,6 +39,9 @@ pub enum RrrCommand {
     Curve(RrrCurveArgs),
     /// Compute (or verify) the generic start solutions of the four 3-RRR sub-problems.
     AbInitio(RrrAbInitioArgs),
+    /// SVG drawing of the 3-RRR at a pose with its closest parallel-singular and
+    /// leg-singular configurations.
+    Draw(super::rrr_draw::RrrDrawArgs),
 }
 
 /// Arguments of `singdist rrr curve`.
@@ -57,6 +64,11 @@ pub struct RrrCurveArgs {
     /// SVG plot of the four signed curves and the scaled parallel determinant.
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
+    /// Self-contained HTML report: the four signed distances against τ with a slider
+    /// on τ, and the drawing of the 3-RRR and its closest singular configurations at
+    /// the chosen τ (no network access needed).
+    #[arg(long, value_name = "FILE.html")]
+    html: Option<PathBuf>,
     /// Worker threads (default: all cores; more than the cores is clamped to them).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -101,19 +113,26 @@ pub fn run(command: RrrCommand) -> Result<Outcome> {
     match command {
         RrrCommand::Curve(args) => run_curve(args),
         RrrCommand::AbInitio(args) => run_ab_initio(args).map(|()| Outcome::Complete),
+        RrrCommand::Draw(args) => super::rrr_draw::run(args),
     }
 }
 
 fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTrajectory> {
-    let (design, modes) = match design {
-        Some(path) => load_rrr_design(path)?,
-        None => (example_design(), EXAMPLE_MODES),
-    };
     let motion = match motion {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    RrrTrajectory::new(design, modes, motion).context("--motion")
+    trajectory_of(design, motion).context("--motion")
+}
+
+/// The design file's (or the built-in example's) 3-RRR with its working modes, moved
+/// along `motion`.
+pub(super) fn trajectory_of(design: Option<&Path>, motion: RrrMotion) -> Result<RrrTrajectory> {
+    let (design, modes) = match design {
+        Some(path) => load_rrr_design(path)?,
+        None => (example_design(), EXAMPLE_MODES),
+    };
+    Ok(RrrTrajectory::new(design, modes, motion)?)
 }
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
@@ -136,6 +155,9 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
         if count < 2 {
             bail!("--plot: need at least 2 poses, got {}", count);
         }
+    }
+    if let Some(html) = &args.html {
+        check_output_file("--html", html, &["html"])?;
     }
     let options = RrrCurveOptions {
         seed: args.seed,
@@ -164,6 +186,18 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     }
     if let Some(path) = &args.plot {
         plot(path, &result)?;
+    }
+    if let Some(path) = &args.html {
+        let taus: Vec<f64> = result.poses.iter().map(|p| p.tau).collect();
+        let configurations: Vec<_> = configurations_at(&trajectory, &taus)?
+            .into_iter()
+            .map(|(_, _, k)| k)
+            .collect();
+        write_file(
+            "--html",
+            path,
+            report_html(&rrr_report(&configurations, &result)),
+        )?;
     }
     if !args.quiet {
         eprintln!(

@@ -121,14 +121,14 @@ impl Extent {
         out
     }
 
-    fn centre(&self) -> [f64; 2] {
+    pub(crate) fn centre(&self) -> [f64; 2] {
         [
             0.5 * (self.min[0] + self.max[0]),
             0.5 * (self.min[1] + self.max[1]),
         ]
     }
 
-    fn size(&self) -> f64 {
+    pub(crate) fn size(&self) -> f64 {
         (self.max[0] - self.min[0])
             .max(self.max[1] - self.min[1])
             .max(1e-12)
@@ -150,7 +150,7 @@ fn anchor(k: &[f64; 12], j: usize) -> [f64; 2] {
     [k[2 * j], k[2 * j + 1]]
 }
 
-fn sub(p: [f64; 2], q: [f64; 2]) -> [f64; 2] {
+pub(crate) fn sub(p: [f64; 2], q: [f64; 2]) -> [f64; 2] {
     [p[0] - q[0], p[1] - q[1]]
 }
 
@@ -158,7 +158,7 @@ fn cross(p: [f64; 2], q: [f64; 2]) -> f64 {
     p[0] * q[1] - p[1] * q[0]
 }
 
-fn norm(p: [f64; 2]) -> f64 {
+pub(crate) fn norm(p: [f64; 2]) -> f64 {
     p[0].hypot(p[1])
 }
 
@@ -214,7 +214,7 @@ pub fn leg_meeting(k: &[f64; 12]) -> LegMeeting {
 
 /// How far (in units of the configurations' own size) a meeting point may lie from
 /// their centre and still be drawn as a point; farther ones become an arrow.
-const NEAR_MEETING: f64 = 1.5;
+pub(crate) const NEAR_MEETING: f64 = 1.5;
 
 fn configuration_extent(k: &[f64; 12]) -> Extent {
     let mut e = Extent::empty();
@@ -250,20 +250,20 @@ pub fn scene_extent(scene: &Scene) -> Extent {
 }
 
 /// Pixel layout of a drawing.
-struct Canvas {
-    width: f64,
-    height: f64,
-    left: f64,
-    top: f64,
-    plot_width: f64,
-    plot_height: f64,
+pub(crate) struct Canvas {
+    pub(crate) width: f64,
+    pub(crate) height: f64,
+    pub(crate) left: f64,
+    pub(crate) top: f64,
+    pub(crate) plot_width: f64,
+    pub(crate) plot_height: f64,
     /// World box shown (already widened to the plot area's aspect ratio).
-    view: Extent,
-    scale: f64,
+    pub(crate) view: Extent,
+    pub(crate) scale: f64,
 }
 
 impl Canvas {
-    fn new(extent: &Extent) -> Self {
+    pub(crate) fn new(extent: &Extent) -> Self {
         Canvas::in_area(extent, (70.0, 48.0, 600.0, 560.0))
     }
 
@@ -296,15 +296,15 @@ impl Canvas {
         }
     }
 
-    fn x(&self, x: f64) -> f64 {
+    pub(crate) fn x(&self, x: f64) -> f64 {
         self.left + (x - self.view.min[0]) * self.scale
     }
 
-    fn y(&self, y: f64) -> f64 {
+    pub(crate) fn y(&self, y: f64) -> f64 {
         self.top + self.plot_height - (y - self.view.min[1]) * self.scale
     }
 
-    fn point(&self, p: [f64; 2]) -> String {
+    pub(crate) fn point(&self, p: [f64; 2]) -> String {
         format!("{},{}", px(self.x(p[0])), px(self.y(p[1])))
     }
 }
@@ -342,7 +342,7 @@ fn legs(out: &mut String, canvas: &Canvas, k: &[f64; 12], attributes: &str) {
     }
 }
 
-fn line(
+pub(crate) fn line(
     out: &mut String,
     canvas: &Canvas,
     class: &str,
@@ -439,7 +439,7 @@ fn overlay_note(overlay: &ClosestOverlay) -> String {
     }
 }
 
-fn arrow(
+pub(crate) fn arrow(
     out: &mut String,
     canvas: &Canvas,
     from: [f64; 2],
@@ -524,7 +524,7 @@ fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &ClosestOverlay, nea
     out.push_str("</g>\n");
 }
 
-fn centroid(points: &[[f64; 2]]) -> [f64; 2] {
+pub(crate) fn centroid(points: &[[f64; 2]]) -> [f64; 2] {
     let n = points.len().max(1) as f64;
     [
         points.iter().map(|p| p[0]).sum::<f64>() / n,
@@ -534,7 +534,12 @@ fn centroid(points: &[[f64; 2]]) -> [f64; 2] {
 
 /// The line through collinear points, drawn between the two farthest apart and 15 %
 /// beyond them.
-fn collinear_line(out: &mut String, canvas: &Canvas, points: &[[f64; 2]], attributes: &str) {
+pub(crate) fn collinear_line(
+    out: &mut String,
+    canvas: &Canvas,
+    points: &[[f64; 2]],
+    attributes: &str,
+) {
     let mut ends = (points[0], points[0], 0.0);
     for (i, p) in points.iter().enumerate() {
         for q in &points[i + 1..] {
@@ -561,7 +566,7 @@ fn degenerate_point(out: &mut String, canvas: &Canvas, p: [f64; 2], style: Serie
     );
 }
 
-fn axes(out: &mut String, canvas: &Canvas, unit: &str) {
+pub(crate) fn axes(out: &mut String, canvas: &Canvas, unit: &str) {
     let (l, t, w, h) = (
         canvas.left,
         canvas.top,

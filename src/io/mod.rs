@@ -5,6 +5,7 @@ pub mod draw;
 pub mod report;
 pub mod rpr;
 pub mod rrr;
+pub mod rrr_draw;
 pub mod svg;
 
 pub use rpr::{load_design, load_motion};

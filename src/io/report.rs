@@ -1,20 +1,25 @@
-//! Self-contained HTML report of a curve: the distance curves against the motion
-//! parameter τ (an SVG chart), a slider on τ, and the drawing of `K` with every
-//! metric's closest singular configuration `K′` at the selected τ, redrawn as the
-//! slider moves. Everything is in the one file: the data as JSON, one pre-rendered
-//! drawing per pose ([`super::draw::scene_svg`], all with one view so the robot does
-//! not jump), and a short hand-written script; no network access is needed.
+//! Self-contained HTML report of a curve (3-RPR or 3-RRR): the distance curves
+//! against the motion parameter τ (an SVG chart), a slider on τ, and the drawing of
+//! `K` with every metric's (3-RRR: every singularity kind's) closest singular
+//! configuration `K′` at the selected τ, redrawn as the slider moves. Everything is in
+//! the one file: the data as JSON, one pre-rendered drawing per pose
+//! ([`super::draw::scene_svg`] or [`super::rrr_draw::rrr_scene_svg`], all with one view
+//! so the robot does not jump), and a short hand-written script; no network access is
+//! needed.
 //!
 //! Opened with the URL hash `#test`, the page moves the slider from the first to the
 //! last pose on load and writes what changed (and any script error) as JSON into
 //! `<pre id="test-result">`, for headless browser tests.
 
 use super::draw::{Extent, Scene, scene_extent, scene_svg};
+use super::rrr_draw::{RrrScene, rrr_scene_extent, rrr_scene_svg, rrr_style};
 use super::svg::{
     SeriesStyle, escape, metric_style, px, short, stroke_attributes, tick_label, ticks,
 };
 use crate::mechanism::rpr::Design;
+use crate::mechanism::rrr::RrrConfiguration;
 use crate::pipeline::curve::CurveResult;
+use crate::pipeline::rrr_curve::{RrrCurveResult, RrrPoseResult};
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -45,8 +50,9 @@ pub struct Report {
     pub poses: Vec<[f64; 3]>,
     /// The curves.
     pub curves: Vec<ReportCurve>,
-    /// Singular parameter values (S = 0), marked on the chart.
-    pub singular: Vec<f64>,
+    /// Singular parameter values with the label of their marker (`S = 0`, …), marked
+    /// on the chart.
+    pub singular: Vec<(f64, String)>,
     /// One SVG drawing per pose.
     pub frames: Vec<String>,
 }
@@ -94,8 +100,65 @@ pub fn rpr_report(
         tau: result.poses.iter().map(|p| p.tau).collect(),
         poses: result.poses.iter().map(|p| p.pose).collect(),
         curves,
-        singular: singular.to_vec(),
+        singular: singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
         frames: scenes.iter().map(|s| scene_svg(s, &view)).collect(),
+    }
+}
+
+/// The report of a 3-RRR curve: the signed distances to the parallel and the three
+/// leg singularities against τ, and per pose the drawing of `K` and each kind's
+/// closest singular `K′`. `configurations` holds `K` at each pose of `result`.
+pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) -> Report {
+    let scenes: Vec<RrrScene> = result
+        .poses
+        .iter()
+        .zip(configurations)
+        .map(|(p, k)| {
+            let mut scene = RrrScene::of_pose(k, p, "design length unit");
+            scene.title = format!("τ = {}: {}", short(p.tau), scene.title);
+            scene
+        })
+        .collect();
+    let view = scenes
+        .iter()
+        .map(rrr_scene_extent)
+        .fold(Extent::empty(), |a, b| a.union(&b));
+    type Getter = fn(&RrrPoseResult) -> Option<f64>;
+    let getters: [(&str, Getter); 4] = [
+        ("parallel", |p| p.parallel),
+        ("leg1", |p| p.leg1),
+        ("leg2", |p| p.leg2),
+        ("leg3", |p| p.leg3),
+    ];
+    let curves = getters
+        .iter()
+        .map(|(name, get)| ReportCurve {
+            label: name.to_string(),
+            style: rrr_style(name),
+            values: result.poses.iter().map(get).collect(),
+        })
+        .collect();
+    let mut singular: Vec<(f64, String)> = result
+        .parallel_singular_parameters
+        .iter()
+        .map(|&t| (t, "parallel singular".to_string()))
+        .collect();
+    for (leg, taus) in result.leg_singular_parameters.iter().enumerate() {
+        singular.extend(
+            taus.iter()
+                .map(|&t| (t, format!("leg {} singular", leg + 1))),
+        );
+    }
+    singular.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Report {
+        title: "3-RRR distance to the parallel and leg singularities along the motion".into(),
+        description: "D(K, K′): distance from the configuration K to the closest singular configuration K′ of each kind under the all-deformable metric (base, platform and six links may all move); parallel: the distal-link lines B′C′ concurrent or parallel, legN: O′, B′, C′ of leg N collinear; each curve signed with its determinant at K; τ: the motion parameter.".into(),
+        y_title: "signed distance D (design length unit)".into(),
+        tau: result.poses.iter().map(|p| p.tau).collect(),
+        poses: result.poses.iter().map(|p| p.pose).collect(),
+        curves,
+        singular,
+        frames: scenes.iter().map(|s| rrr_scene_svg(s, &view)).collect(),
     }
 }
 
@@ -161,16 +224,13 @@ fn chart_svg(report: &Report) -> String {
             tick_label(v, dy)
         );
     }
-    for &tau in &report.singular {
+    for (tau, _) in &report.singular {
         let _ = writeln!(
             out,
-            r##"<line class="singular" x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#444" stroke-dasharray="3 3"/><text x="{3}" y="{4}" font-size="11" fill="#444">S = 0 at τ = {5}</text>"##,
-            px(x(tau)),
+            r##"<line class="singular" x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#444" stroke-dasharray="3 3"/>"##,
+            px(x(*tau)),
             px(top),
             px(top + h),
-            px(x(tau) + 4.0),
-            px(top + 12.0),
-            super::svg::number(tau, 4)
         );
     }
     for curve in &report.curves {
@@ -194,6 +254,20 @@ fn chart_svg(report: &Report) -> String {
             }
         }
         flush(&mut segment, &mut out);
+    }
+    for (k, (tau, label)) in report.singular.iter().enumerate() {
+        // Over the curves, with a white halo; right of their line, or left of it in
+        // the chart's right half; stacked in three rows so neighbours do not overprint.
+        let right_half = x(*tau) > left + 0.5 * w;
+        let _ = writeln!(
+            out,
+            r##"<text class="singular-label" x="{}" y="{}" font-size="11" fill="#444" stroke="#fff" stroke-width="3" paint-order="stroke" text-anchor="{}">{} at τ = {}</text>"##,
+            px(x(*tau) + if right_half { -4.0 } else { 4.0 }),
+            px(top + 12.0 + 13.0 * (k % 3) as f64),
+            if right_half { "end" } else { "start" },
+            escape(label),
+            super::svg::number(*tau, 4)
+        );
     }
     let _ = writeln!(
         out,
@@ -333,7 +407,7 @@ pub fn report_html(report: &Report) -> String {
 </head>
 <body>
 <h1>{title}</h1>
-<p class="description">{description} Move the slider or click the chart to choose τ; untick a metric to hide it.</p>
+<p class="description">{description} Move the slider or click the chart to choose τ; untick a curve to hide it and its K′.</p>
 <div id="layout">
 <div>
 {chart}<div id="controls"><input id="tau-slider" type="range" min="0" max="{last}" step="1" value="0" aria-label="pose along the motion"></div>

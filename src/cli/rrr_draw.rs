@@ -1,0 +1,71 @@
+//! `singdist rrr draw`: an SVG drawing of a 3-RRR at one pose with its closest
+//! parallel-singular and leg-singular configurations overlaid (computed as
+//! `singdist rrr curve` computes them, on the one-pose motion).
+
+use super::distance::parse_pose;
+use super::failures::warn_failures;
+use super::outcome::Outcome;
+use super::output::{check_output_file, write_file};
+use super::resources::with_threads;
+use super::rrr::trajectory_of;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use singdist::io::rrr_draw::{RRR_SUBPROBLEMS, RrrScene, rrr_scene_extent, rrr_scene_svg};
+use singdist::mechanism::rpr::{Motion, PoseList};
+use singdist::pipeline::rrr_curve::{
+    RrrCurveOptions, compute_rrr_curve_at, default_rrr_start_solutions,
+};
+use std::path::PathBuf;
+
+/// Arguments of `singdist rrr draw`.
+#[derive(Args, Debug)]
+pub struct RrrDrawArgs {
+    /// Design file (as for `rrr curve`); default: the built-in example. Lengths are
+    /// drawn in its unit.
+    #[arg(long, value_name = "FILE")]
+    design: Option<PathBuf>,
+    /// The pose `x,y,phi`: platform position (design length unit) and orientation φ
+    /// (radians); the design's working modes choose the elbows.
+    #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
+    pose: String,
+    /// Output drawing (`.svg`).
+    #[arg(long, value_name = "FILE.svg")]
+    out: PathBuf,
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Seed of every random choice.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+}
+
+/// Runs `singdist rrr draw`.
+pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
+    check_output_file("--out", &args.out, &["svg"])?;
+    let pose = parse_pose(&args.pose)?;
+    let motion = Motion::Poses(PoseList { poses: vec![pose] });
+    let trajectory = trajectory_of(args.design.as_deref(), motion).context("--pose")?;
+    let configuration = trajectory.configuration(0.0).context("--pose")?;
+    let options = RrrCurveOptions {
+        seed: args.seed,
+        ..RrrCurveOptions::default()
+    };
+    let result = with_threads(args.threads, || {
+        compute_rrr_curve_at(&trajectory, &[0.0], &options, &default_rrr_start_solutions)
+    })??;
+    let Some(at) = result.poses.first() else {
+        bail!("no result for the pose");
+    };
+    for (name, title) in RRR_SUBPROBLEMS {
+        if at.subproblems.get(name).and_then(|s| s.closest).is_none() {
+            eprintln!("singdist: warning: {title}: no real critical point found, not drawn");
+        }
+    }
+    let scene = RrrScene::of_pose(&configuration, at, "design length unit");
+    write_file(
+        "--out",
+        &args.out,
+        rrr_scene_svg(&scene, &rrr_scene_extent(&scene)),
+    )?;
+    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
+}

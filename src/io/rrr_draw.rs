@@ -1,0 +1,505 @@
+//! Drawings of a 3-RRR configuration and its closest singular configurations, as SVG
+//! text: the base joints `O_i`, elbows `B_i` and platform joints `C_i` of `K`, the base
+//! and platform triangles, the proximal links `O_i B_i` and distal links `B_i C_i`, and
+//! per singularity kind the closest singular configuration `K′` of the all-deformable
+//! metric overlaid (one colour and dash pattern per kind, `D(K, K′)` in the legend).
+//!
+//! A parallel-singular `K′` has concurrent or parallel distal-link lines `B_i′C_i′`
+//! (`det[C_i − B_i | B_i × C_i] = 0`, Gosselin and Angeles, "Singularity analysis of
+//! closed-loop kinematic chains", 1990): their meeting point is marked, or an arrow
+//! shows their common direction. A leg-`i`-singular `K′` has `O_i′, B_i′, C_i′` on one
+//! line (the leg stretched out or folded back): that line is drawn.
+//!
+//! Both axes use one scale, in the design's length unit. Elements carry classes for
+//! tests and styling: `g#K`, `g.closest[data-metric]` (`parallel`, `leg1`, `leg2`,
+//! `leg3`), `polygon.base`, `polygon.platform`, `line.leg.proximal`, `line.leg.distal`,
+//! `circle.meet`, `path.meet-direction`, `line.degenerate-line`, `g#legend`.
+
+use super::draw::{
+    Canvas, Extent, LegMeeting, NEAR_MEETING, arrow, axes, centroid, collinear_line, leg_meeting,
+    line, norm, sub,
+};
+use super::svg::{SeriesStyle, escape, number, px, series_style, short, stroke_attributes};
+use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrConfiguration};
+use crate::pipeline::rrr_curve::RrrPoseResult;
+use std::fmt::Write;
+
+/// The sub-problems in drawing order, with their legend names.
+pub const RRR_SUBPROBLEMS: [(&str, &str); 4] = [
+    ("parallel", "parallel singularity"),
+    ("leg1", "leg 1 singularity"),
+    ("leg2", "leg 2 singularity"),
+    ("leg3", "leg 3 singularity"),
+];
+
+/// Style of a 3-RRR sub-problem (`parallel`, `leg1`, …) by its place in
+/// [`RRR_SUBPROBLEMS`], the same in the drawing and the report's chart.
+pub fn rrr_style(name: &str) -> SeriesStyle {
+    series_style(
+        RRR_SUBPROBLEMS
+            .iter()
+            .position(|(n, _)| *n == name)
+            .unwrap_or(RRR_SUBPROBLEMS.len()),
+    )
+}
+
+/// One sub-problem's closest singular configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RrrOverlay {
+    /// Sub-problem (`parallel`, `leg1`, `leg2`, `leg3`).
+    pub subproblem: String,
+    /// `D(K, K′)`.
+    pub distance: f64,
+    /// `K′`, the 18 coordinates `O1x … C3y`.
+    pub closest: [f64; CONFIGURATION_LEN],
+}
+
+/// What one 3-RRR drawing shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RrrScene {
+    /// Title line above the drawing.
+    pub title: String,
+    /// `K`, the 18 coordinates `O1x … C3y`.
+    pub configuration: [f64; CONFIGURATION_LEN],
+    /// One overlay per sub-problem with a result.
+    pub overlays: Vec<RrrOverlay>,
+    /// The sub-problem nearest to `K` (marked in the legend).
+    pub nearest: Option<String>,
+    /// Name of the length unit for the axes and the legend.
+    pub length_unit: String,
+}
+
+impl RrrScene {
+    /// The scene of one computed pose: `K` (the configuration at the pose) and the
+    /// closest configuration of every sub-problem that has one.
+    pub fn of_pose(
+        configuration: &RrrConfiguration,
+        result: &RrrPoseResult,
+        length_unit: &str,
+    ) -> RrrScene {
+        let overlays = RRR_SUBPROBLEMS
+            .iter()
+            .filter_map(|(name, _)| {
+                let sub = result.subproblems.get(*name)?;
+                Some(RrrOverlay {
+                    subproblem: name.to_string(),
+                    distance: sub.distance?,
+                    closest: sub.closest?,
+                })
+            })
+            .collect();
+        let [x, y, phi] = result.pose;
+        RrrScene {
+            title: format!(
+                "3-RRR at x = {}, y = {}, φ = {} rad; working modes {}",
+                short(x),
+                short(y),
+                short(phi),
+                result
+                    .working_modes
+                    .iter()
+                    .map(|m| if *m < 0 { "−" } else { "+" })
+                    .collect::<Vec<_>>()
+                    .join("")
+            ),
+            configuration: configuration.to_array(),
+            overlays,
+            nearest: result.nearest.clone(),
+            length_unit: length_unit.into(),
+        }
+    }
+}
+
+/// Joint `j` of an 18-vector (`O_1 … O_3` = 0…2, `B_i` = 3…5, `C_i` = 6…8).
+fn joint(k: &[f64; CONFIGURATION_LEN], j: usize) -> [f64; 2] {
+    [k[2 * j], k[2 * j + 1]]
+}
+
+/// The 12-vector `(B_1, B_2, B_3, C_1, C_2, C_3)` of the distal links, in the layout
+/// of [`leg_meeting`].
+fn distal_links(k: &[f64; CONFIGURATION_LEN]) -> [f64; 12] {
+    std::array::from_fn(|j| k[6 + j])
+}
+
+fn configuration_extent(k: &[f64; CONFIGURATION_LEN]) -> Extent {
+    let mut e = Extent::empty();
+    for j in 0..9 {
+        e.include(joint(k, j));
+    }
+    e
+}
+
+fn joints_extent(scene: &RrrScene) -> Extent {
+    scene
+        .overlays
+        .iter()
+        .map(|o| configuration_extent(&o.closest))
+        .fold(configuration_extent(&scene.configuration), |a, b| {
+            a.union(&b)
+        })
+}
+
+/// The box the drawing must show: every joint of `K` and of each `K′`, and the
+/// distal-link lines' meeting points that lie near them.
+pub fn rrr_scene_extent(scene: &RrrScene) -> Extent {
+    let mut e = joints_extent(scene);
+    let (centre, size) = (e.centre(), e.size());
+    for overlay in scene.overlays.iter().filter(|o| o.subproblem == "parallel") {
+        if let LegMeeting::Point(p) = leg_meeting(&distal_links(&overlay.closest))
+            && norm(sub(p, centre)) <= NEAR_MEETING * size
+        {
+            e.include(p);
+        }
+    }
+    e
+}
+
+fn polygon(
+    out: &mut String,
+    canvas: &Canvas,
+    k: &[f64; CONFIGURATION_LEN],
+    first: usize,
+    class: &str,
+    attributes: &str,
+) {
+    let points: Vec<String> = (first..first + 3)
+        .map(|j| canvas.point(joint(k, j)))
+        .collect();
+    let _ = writeln!(
+        out,
+        r#"<polygon class="{class}" points="{}"{attributes}/>"#,
+        points.join(" ")
+    );
+}
+
+fn links(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN], attributes: &str) {
+    for i in 0..3 {
+        for (kind, from, to) in [("proximal", i, 3 + i), ("distal", 3 + i, 6 + i)] {
+            let (p, q) = (joint(k, from), joint(k, to));
+            let _ = writeln!(
+                out,
+                r#"<line class="leg {kind}" data-leg="{}" x1="{}" y1="{}" x2="{}" y2="{}"{attributes}/>"#,
+                i + 1,
+                px(canvas.x(p[0])),
+                px(canvas.y(p[1])),
+                px(canvas.x(q[0])),
+                px(canvas.y(q[1]))
+            );
+        }
+    }
+}
+
+fn label(out: &mut String, at: [f64; 2], away: [f64; 2], text: &str) {
+    let n = norm(away).max(1e-9);
+    let _ = writeln!(
+        out,
+        r##"<text class="joint-label" x="{}" y="{}" font-size="15" font-style="italic" text-anchor="middle" dominant-baseline="central" stroke="#fff" stroke-width="4" paint-order="stroke">{text}</text>"##,
+        px(at[0] + 18.0 * away[0] / n),
+        px(at[1] + 18.0 * away[1] / n),
+    );
+}
+
+fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN]) {
+    out.push_str("<g id=\"K\" class=\"configuration\">\n");
+    polygon(
+        out,
+        canvas,
+        k,
+        0,
+        "base",
+        r##" fill="#eeeeee" stroke="#999" stroke-width="1.5" stroke-dasharray="6 4""##,
+    );
+    polygon(
+        out,
+        canvas,
+        k,
+        6,
+        "platform",
+        r##" fill="#c8c8c8" fill-opacity="0.8" stroke="#222" stroke-width="2.5""##,
+    );
+    links(
+        out,
+        canvas,
+        k,
+        r##" stroke="#222" stroke-width="4" stroke-linecap="round""##,
+    );
+    let pixel = |p: [f64; 2]| [canvas.x(p[0]), canvas.y(p[1])];
+    let centre = |first: usize| {
+        pixel(centroid(
+            &(first..first + 3).map(|j| joint(k, j)).collect::<Vec<_>>(),
+        ))
+    };
+    for i in 0..3 {
+        let (o, b, c) = (
+            pixel(joint(k, i)),
+            pixel(joint(k, 3 + i)),
+            pixel(joint(k, 6 + i)),
+        );
+        let _ = writeln!(
+            out,
+            r##"<rect class="joint base-joint" x="{}" y="{}" width="10" height="10" fill="#fff" stroke="#222" stroke-width="1.5"/>"##,
+            px(o[0] - 5.0),
+            px(o[1] - 5.0)
+        );
+        for p in [b, c] {
+            let _ = writeln!(
+                out,
+                r##"<circle class="joint" cx="{}" cy="{}" r="4" fill="#fff" stroke="#222" stroke-width="1.5"/>"##,
+                px(p[0]),
+                px(p[1])
+            );
+        }
+        // O_i and C_i labels outside their triangles, B_i's beside its elbow, away
+        // from the midpoint of O_i and C_i.
+        label(out, o, sub(o, centre(0)), &format!("O{}", i + 1));
+        label(out, c, sub(c, centre(6)), &format!("C{}", i + 1));
+        let mid = [0.5 * (o[0] + c[0]), 0.5 * (o[1] + c[1])];
+        let away = sub(b, mid);
+        let away = if norm(away) > 1.0 {
+            away
+        } else {
+            [-(c[1] - o[1]), c[0] - o[0]]
+        };
+        label(out, b, away, &format!("B{}", i + 1));
+    }
+    out.push_str("</g>\n");
+}
+
+/// The note on a `K′` that the legend prints under its distance.
+fn overlay_note(overlay: &RrrOverlay) -> String {
+    match overlay.subproblem.as_str() {
+        "parallel" => match leg_meeting(&distal_links(&overlay.closest)) {
+            LegMeeting::Point(p) => format!(
+                "distal-link lines B′C′ meet at ({}, {})",
+                number(p[0], 3),
+                number(p[1], 3)
+            ),
+            LegMeeting::Direction(d) => format!(
+                "distal-link lines B′C′ parallel, along ({}, {})",
+                number(d[0], 3),
+                number(d[1], 3)
+            ),
+            LegMeeting::Undefined => "distal-link lines undefined".into(),
+        },
+        leg => {
+            let i = leg.trim_start_matches("leg");
+            format!("O{i}′, B{i}′, C{i}′ collinear (leg {i} stretched or folded)")
+        }
+    }
+}
+
+fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &RrrOverlay, near: &Extent) {
+    let style = rrr_style(&overlay.subproblem);
+    let k = &overlay.closest;
+    let _ = writeln!(
+        out,
+        r#"<g class="closest" data-metric="{}">"#,
+        escape(&overlay.subproblem)
+    );
+    let stroke = stroke_attributes(style, 1.8);
+    polygon(out, canvas, k, 0, "base", &stroke);
+    polygon(out, canvas, k, 6, "platform", &stroke);
+    links(out, canvas, k, &stroke);
+    let thin = format!(
+        r#" stroke="{}" stroke-width="1.5" stroke-dasharray="2 3" fill="none""#,
+        style.colour
+    );
+    let platform: Vec<[f64; 2]> = (6..9).map(|j| joint(k, j)).collect();
+    if overlay.subproblem == "parallel" {
+        match leg_meeting(&distal_links(k)) {
+            LegMeeting::Point(p) if norm(sub(p, near.centre())) <= NEAR_MEETING * near.size() => {
+                for i in 0..3 {
+                    line(out, canvas, "leg-line", joint(k, 6 + i), p, &thin);
+                }
+                let _ = writeln!(
+                    out,
+                    r##"<circle class="meet" cx="{}" cy="{}" r="5" fill="{}" stroke="#fff" stroke-width="1"/>"##,
+                    px(canvas.x(p[0])),
+                    px(canvas.y(p[1])),
+                    style.colour
+                );
+            }
+            LegMeeting::Point(p) => {
+                let c = centroid(&platform);
+                let d = sub(p, c);
+                let n = norm(d).max(1e-300);
+                arrow(out, canvas, c, [d[0] / n, d[1] / n], style);
+            }
+            LegMeeting::Direction(d) => arrow(out, canvas, centroid(&platform), d, style),
+            LegMeeting::Undefined => {}
+        }
+    } else if let Some(i) = overlay
+        .subproblem
+        .trim_start_matches("leg")
+        .parse::<usize>()
+        .ok()
+        .filter(|i| (1..=3).contains(i))
+    {
+        let leg = [joint(k, i - 1), joint(k, 2 + i), joint(k, 5 + i)];
+        collinear_line(out, canvas, &leg, &thin);
+    }
+    out.push_str("</g>\n");
+}
+
+/// Writes the legend right of the drawing.
+fn legend(out: &mut String, canvas: &Canvas, scene: &RrrScene) {
+    let x = canvas.left + canvas.plot_width + 24.0;
+    let mut y = canvas.top + 8.0;
+    out.push_str("<g id=\"legend\" font-size=\"13\">\n");
+    let _ = writeln!(
+        out,
+        r##"<g class="legend-entry"><line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#222" stroke-width="4"/><text x="{3}" y="{1}" dominant-baseline="central">K: the manipulator at the pose</text></g>"##,
+        px(x),
+        px(y),
+        px(x + 34.0),
+        px(x + 42.0)
+    );
+    y += 20.0;
+    let _ = writeln!(
+        out,
+        r##"<text x="{}" y="{}" dominant-baseline="central" fill="#444" font-size="12">□ base joints O, ○ elbows B and platform joints C</text>"##,
+        px(x),
+        px(y)
+    );
+    y += 22.0;
+    if !scene.overlays.is_empty() {
+        for line in [
+            "closest singular K′ of each kind (every joint",
+            &format!("may move); D(K, K′) in {},", escape(&scene.length_unit)),
+            "D² = mean squared distance of the 8 bodies:",
+        ] {
+            let _ = writeln!(
+                out,
+                r##"<text x="{}" y="{}" dominant-baseline="central" fill="#444">{line}</text>"##,
+                px(x),
+                px(y)
+            );
+            y += 17.0;
+        }
+        y += 7.0;
+    }
+    for overlay in &scene.overlays {
+        let style = rrr_style(&overlay.subproblem);
+        let name = RRR_SUBPROBLEMS
+            .iter()
+            .find(|(n, _)| *n == overlay.subproblem)
+            .map_or(overlay.subproblem.as_str(), |(_, title)| title);
+        let nearest = if scene.nearest.as_deref() == Some(overlay.subproblem.as_str()) {
+            " (nearest)"
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            out,
+            r##"<g class="legend-entry" data-metric="{m}"><line x1="{0}" y1="{1}" x2="{2}" y2="{1}"{3}/><text x="{4}" y="{1}" dominant-baseline="central"><tspan font-weight="bold">{name}</tspan>   D = {5}{nearest}</text><text x="{4}" y="{6}" dominant-baseline="central" fill="#444" font-size="12">{7}</text></g>"##,
+            px(x),
+            px(y),
+            px(x + 34.0),
+            stroke_attributes(style, 2.5),
+            px(x + 42.0),
+            number(overlay.distance, 4),
+            px(y + 16.0),
+            escape(&overlay_note(overlay)),
+            m = escape(&overlay.subproblem),
+        );
+        y += 40.0;
+    }
+    out.push_str("</g>\n");
+}
+
+/// The scene as a standalone SVG document showing `extent` (pass [`rrr_scene_extent`]
+/// for one drawing, or the union over several scenes for frames that share a view).
+pub fn rrr_scene_svg(scene: &RrrScene, extent: &Extent) -> String {
+    let canvas = Canvas::new(extent);
+    let mut body = String::new();
+    let _ = writeln!(
+        body,
+        r##"<rect width="100%" height="100%" fill="#fff"/><text class="title" x="{}" y="26" font-size="17">{}</text>"##,
+        px(canvas.left),
+        escape(&scene.title)
+    );
+    axes(&mut body, &canvas, &scene.length_unit);
+    let _ = writeln!(
+        body,
+        r#"<clipPath id="plot-area"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath><g clip-path="url(#plot-area)">"#,
+        px(canvas.left),
+        px(canvas.top),
+        px(canvas.plot_width),
+        px(canvas.plot_height)
+    );
+    draw_configuration(&mut body, &canvas, &scene.configuration);
+    let near = joints_extent(scene);
+    for overlay in &scene.overlays {
+        draw_overlay(&mut body, &canvas, overlay, &near);
+    }
+    body.push_str("</g>\n");
+    legend(&mut body, &canvas, scene);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" class="rrr-drawing" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif">"#,
+        px(canvas.width),
+        px(canvas.height)
+    );
+    out.push_str(&body);
+    out.push_str("</svg>\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3-RRR with legs along the axes; leg 1's K′ stretched out along y.
+    fn scene() -> RrrScene {
+        let k = [
+            0.0, 1.0, -0.87, -0.5, 0.87, -0.5, 0.5, 0.6, -0.7, 0.3, 0.2, -0.8, 0.0, 0.4, -0.35,
+            -0.2, 0.35, -0.2,
+        ];
+        let mut stretched = k;
+        stretched[6..8].copy_from_slice(&[0.0, 0.7]);
+        // Distal links through (0, 0): B_i = 2 C_i.
+        let mut concurrent = k;
+        for i in 0..3 {
+            concurrent[6 + 2 * i] = 2.0 * k[12 + 2 * i];
+            concurrent[7 + 2 * i] = 2.0 * k[13 + 2 * i];
+        }
+        RrrScene {
+            title: "test".into(),
+            configuration: k,
+            overlays: vec![
+                RrrOverlay {
+                    subproblem: "parallel".into(),
+                    distance: 0.5,
+                    closest: concurrent,
+                },
+                RrrOverlay {
+                    subproblem: "leg1".into(),
+                    distance: 0.2,
+                    closest: stretched,
+                },
+            ],
+            nearest: Some("leg1".into()),
+            length_unit: "m".into(),
+        }
+    }
+
+    #[test]
+    fn drawing_has_six_links_two_triangles_and_one_overlay_per_kind() {
+        let scene = scene();
+        let svg = rrr_scene_svg(&scene, &rrr_scene_extent(&scene));
+        assert_eq!(svg.matches(r#"<g id="K""#).count(), 1);
+        assert_eq!(svg.matches(r#"class="leg proximal""#).count(), 3 * 3);
+        assert_eq!(svg.matches(r#"class="leg distal""#).count(), 3 * 3);
+        assert_eq!(svg.matches(r#"<polygon class="platform""#).count(), 3);
+        assert_eq!(svg.matches(r#"<polygon class="base""#).count(), 3);
+        assert_eq!(svg.matches(r#"<g class="closest""#).count(), 2);
+        assert_eq!(svg.matches(r#"<circle class="meet""#).count(), 1);
+        assert_eq!(svg.matches(r#"class="degenerate-line""#).count(), 1);
+        assert!(svg.contains("meet at (0.000, 0.000)"), "{svg}");
+        assert!(svg.contains("D = 0.2000 (nearest)"), "{svg}");
+        for label in ["O1", "O2", "O3", "B1", "B2", "B3", "C1", "C2", "C3"] {
+            assert!(svg.contains(&format!(">{label}</text>")), "{label}");
+        }
+    }
+}
