@@ -122,17 +122,21 @@ fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTr
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    trajectory_of(design, motion).context("--motion")
+    trajectory_of(design, motion, "--motion")
 }
 
 /// The design file's (or the built-in example's) 3-RRR with its working modes, moved
-/// along `motion`.
-pub(super) fn trajectory_of(design: Option<&Path>, motion: RrrMotion) -> Result<RrrTrajectory> {
+/// along `motion`; errors of the motion (e.g. a pose out of reach) name `option`.
+pub(super) fn trajectory_of(
+    design: Option<&Path>,
+    motion: RrrMotion,
+    option: &str,
+) -> Result<RrrTrajectory> {
     let (design, modes) = match design {
         Some(path) => load_rrr_design(path)?,
         None => (example_design(), EXAMPLE_MODES),
     };
-    Ok(RrrTrajectory::new(design, modes, motion)?)
+    RrrTrajectory::new(design, modes, motion).with_context(|| option.to_string())
 }
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {

@@ -44,7 +44,7 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
     check_output_file("--out", &args.out, &["svg"])?;
     let pose = parse_pose(&args.pose)?;
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
-    let trajectory = trajectory_of(args.design.as_deref(), motion).context("--pose")?;
+    let trajectory = trajectory_of(args.design.as_deref(), motion, "--pose")?;
     let configuration = trajectory.configuration(0.0).context("--pose")?;
     let options = RrrCurveOptions {
         seed: args.seed,

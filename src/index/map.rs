@@ -448,6 +448,18 @@ fn colour(t: f64) -> plotters::style::RGBColor {
     plotters::style::RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// The x and y ranges that show `x` and `y` at one scale (a metre is as long across as
+/// up) in a plot area of `pixels = (width, height)`: the range with the larger scale is
+/// widened about its centre, `scale = min(width / Δx, height / Δy)`.
+fn equal_scale_view(x: (f64, f64), y: (f64, f64), pixels: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+    let scale = (pixels.0 / (x.1 - x.0)).min(pixels.1 / (y.1 - y.0));
+    let widen = |(lo, hi): (f64, f64), length: f64| {
+        let (centre, half) = (0.5 * (lo + hi), 0.5 * length / scale);
+        (centre - half, centre + half)
+    };
+    (widen(x, pixels.0), widen(y, pixels.1))
+}
+
 fn draw_svg(
     map: &ConditioningMap,
     path: &std::path::Path,
@@ -493,15 +505,24 @@ fn draw_svg(
     let dy = (o.y_range.1 - o.y_range.0) / (o.ny - 1) as f64;
     for ((title, value, (lo, hi)), area) in panels.iter().zip(&areas) {
         let (main, bar) = area.split_horizontally(size - 90);
+        let main = main
+            .titled(title, ("sans-serif", 15))
+            .map_err(|e| e.to_string())?;
+        let (margin, x_labels, y_labels) = (8u32, 30u32, 45u32);
+        let (width, height) = main.dim_in_pixel();
+        let (x_view, y_view) = equal_scale_view(
+            (o.x_range.0 - dx / 2.0, o.x_range.1 + dx / 2.0),
+            (o.y_range.0 - dy / 2.0, o.y_range.1 + dy / 2.0),
+            (
+                width.saturating_sub(2 * margin + y_labels).max(1) as f64,
+                height.saturating_sub(2 * margin + x_labels).max(1) as f64,
+            ),
+        );
         let mut chart = ChartBuilder::on(&main)
-            .caption(title, ("sans-serif", 15))
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(45)
-            .build_cartesian_2d(
-                o.x_range.0 - dx / 2.0..o.x_range.1 + dx / 2.0,
-                o.y_range.0 - dy / 2.0..o.y_range.1 + dy / 2.0,
-            )
+            .margin(margin)
+            .x_label_area_size(x_labels)
+            .y_label_area_size(y_labels)
+            .build_cartesian_2d(x_view.0..x_view.1, y_view.0..y_view.1)
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
@@ -556,4 +577,19 @@ fn draw_svg(
     }
     root.present().map_err(|e| e.to_string())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::equal_scale_view;
+
+    #[test]
+    fn map_view_has_one_scale_on_both_axes() {
+        let ((x0, x1), (y0, y1)) = equal_scale_view((-0.4, 0.4), (-0.25, 0.45), (369.0, 430.0));
+        let (sx, sy) = (369.0 / (x1 - x0), 430.0 / (y1 - y0));
+        assert!((sx - sy).abs() < 1e-9 * sx, "{sx} vs {sy}");
+        // The data stay inside the view, which is centred on them.
+        assert!(x0 <= -0.4 && x1 >= 0.4 && y0 <= -0.25 && y1 >= 0.45);
+        assert!((x0 + x1).abs() < 1e-12 && (y0 + y1 - 0.2).abs() < 1e-12);
+    }
 }
