@@ -1,0 +1,332 @@
+//! Stage 2 along chains of poses: one pose from the seed, the others from their
+//! predecessors, and the rescue of poses that lost paths from complete neighbours.
+
+use super::*;
+
+/// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
+/// along the complexified motion (`MotionPath`) for every sub-problem (in parallel),
+/// re-runs of failed paths (detours through a random complex point near the pose),
+/// post-processing. ([`compute_curve`] solves most poses from their neighbours instead,
+/// see [`CurveOptions::chain_length`].)
+pub fn solve_pose(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    index: usize,
+    sample: SampledPose,
+    options: &CurveOptions,
+) -> PoseResult {
+    let entries = (0..stage.problems.len())
+        .into_par_iter()
+        .map(|problem_index| {
+            let at = (index, sample);
+            track_problem(stage, motion, at, problem_index, Route::Seed, options).entry
+        })
+        .collect();
+    let k = design.configuration(sample.pose).to_array();
+    assemble_pose(stage, metrics, index, sample, &k, entries, options)
+}
+
+/// Poses a block of [`solve_chain`] runs through per sub-problem before they are
+/// assembled (and reported as partial results).
+pub(super) const POSES_PER_BLOCK: usize = 10;
+
+/// One sub-problem at pose `at` of a chain, from the solution sets of the preceding
+/// poses in chain order (`history`, latest first; the latest is pose `previous`):
+/// Newton jumps ([`jump_problem`]), else pose-to-pose paths from the latest set, else
+/// the seed route. Returns the result and whether its solution set is in the order of
+/// `history` (not after the seed route).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn solve_problem_in_chain(
+    stage: &SeedStage,
+    motion: &Motion,
+    samples: &[SampledPose],
+    (j, sample): (usize, SampledPose),
+    problem_index: usize,
+    (previous, history): (usize, &[Vec<Vec<C64>>]),
+    options: &CurveOptions,
+) -> (ProblemAtPose, bool) {
+    let at = (j, sample);
+    let from = || MotionPoint::target(motion, &samples[previous]);
+    if options.jump && !history.is_empty() {
+        let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
+        let jumped = jump_problem(stage, motion, at, problem_index, from(), &sets, options);
+        if let Some(result) = jumped {
+            return (result, true);
+        }
+    }
+    let from_neighbour = history.first().map(|solutions| {
+        let route = Route::Neighbour {
+            from: from(),
+            solutions,
+        };
+        track_problem(stage, motion, at, problem_index, route, options)
+    });
+    match from_neighbour {
+        Some(result) if result.complete.is_some() => (result, true),
+        neighbour => {
+            let seed = Route::Seed;
+            let mut result = track_problem(stage, motion, at, problem_index, seed, options);
+            if let Some(neighbour) = neighbour {
+                let tracked = result.entry.3 + neighbour.entry.3;
+                if neighbour.entry.1 > result.entry.1 {
+                    result = neighbour;
+                }
+                result.entry.3 = tracked;
+            }
+            (result, false)
+        }
+    }
+}
+
+/// Solution sets kept per sub-problem for [`extrapolate`].
+pub(super) const JUMP_HISTORY: usize = 3;
+
+/// The pose of `poses` where a chain starts from the seed: the one nearest `Re τ*`
+/// (the shortest seed route: on the built-in example the `rigid/rigid` seed route to
+/// the motion's first pose took 13 × as long as to the pose nearest `Re τ*`), or the
+/// first pose for explicit pose lists (whose seed is the first pose perturbed).
+pub(super) fn chain_anchor(
+    stage: &SeedStage,
+    samples: &[SampledPose],
+    poses: &std::ops::Range<usize>,
+) -> usize {
+    match stage.seed.point {
+        MotionPoint::Tau(tau) => poses
+            .clone()
+            .min_by(|&a, &b| {
+                (samples[a].tau - tau.re)
+                    .abs()
+                    .total_cmp(&(samples[b].tau - tau.re).abs())
+            })
+            .unwrap_or(poses.start),
+        MotionPoint::Pose(_) => poses.start,
+    }
+}
+
+/// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):
+/// the anchor ([`chain_anchor`]) from the seed, then the poses after it (forwards) and
+/// before it (backwards), each per sub-problem from the preceding pose's (in chain
+/// order) complete finite solution set, or from the seed when that set is incomplete
+/// or the pose-to-pose paths do not reach a complete set. Calls `on_pose` per pose;
+/// returns the poses in index order.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn solve_chain(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    samples: &[SampledPose],
+    poses: std::ops::Range<usize>,
+    options: &CurveOptions,
+    on_pose: &(dyn Fn(&PoseResult) + Sync),
+) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
+    let problems = stage.problems.len();
+    let anchor = chain_anchor(stage, samples, &poses);
+    // The two directions, in chain order after the anchor.
+    let directions: [Vec<usize>; 2] = [
+        (anchor + 1..poses.end).collect(),
+        (poses.start..anchor).rev().collect(),
+    ];
+    // Per (direction, sub-problem), the complete solution sets of the last poses
+    // (latest first) and the latest pose: cleared where a pose went the seed route.
+    type History = (usize, Vec<Vec<Vec<C64>>>);
+    let assemble = |j: usize, at_pose: Vec<ProblemAtPose>| {
+        let sample = samples[j];
+        let k = design.configuration(sample.pose).to_array();
+        let entries = at_pose.iter().map(|p| p.entry.clone()).collect();
+        let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
+        on_pose(&result);
+        (result, at_pose)
+    };
+    // Runs one sub-problem's chain through `block` (poses in chain order).
+    let run =
+        |history: &mut History, problem_index: usize, block: &[usize]| -> Vec<ProblemAtPose> {
+            block
+                .iter()
+                .map(|&j| {
+                    let (previous, sets) = (history.0, &history.1);
+                    let (result, same_order) = solve_problem_in_chain(
+                        stage,
+                        motion,
+                        samples,
+                        (j, samples[j]),
+                        problem_index,
+                        (previous, sets),
+                        options,
+                    );
+                    let sets = &mut history.1;
+                    if !same_order {
+                        sets.clear();
+                    }
+                    match &result.complete {
+                        Some(set) => {
+                            sets.insert(0, set.clone());
+                            sets.truncate(JUMP_HISTORY);
+                        }
+                        None => sets.clear(),
+                    }
+                    history.0 = j;
+                    result
+                })
+                .collect()
+        };
+    let mut anchor_history: Vec<History> = vec![(anchor, Vec::new()); problems];
+    let at_anchor: Vec<ProblemAtPose> = anchor_history
+        .par_iter_mut()
+        .enumerate()
+        .map(|(problem_index, history)| run(history, problem_index, &[anchor]).remove(0))
+        .collect();
+    let mut out = vec![assemble(anchor, at_anchor)];
+    // Both directions continue from the anchor's sets.
+    let mut histories: Vec<History> = [anchor_history.clone(), anchor_history].concat();
+    // The sub-problems' chains are independent: each runs through a block of poses
+    // on its own (no barrier per pose), both directions at once, then the blocks'
+    // poses are assembled.
+    let blocks: [Vec<&[usize]>; 2] = directions
+        .each_ref()
+        .map(|d| d.chunks(POSES_PER_BLOCK).collect());
+    for step in 0..blocks[0].len().max(blocks[1].len()) {
+        let per_task: Vec<Vec<ProblemAtPose>> = histories
+            .par_iter_mut()
+            .enumerate()
+            .map(|(task, history)| {
+                let (direction, problem_index) = (task / problems, task % problems);
+                match blocks[direction].get(step) {
+                    Some(block) => run(history, problem_index, block),
+                    None => Vec::new(),
+                }
+            })
+            .collect();
+        let mut per_task: Vec<std::vec::IntoIter<ProblemAtPose>> =
+            per_task.into_iter().map(|v| v.into_iter()).collect();
+        for (direction, tasks) in per_task.chunks_mut(problems).enumerate() {
+            let Some(block) = blocks[direction].get(step) else {
+                continue;
+            };
+            for &j in *block {
+                let at_pose: Vec<ProblemAtPose> = tasks
+                    .iter_mut()
+                    .map(|results| results.next().expect("one result per pose"))
+                    .collect();
+                out.push(assemble(j, at_pose));
+            }
+        }
+    }
+    out.sort_by_key(|(result, _)| result.index);
+    out
+}
+
+/// The rescue pass (stage 3b): every run of consecutive poses at which a sub-problem
+/// lost paths is re-solved pose by pose from a neighbouring pose whose finite solution
+/// set is complete — first forward from the pose before the run, then backward from the
+/// pose after it for what is still incomplete. Near a pose the critical points move
+/// little, so short pose-to-pose paths (through a complex midpoint) follow critical
+/// points that the long seed → pose paths lose, e.g. huge ill-conditioned ones.
+/// Returns the indices of the poses whose entries changed.
+pub(super) fn rescue_from_neighbours(
+    stage: &SeedStage,
+    motion: &Motion,
+    samples: &[SampledPose],
+    work: &mut [Vec<ProblemAtPose>],
+    options: &CurveOptions,
+) -> Vec<usize> {
+    let n = samples.len();
+    let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.2.is_some();
+    // (sub-problem, first pose, last pose) of every run of failing poses.
+    let mut runs = Vec::new();
+    for p in 0..stage.problems.len() {
+        let mut j = 0;
+        while j < n {
+            if lost(work, j, p) {
+                let first = j;
+                while j + 1 < n && lost(work, j + 1, p) {
+                    j += 1;
+                }
+                runs.push((p, first, j));
+            }
+            j += 1;
+        }
+    }
+    let view: &[Vec<ProblemAtPose>] = work;
+    // Per run: the improved (pose, result) pairs and the paths tracked per pose.
+    type RunOutcome = (BTreeMap<usize, ProblemAtPose>, BTreeMap<usize, usize>);
+    let outcomes: Vec<(usize, RunOutcome)> = runs
+        .par_iter()
+        .map(|&(p, first, last)| {
+            let mut improved: BTreeMap<usize, ProblemAtPose> = BTreeMap::new();
+            let mut tracked: BTreeMap<usize, usize> = BTreeMap::new();
+            // Solves pose `to` from the complete set at pose `from`; keeps the result
+            // if it accounts for more paths than the best so far. Returns the
+            // complete set at `to`, if reached.
+            let mut step = |from: usize, to: usize, solutions: &[Vec<C64>]| {
+                let result = track_problem(
+                    stage,
+                    motion,
+                    (to, samples[to]),
+                    p,
+                    Route::Neighbour {
+                        from: MotionPoint::target(motion, &samples[from]),
+                        solutions,
+                    },
+                    options,
+                );
+                *tracked.entry(to).or_default() += result.entry.3;
+                let best = improved.get(&to).map_or(view[to][p].entry.1, |r| r.entry.1);
+                let complete = result.complete.clone();
+                if result.entry.1 > best {
+                    improved.insert(to, result);
+                }
+                complete
+            };
+            // Forward from the pose before the run.
+            let mut reached = first;
+            if first > 0
+                && let Some(mut solutions) = view[first - 1][p].complete.clone()
+            {
+                while reached <= last {
+                    match step(reached - 1, reached, &solutions) {
+                        Some(next) => {
+                            solutions = next;
+                            reached += 1;
+                        }
+                        None => break,
+                    }
+                }
+            }
+            // Backward from the pose after the run, down to where forward stopped.
+            if reached <= last
+                && last + 1 < n
+                && let Some(mut solutions) = view[last + 1][p].complete.clone()
+            {
+                let mut j = last;
+                while j >= reached {
+                    match step(j + 1, j, &solutions) {
+                        Some(next) if j > reached => {
+                            solutions = next;
+                            j -= 1;
+                        }
+                        _ => break,
+                    }
+                }
+            }
+            (p, (improved, tracked))
+        })
+        .collect();
+    let mut changed = Vec::new();
+    for (p, (improved, tracked)) in outcomes {
+        for (j, count) in tracked {
+            work[j][p].entry.3 += count;
+            changed.push(j);
+        }
+        for (j, mut result) in improved {
+            // Every path tracked counts: the seed route's and the rescue's.
+            result.entry.3 = work[j][p].entry.3;
+            work[j][p] = result;
+        }
+    }
+    changed.sort_unstable();
+    changed.dedup();
+    changed
+}

@@ -1,0 +1,404 @@
+//! Robust tracking of a group of paths and its bookkeeping: re-runs, arcs around
+//! divergences, detours, crossings, and which paths are accounted for.
+
+use super::*;
+
+/// Tracks every start solution through `homotopy` (with the endgame, or without:
+/// [`Tracker::track_between`] `0 → 1`, Newton at the end); returns the path results in
+/// order.
+pub(super) fn track_all<H: Homotopy + ?Sized>(
+    homotopy: &H,
+    starts: &[Vec<C64>],
+    options: &TrackerOptions,
+    endgame: bool,
+) -> Vec<PathResult> {
+    // In parallel over chunks of paths too (nested in the parallel poses ×
+    // sub-problems), so a stage with few groups — the seed stage, a rescue chain — uses
+    // every core; one tracker (workspace) per chunk. Per path instead of per chunk was
+    // 30 % slower on the example. Each path is a pure function of its start, so the
+    // results do not depend on the thread count.
+    const CHUNK: usize = 16;
+    let chunks: Vec<Vec<PathResult>> = starts
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut tracker = Tracker::new(homotopy, options.clone());
+            chunk
+                .iter()
+                .enumerate()
+                .map(|(i, x)| {
+                    if endgame {
+                        tracker.track(x, c * CHUNK + i)
+                    } else {
+                        tracker.track_between(x, 0.0, 1.0, c * CHUNK + i)
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    chunks.into_iter().flatten().collect()
+}
+
+/// Why paths of one run are unaccounted for ([`accounted`]): per failure reason (its
+/// name), and `PathCrossing` for each path beyond the first on a shared endpoint.
+pub(super) fn unaccounted_reasons(paths: &[PathResult]) -> BTreeMap<String, usize> {
+    let mut reasons = BTreeMap::new();
+    for p in paths {
+        if let PathStatus::Failed(reason) = p.status {
+            *reasons.entry(format!("{reason:?}")).or_insert(0) += 1;
+        }
+    }
+    let crossed: usize = shared_endpoints(paths).iter().map(|g| g.len() - 1).sum();
+    if crossed > 0 {
+        reasons.insert("PathCrossing".into(), crossed);
+    }
+    reasons
+}
+
+/// What [`track_with_retries`] found for one group of paths.
+pub(crate) struct Retried {
+    /// The distinct finite endpoints of all attempts.
+    pub endpoints: Vec<Vec<C64>>,
+    /// Paths accounted for, best over the attempts (see [`accounted`]).
+    pub accounted: usize,
+    /// Paths tracked, re-runs and detours included.
+    pub tracked: usize,
+    /// Why paths were unaccounted for on the reference route after the careful
+    /// re-runs ([`unaccounted_reasons`]; empty if none were).
+    pub reasons: BTreeMap<String, usize>,
+}
+
+/// Relative distance under which two endpoints are the same point.
+pub(super) const SAME_ENDPOINT: f64 = 1e-8;
+
+pub(super) fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
+    // Squared moduli: this runs for every pair of endpoints of every run.
+    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt();
+    let tolerance = (SAME_ENDPOINT * scale).powi(2);
+    a.iter()
+        .zip(b)
+        .all(|(u, v)| (u - v).norm_sqr() <= tolerance)
+}
+
+/// Whether a path's endpoint is finite and was reached without winding (winding number
+/// 1): nonsingular endpoints, and those classified singular only because their
+/// condition number is large (e.g. far out along an isotropic line, where the unscaled
+/// condition number exceeds `singular_condition` although the point is simple).
+pub(super) fn simple_endpoint(path: &PathResult) -> bool {
+    path.status.is_finite() && path.winding_number == 1
+}
+
+/// For every path, whether it is a *path crossing*: its endpoint is simple
+/// ([`simple_endpoint`]) and another such path ends at the same point. A nonsingular
+/// solution is the endpoint of exactly one path of a parameter homotopy, so one of them
+/// jumped (and missed a critical point). Endpoints reached with winding (Cauchy
+/// endgame, winding number > 1) may legitimately be shared (multiplicity); a genuinely
+/// singular endpoint reached without winding is reported as a crossing, which can only
+/// cost a re-run, never hide a lost path. Paths classified at infinity on the same
+/// point at the same `t` cross too ([`shared_endpoints`]).
+pub(super) fn crossings(paths: &[PathResult]) -> Vec<bool> {
+    let mut crossed = vec![false; paths.len()];
+    for group in shared_endpoints(paths) {
+        for i in group {
+            crossed[i] = true;
+        }
+    }
+    crossed
+}
+
+/// Groups (two or more paths) that share an endpoint no two paths may share: simple
+/// finite endpoints ([`simple_endpoint`]), and paths classified at infinity that
+/// stopped at the same `t` on the same point. Distinct paths of a homotopy never meet
+/// before `t = 1` (and the branches of one Puiseux cycle are apart at any one radius),
+/// so a shared point at infinity means one path jumped onto another one's divergent
+/// path, hiding the critical point it should have reached.
+pub(super) fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
+    let shareable = |a: &PathResult, b: &PathResult| {
+        (simple_endpoint(a) && simple_endpoint(b))
+            || (a.status == PathStatus::AtInfinity
+                && b.status == PathStatus::AtInfinity
+                && a.last_t == b.last_t)
+    };
+    let eligible = |p: &PathResult| simple_endpoint(p) || p.status == PathStatus::AtInfinity;
+    // Sort and sweep: two endpoints within `same_endpoint`'s tolerance have first
+    // coordinates within `window` (the largest tolerance of any pair), so only
+    // neighbours in the order of Re x₀ closer than that are compared.
+    let key = |i: usize| paths[i].solution.first().map_or(0.0, |v| v.re);
+    let mut order: Vec<usize> = (0..paths.len()).filter(|&i| eligible(&paths[i])).collect();
+    if order.len() < 2 {
+        return Vec::new();
+    }
+    let largest = order.iter().fold(0.0f64, |m, &i| {
+        paths[i]
+            .solution
+            .iter()
+            .fold(m, |m, v| m.max(v.re.abs()).max(v.im.abs()))
+    });
+    let window = SAME_ENDPOINT * (1.0 + 2.0 * largest);
+    order.sort_by(|&a, &b| key(a).total_cmp(&key(b)));
+    // Pairs `(i, j)`, `i < j`, that share an endpoint, with `i`'s tolerance.
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for (position, &a) in order.iter().enumerate() {
+        for &b in &order[position + 1..] {
+            if key(b) - key(a) > window {
+                break;
+            }
+            let (i, j) = (a.min(b), a.max(b));
+            if shareable(&paths[i], &paths[j])
+                && same_endpoint(&paths[i].solution, &paths[j].solution)
+            {
+                pairs.push((i, j));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    // Each group: the first ungrouped path and every later ungrouped one sharing its
+    // endpoint.
+    let mut grouped = vec![false; paths.len()];
+    let mut groups = Vec::new();
+    for run in pairs.chunk_by(|x, y| x.0 == y.0) {
+        let i = run[0].0;
+        if grouped[i] {
+            continue;
+        }
+        let mut group = vec![i];
+        for &(_, j) in run {
+            if !grouped[j] {
+                group.push(j);
+                grouped[j] = true;
+            }
+        }
+        if group.len() > 1 {
+            groups.push(group);
+        }
+    }
+    groups
+}
+
+/// Paths whose fate is known: a finite endpoint, or an endpoint at infinity (a
+/// critical point that does not exist at these parameters, classified by the endgame),
+/// less one per extra path on a shared endpoint ([`shared_endpoints`]: a path crossing
+/// hides a missed critical point just as a failed path does).
+pub(super) fn accounted(paths: &[PathResult]) -> usize {
+    let classified = paths
+        .iter()
+        .filter(|p| !matches!(p.status, PathStatus::Failed(_)))
+        .count();
+    let extra: usize = shared_endpoints(paths).iter().map(|g| g.len() - 1).sum();
+    classified - extra
+}
+
+/// The distinct finite endpoints: every endpoint reached with winding (shared ones
+/// count with their multiplicity of paths, as the start count does) and each simple
+/// endpoint ([`simple_endpoint`]) once.
+pub(super) fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
+    let mut out: Vec<Vec<C64>> = Vec::new();
+    for p in paths.iter().filter(|p| p.status.is_finite()) {
+        let duplicate = simple_endpoint(p) && out.iter().any(|x| same_endpoint(x, &p.solution));
+        if !duplicate {
+            out.push(p.solution.clone());
+        }
+    }
+    out
+}
+
+/// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal,
+/// `ε = 0.1·(1 + ‖target‖∞)` (only the first twelve parameters, the configuration).
+pub(super) fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
+    let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
+    target
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            if i < 12 {
+                v + random::complex_normal(rng) * scale
+            } else {
+                *v
+            }
+        })
+        .collect()
+}
+
+/// Half-width in `t` of the arcs around a point where a path diverged before the
+/// endgame zone ([`track_with_retries`]).
+pub(super) const DIVERGENCE_ARC: f64 = 0.05;
+
+/// The tracker settings of [`track_with_retries`].
+#[derive(Clone, Copy)]
+pub(crate) struct TrackingPlan<'a> {
+    /// Options of the first run and of the detours.
+    pub first: &'a TrackerOptions,
+    /// Options of the re-runs of failed or crossed paths (always with the endgame).
+    pub retry: &'a TrackerOptions,
+    /// Whether the first run and the detours end with the endgame. Without it (between
+    /// two generic parameter points, where every critical point is finite and
+    /// nonsingular) the endpoint is Newton-refined at `t = 1`; a path that fails,
+    /// crosses another one or diverges is re-run with the endgame.
+    pub endgame: bool,
+}
+
+impl<'a> TrackingPlan<'a> {
+    /// Both runs with the endgame.
+    pub fn with_endgame(first: &'a TrackerOptions, retry: &'a TrackerOptions) -> Self {
+        TrackingPlan {
+            first,
+            retry,
+            endgame: true,
+        }
+    }
+}
+
+/// Tracks `starts` (solutions of `system` at `path(k)`'s start) along `path(0)` (the
+/// reference route, `plan.first`), then, while paths are unaccounted for:
+/// 1. re-tracks the failed paths and path crossings (two paths on one nonsingular
+///    endpoint) with `plan.retry` and the endgame, except paths that diverged before
+///    the endgame zone (passing close to infinity is a property of the route, not of
+///    the step size); without the endgame also the paths that diverged;
+/// 2. tracks each path that diverged before the endgame zone
+///    around the point where it did, along a small arc in the `t`-plane on either
+///    side ([`Tracker::track_via`]); an endpoint counts only if it is finite and
+///    distinct from every endpoint found (an endpoint of any route is a solution at
+///    the target, but which one a path reaches may depend on the route);
+/// 3. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
+///    distinct finite endpoints.
+///
+/// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
+/// of the best attempt, or the distinct finite endpoints of all attempts plus the
+/// most paths one attempt classified at infinity) and the number of paths tracked.
+pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
+    system: &E,
+    starts: &[Vec<C64>],
+    path: impl Fn(usize) -> P,
+    attempts: usize,
+    plan: TrackingPlan<'_>,
+) -> Retried {
+    let TrackingPlan {
+        first: tracker,
+        retry: retry_tracker,
+        endgame,
+    } = plan;
+    let expected = starts.len();
+    let reference = PathParameterHomotopy::new(system, path(0));
+    let mut paths = track_all(&reference, starts, tracker, endgame);
+    let mut tracked = starts.len();
+    let crossed = crossings(&paths);
+    let diverged_mid_path =
+        |p: &PathResult| p.status == PathStatus::Failed(FailureReason::DivergedBeforeEndgame);
+    // Without the endgame, "at infinity" only means the norm grew past
+    // `at_infinity_norm` somewhere along the route: re-run with the endgame to tell a
+    // point at infinity of the target from a pole passed on the way.
+    let rerun = |p: &PathResult, crossed: bool| {
+        (matches!(p.status, PathStatus::Failed(_)) && !diverged_mid_path(p))
+            || crossed
+            || (!endgame && p.status == PathStatus::AtInfinity)
+    };
+    if paths.iter().zip(&crossed).any(|(p, &c)| rerun(p, c)) {
+        let mut careful = Tracker::new(&reference, retry_tracker.clone());
+        for (i, path) in paths.iter_mut().enumerate() {
+            if rerun(path, crossed[i]) {
+                *path = careful.track(&starts[i], i);
+                tracked += 1;
+            }
+        }
+    }
+    let mut endpoints = finite_solutions(&paths);
+    let mut best = accounted(&paths);
+    let reasons = if best < expected {
+        unaccounted_reasons(&paths)
+    } else {
+        BTreeMap::new()
+    };
+    let count_at_infinity = |paths: &[PathResult]| {
+        paths
+            .iter()
+            .filter(|p| p.status == PathStatus::AtInfinity)
+            .count()
+    };
+    let mut at_infinity = count_at_infinity(&paths);
+    let merge = |endpoints: &mut Vec<Vec<C64>>, found: Vec<Vec<C64>>| {
+        for x in found {
+            if !endpoints.iter().any(|y| same_endpoint(y, &x)) {
+                endpoints.push(x);
+            }
+        }
+    };
+    if best < expected {
+        // Paths that passed too close to infinity on the reference route: around the
+        // trouble spot `t_c` along a small arc in the t-plane, on either side (where
+        // the route has no breakpoint, at which a complex t would not be analytic).
+        // Away from branch points both arcs continue the same path, to the endpoint
+        // the reference route would reach.
+        let mut arcs = Tracker::new(&reference, tracker.clone());
+        let breakpoints = reference.breakpoints();
+        for p in paths.iter().filter(|p| diverged_mid_path(p)) {
+            let t_c = p.last_t.re;
+            let delta = DIVERGENCE_ARC.min(t_c).min(1.0 - t_c);
+            if breakpoints.iter().any(|b| (b - t_c).abs() <= delta) {
+                continue;
+            }
+            for side in [1.0, -1.0] {
+                let via = [
+                    C64::new(t_c - delta, 0.0),
+                    C64::new(t_c, side * delta),
+                    C64::new(t_c + delta, 0.0),
+                ];
+                let around = arcs.track_via(&starts[p.path_index], &via, p.path_index);
+                tracked += 1;
+                if simple_endpoint(&around)
+                    && !endpoints.iter().any(|y| same_endpoint(y, &around.solution))
+                {
+                    endpoints.push(around.solution);
+                    break;
+                }
+            }
+        }
+        best = best.max(endpoints.len() + at_infinity);
+    }
+    // The starts whose paths are still unaccounted for on the reference route.
+    let missing: Vec<Vec<C64>> = if best < expected {
+        let crossed = crossings(&paths);
+        paths
+            .iter()
+            .zip(&crossed)
+            .filter(|&(p, &c)| matches!(p.status, PathStatus::Failed(_)) || c)
+            .map(|(p, _)| starts[p.path_index].clone())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for attempt in 1..=attempts {
+        if best >= expected {
+            break;
+        }
+        let detour = PathParameterHomotopy::new(system, path(attempt));
+        if attempt == 1 && !missing.is_empty() && missing.len() < starts.len() {
+            // First only those on the detour: any distinct finite endpoint they reach
+            // is a critical point the reference route missed (e.g. 2 of the example's
+            // 80 `rigid/rigid` seed → pose-0 paths, which pass through a pole on the
+            // way). The whole detour only if they do not complete the set.
+            let found = track_all(&detour, &missing, tracker, endgame);
+            tracked += missing.len();
+            merge(&mut endpoints, finite_solutions(&found));
+            best = best.max(endpoints.len() + at_infinity);
+            if best >= expected {
+                break;
+            }
+        }
+        let paths = track_all(&detour, starts, tracker, endgame);
+        tracked += starts.len();
+        best = best.max(accounted(&paths));
+        at_infinity = at_infinity.max(count_at_infinity(&paths));
+        merge(&mut endpoints, finite_solutions(&paths));
+        // The union of the attempts' distinct finite endpoints, plus the most paths
+        // any one attempt classified at infinity, may account for more than any
+        // single attempt.
+        best = best.max(endpoints.len() + at_infinity);
+    }
+    Retried {
+        endpoints,
+        // The union of attempts can exceed the paths (duplicates beyond tolerance).
+        accounted: best.min(expected),
+        tracked,
+        reasons,
+    }
+}
