@@ -1,0 +1,265 @@
+//! The endgame of a path near `t = 1`: the direct finish, power-series estimates and
+//! Cauchy loops around `t = 1` (winding number), and the classification of the
+//! endpoint (see the module documentation of [`super`]).
+
+use super::*;
+
+impl<H: Homotopy + ?Sized> Tracker<'_, H> {
+    /// The endgame from `t = 1 − s0` (see the module documentation).
+    pub(super) fn endgame(&mut self, s0: f64) -> PathStatus {
+        let n = self.n;
+        let mut s = s0;
+        let mut direct_failed = false;
+        let mut have_valuations = false;
+        let mut have_estimate = false;
+        let mut previous_condition = f64::INFINITY;
+        let mut stable_divergence = 0;
+        // Cauchy-loop valuations: by Jensen's formula the mean of log|x_i| over the
+        // loop is exactly `log|a_i| + w_i log s` once the radius is small, so two
+        // consecutive differences agreeing pin the valuation `w_i` down.
+        let mut loops_done = 0;
+        let mut previous_loop_radius = 0.0f64;
+        loop {
+            let t = C64::new(1.0 - s, 0.0);
+            let scale = max_norm(&self.x);
+            if scale > self.options.at_infinity_norm {
+                return PathStatus::AtInfinity;
+            }
+            // Valuations from dx/ds (dt/ds = −1).
+            let ok =
+                self.eval
+                    .velocity(self.homotopy, &self.x, t, C64::new(-1.0, 0.0), &mut self.k1);
+            let condition = if ok {
+                self.eval.condition_estimate()
+            } else {
+                f64::INFINITY
+            };
+            let mut diverging = false;
+            if ok {
+                for i in 0..n {
+                    self.valuations[i] = if self.x[i].norm() > 0.0 {
+                        (self.k1[i] * s / self.x[i]).re
+                    } else {
+                        0.0
+                    };
+                }
+                let mut stable = have_valuations;
+                let mut smallest = f64::INFINITY;
+                for i in 0..n {
+                    if self.x[i].norm() >= 1.0 {
+                        if (self.valuations[i] - self.previous_valuations[i]).abs() > 0.01 {
+                            stable = false;
+                        }
+                        smallest = smallest.min(self.valuations[i]);
+                    }
+                }
+                diverging = smallest < -self.options.valuation_threshold && scale >= 10.0;
+                if stable && smallest < -self.options.valuation_threshold {
+                    stable_divergence += 1;
+                    if stable_divergence >= 2 {
+                        return PathStatus::AtInfinity;
+                    }
+                } else {
+                    stable_divergence = 0;
+                }
+                self.previous_valuations.copy_from_slice(&self.valuations);
+                have_valuations = true;
+            }
+            // The direct finish needs every coordinate to stay bounded, including ones
+            // still below 1 that have begun to diverge: a multiplier growing like 1/s
+            // (a critical point escaping to infinity at t = 1 while K′ converges) is
+            // only ~0.2 at s = 0.025, and a straight run to t = 1 from there can jump
+            // onto another path's endpoint. Coordinates below DIRECT_FINISH_FLOOR are
+            // ignored (their valuations are noise when they pass near 0).
+            let valuations_finite = have_valuations
+                && (0..n).all(|i| {
+                    self.x[i].norm() < DIRECT_FINISH_FLOOR
+                        || self.valuations[i] > -self.options.valuation_threshold
+                });
+            // A singular endpoint shows as a condition number growing like
+            // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
+            let condition_stable = condition <= 1.5 * previous_condition;
+            previous_condition = condition;
+            if !direct_failed
+                && valuations_finite
+                && condition_stable
+                && condition < self.options.direct_finish_condition
+            {
+                self.x_checkpoint.copy_from_slice(&self.x);
+                let saved_step = self.step;
+                if self.track_segment(t, C64::new(1.0, 0.0)).is_ok() {
+                    let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
+                    let final_condition = self.condition_at(C64::new(1.0, 0.0));
+                    if converged
+                        && final_condition < self.options.singular_condition
+                        && final_condition < 100.0 * condition
+                    {
+                        return PathStatus::Nonsingular;
+                    }
+                }
+                self.x.copy_from_slice(&self.x_checkpoint);
+                self.t = t;
+                self.step = saved_step;
+                direct_failed = true;
+            }
+            // While the large coordinates still grow (negative valuations), the path is
+            // heading to infinity or has not reached the endgame's asymptotic regime:
+            // a Cauchy loop (costly far out, where the Jacobian is ill-conditioned)
+            // would not close on a finite estimate; the next radius is cheaper and the
+            // valuation test above classifies a divergent path.
+            if !diverging && (direct_failed || condition >= self.options.direct_finish_condition) {
+                match self.cauchy_loop(s) {
+                    Ok(c) => {
+                        if loops_done >= 1 {
+                            let log_ratio = (s / previous_loop_radius).ln();
+                            for i in 0..n {
+                                self.loop_valuations[i] =
+                                    (self.log_mean[i] - self.previous_log_mean[i]) / log_ratio;
+                            }
+                            if loops_done >= 2 {
+                                let stable = (0..n).all(|i| {
+                                    (self.loop_valuations[i] - self.previous_loop_valuations[i])
+                                        .abs()
+                                        < 1e-3
+                                });
+                                let smallest = self
+                                    .loop_valuations
+                                    .iter()
+                                    .fold(f64::INFINITY, |a, &b| a.min(b));
+                                if stable && smallest < -self.options.valuation_threshold {
+                                    return PathStatus::AtInfinity;
+                                }
+                            }
+                            self.previous_loop_valuations
+                                .copy_from_slice(&self.loop_valuations);
+                        }
+                        self.previous_log_mean.copy_from_slice(&self.log_mean);
+                        previous_loop_radius = s;
+                        loops_done += 1;
+                        let scale = 1.0 + max_norm(&self.estimate);
+                        let change = self
+                            .estimate
+                            .iter()
+                            .zip(&self.previous_estimate)
+                            .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+                        self.previous_estimate.copy_from_slice(&self.estimate);
+                        if have_estimate
+                            && change <= self.options.endgame_tolerance * scale
+                            && self.estimate_residual_small()
+                        {
+                            self.winding = c;
+                            return self.classify_estimate(c);
+                        }
+                        self.winding = c;
+                        have_estimate = true;
+                    }
+                    Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
+                    Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge)) => {}
+                    Err(SegmentError::Failure(reason)) => {
+                        return self.give_up(have_estimate, reason);
+                    }
+                }
+            }
+            let s_next = s * self.options.endgame_ratio;
+            if s_next < self.options.endgame_min_radius {
+                return self.give_up(have_estimate, FailureReason::EndgameDidNotConverge);
+            }
+            match self.track_segment(t, C64::new(1.0 - s_next, 0.0)) {
+                Ok(()) => s = s_next,
+                Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
+                Err(SegmentError::Failure(reason)) => return self.give_up(have_estimate, reason),
+            }
+        }
+    }
+
+    /// End of the endgame without converged estimates: the last Cauchy estimate if
+    /// there is one (singular, lower accuracy), else failure.
+    pub(super) fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
+        if have_estimate && self.winding > 1 && {
+            self.estimate.copy_from_slice(&self.previous_estimate);
+            self.estimate_residual_small()
+        } {
+            self.classify_estimate(self.winding)
+        } else {
+            PathStatus::Failed(reason)
+        }
+    }
+
+    /// Whether `‖H(estimate, 1)‖∞ ≤ endpoint_residual · (1 + ‖estimate‖∞)^d̂` with a
+    /// generous d̂ = 2 (a Cauchy mean of a diverging path has an O(1) residual).
+    pub(super) fn estimate_residual_small(&mut self) -> bool {
+        let e = &mut self.eval;
+        self.homotopy
+            .evaluate(&self.estimate, C64::new(1.0, 0.0), &mut e.work, &mut e.h);
+        let scale = 1.0 + max_norm(&self.estimate);
+        max_norm(&e.h) <= self.options.endpoint_residual * scale * scale
+    }
+
+    /// Moves to the Cauchy estimate and classifies it (winding number 1 endpoints are
+    /// refined by Newton and are nonsingular if well conditioned).
+    pub(super) fn classify_estimate(&mut self, winding: usize) -> PathStatus {
+        self.x.copy_from_slice(&self.estimate);
+        self.t = C64::new(1.0, 0.0);
+        if winding == 1 {
+            let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
+            if converged && self.condition_at(C64::new(1.0, 0.0)) < self.options.singular_condition
+            {
+                return PathStatus::Nonsingular;
+            }
+            self.x.copy_from_slice(&self.estimate);
+        }
+        PathStatus::Singular
+    }
+
+    /// Loops around `|1 − t| = s` until the path closes; the mean of the samples (in
+    /// `self.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
+    pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, SegmentError> {
+        let m = self.options.cauchy_samples_per_loop.max(3);
+        self.x_checkpoint.copy_from_slice(&self.x);
+        self.cauchy_sum
+            .iter_mut()
+            .for_each(|v| *v = C64::new(0.0, 0.0));
+        self.log_sum.iter_mut().for_each(|v| *v = 0.0);
+        let point = |j: usize| {
+            C64::new(1.0, 0.0) - C64::from_polar(s, std::f64::consts::TAU * j as f64 / m as f64)
+        };
+        let mut extent: f64 = 0.0;
+        for c in 1..=self.options.max_winding_number.max(1) {
+            for j in 0..m {
+                for ((acc, log_acc), x) in self
+                    .cauchy_sum
+                    .iter_mut()
+                    .zip(self.log_sum.iter_mut())
+                    .zip(&self.x)
+                {
+                    *acc += x;
+                    *log_acc += x.norm().max(1e-300).ln();
+                }
+                self.track_segment(point(j), point(j + 1))?;
+                let distance = self
+                    .x
+                    .iter()
+                    .zip(&self.x_checkpoint)
+                    .fold(0.0f64, |d, (a, b)| d.max((a - b).norm()));
+                if j + 1 < m {
+                    extent = extent.max(distance);
+                } else {
+                    let scale = 1.0 + max_norm(&self.x);
+                    let noise = 100.0 * self.options.corrector_tolerance * scale;
+                    if distance <= (1e-2 * extent).max(noise) {
+                        let weight = 1.0 / (c * m) as f64;
+                        for (e, acc) in self.estimate.iter_mut().zip(&self.cauchy_sum) {
+                            *e = acc * weight;
+                        }
+                        for (l, acc) in self.log_mean.iter_mut().zip(&self.log_sum) {
+                            *l = acc * weight;
+                        }
+                        return Ok(c);
+                    }
+                    extent = extent.max(distance);
+                }
+            }
+        }
+        Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge))
+    }
+}
