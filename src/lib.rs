@@ -18,11 +18,14 @@
 //! 9. [`io`]: serde types of input and output files, CSV/JSON/SVG writers.
 //! 10. [`reference`]: an independent yardstick for the pipeline: many-start local
 //!     minimisation of the singularity distances, and a matrix of test designs.
+//! 11. [`certify`]: Krawczyk certificates in interval arithmetic that critical points
+//!     are exact, distinct and real, and that a sub-problem's set of them is complete.
 //!
 //! Arrows point one way: `pipeline → problem → {metric, mechanism, system}`,
 //! `pipeline → homotopy → system`. Nothing numerical depends on [`io`].
 
 pub mod algebra;
+pub mod certify;
 pub mod homotopy;
 pub mod index;
 pub mod io;

@@ -26,6 +26,7 @@ use super::{Evaluator, System};
 use crate::C64;
 use crate::system::double_double::ComplexDd;
 use crate::system::expr::{Expr, Kind};
+use crate::system::interval::ComplexInterval;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -121,6 +122,13 @@ impl TapeScalar for ComplexDd {
     #[inline(always)]
     fn scale_by_real_part(self, b: Self) -> Self {
         self.scale(b)
+    }
+}
+
+impl TapeScalar for ComplexInterval {
+    #[inline]
+    fn scale_by_real_part(self, b: Self) -> Self {
+        self.scale(b.re)
     }
 }
 
@@ -778,6 +786,54 @@ impl CompiledSystem {
             ],
             multiplications,
         )
+    }
+
+    /// Whether every coefficient of the system is real (the tapes' constants): then
+    /// for real parameters the solution set is closed under complex conjugation.
+    pub fn has_real_coefficients(&self) -> bool {
+        self.parts
+            .values_and_jacobian
+            .constants
+            .iter()
+            .all(|c| c.im == 0.0)
+    }
+
+    /// `F` and `∂F/∂x` over the complex box `x` at the parameter box `p`, in interval
+    /// arithmetic with outward rounding ([`crate::system::interval`]): `f[i]` contains
+    /// `F_i(ξ; π)` and `jac[i·n + j]` contains `∂F_i/∂x_j(ξ; π)` for every `ξ ∈ x`,
+    /// `π ∈ p`. The same tape as [`Evaluator::evaluate_with_jacobian`], run on
+    /// intervals (each register then encloses the exact value of its subexpression).
+    pub fn evaluate_interval_with_jacobian(
+        &self,
+        x: &[ComplexInterval],
+        p: &[ComplexInterval],
+        f: &mut [ComplexInterval],
+        jac: &mut [ComplexInterval],
+    ) {
+        let parts = &self.parts;
+        let (n, m, k) = (
+            parts.variables.len(),
+            parts.parameters.len(),
+            parts.num_equations,
+        );
+        assert_eq!(x.len(), n, "interval evaluation: variable count");
+        assert_eq!(p.len(), m, "interval evaluation: parameter count");
+        assert_eq!(f.len(), k, "interval evaluation: equation count");
+        assert_eq!(jac.len(), k * n, "interval evaluation: Jacobian size");
+        let tape = &parts.values_and_jacobian;
+        let mut registers = vec![ComplexInterval::default(); tape.workspace_len()];
+        registers[..n].copy_from_slice(x);
+        registers[n..n + m].copy_from_slice(p);
+        let constants_start = tape.num_inputs;
+        for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
+            *r = ComplexInterval::point(*c);
+        }
+        tape.execute(&mut registers);
+        let outputs = f.iter_mut().chain(jac.iter_mut());
+        for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
+            let value = registers[register as usize];
+            *target = if sign < 0.0 { -value } else { value };
+        }
     }
 
     #[inline]

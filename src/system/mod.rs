@@ -39,6 +39,7 @@ pub mod builder;
 pub mod compile;
 pub mod double_double;
 pub mod expr;
+pub mod interval;
 pub mod parse;
 pub mod phc;
 pub mod sparse;

@@ -1,0 +1,440 @@
+//! Krawczyk's test: a proof that a box contains exactly one solution of `F(x; p) = 0`.
+//!
+//! For a square system `F`, a centre `c`, a box `X ∋ c` and any invertible matrix `Y`
+//! (here the floating-point inverse of `∂F/∂x(c)`), the Krawczyk operator is
+//!
+//! `K(X) = c − Y·F(c) + (I − Y·∂F/∂x(X))·(X − c)`,
+//!
+//! evaluated in interval arithmetic. If `K(X)` lies in the interior of `X`, then `X`
+//! contains exactly one solution of `F = 0`, and it is nonsingular (Krawczyk,
+//! "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing
+//! 1969; Moore, "A test for existence of solutions to nonlinear systems", SIAM J. Numer.
+//! Anal. 1977; Rump, "Verification methods", Acta Numerica 2010, Thm. 8.1; complex
+//! boxes as in Breiding, Rose, Timme, "Certifying zeros of polynomial systems using
+//! interval arithmetic", ACM TOMS 2023).
+//!
+//! **Realness.** When every coefficient of `F(·; p)` is real, the conjugate of a
+//! solution is a solution. A box centred on a real point with a symmetric imaginary
+//! part is closed under conjugation, so the unique solution it contains equals its own
+//! conjugate: it is real. A box whose imaginary part excludes zero in some coordinate
+//! contains no real point: its solution is not real.
+//!
+//! **Distinctness.** Two disjoint boxes that each contain exactly one solution contain
+//! two different solutions; a pair of overlapping boxes is reported, since both may hold
+//! the same solution.
+
+use crate::C64;
+use crate::homotopy::linalg::LuWorkspace;
+use crate::system::Evaluator;
+use crate::system::compile::CompiledSystem;
+use crate::system::interval::{ComplexInterval, Interval};
+use serde::{Deserialize, Serialize};
+
+/// What a certificate says about a solution's realness.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Realness {
+    /// Proved real (a conjugation-closed box of a real system).
+    Real,
+    /// Proved not real (the box misses the real space).
+    NonReal,
+    /// Not decided (complex coefficients, or a box that meets the real space but is
+    /// not closed under conjugation).
+    Undecided,
+}
+
+/// A box proved to contain exactly one solution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RootBox {
+    /// The box in which the solution is unique, one complex rectangle per unknown.
+    pub bounds: Vec<ComplexInterval>,
+    /// A tighter box (inside `bounds`) that contains the solution.
+    pub enclosure: Vec<ComplexInterval>,
+    /// Its centre (the refined approximation).
+    pub center: Vec<C64>,
+    /// Largest half-width of the enclosure over coordinates and parts.
+    pub radius: f64,
+    /// Realness of the solution in it.
+    pub realness: Realness,
+}
+
+impl RootBox {
+    /// Whether the two enclosures share a point (they may then hold the same
+    /// solution; disjoint enclosures hold different ones).
+    pub fn meets(&self, other: &RootBox) -> bool {
+        self.enclosure
+            .iter()
+            .zip(&other.enclosure)
+            .all(|(a, b)| a.meets(b))
+    }
+
+    /// The real box of a real solution (the enclosure's real parts).
+    pub fn real_part(&self) -> Vec<Interval> {
+        self.enclosure.iter().map(|b| b.re).collect()
+    }
+}
+
+/// Rounds of ε-inflation before a point is given up.
+const INFLATION_STEPS: usize = 12;
+/// Newton steps that polish an approximation before it is tested.
+const POLISH_STEPS: usize = 3;
+
+/// A reusable Krawczyk test for one square system at one parameter point.
+pub struct Krawczyk<'a> {
+    system: &'a CompiledSystem,
+    parameters: Vec<C64>,
+    parameter_boxes: Vec<ComplexInterval>,
+    real_system: bool,
+    n: usize,
+    work: Vec<C64>,
+    lu: LuWorkspace,
+}
+
+impl<'a> Krawczyk<'a> {
+    /// The test for `system` at `parameters`. `None` unless the system is square.
+    pub fn new(system: &'a CompiledSystem, parameters: &[C64]) -> Option<Self> {
+        let n = system.num_variables();
+        if system.num_equations() != n || parameters.len() != system.num_parameters() {
+            return None;
+        }
+        Some(Krawczyk {
+            system,
+            parameters: parameters.to_vec(),
+            parameter_boxes: parameters
+                .iter()
+                .map(|&v| ComplexInterval::point(v))
+                .collect(),
+            real_system: system.has_real_coefficients() && parameters.iter().all(|v| v.im == 0.0),
+            n,
+            work: system.new_workspace(),
+            lu: LuWorkspace::new(n),
+        })
+    }
+
+    /// Whether the system at these parameters has real coefficients (realness can
+    /// then be decided).
+    pub fn is_real_system(&self) -> bool {
+        self.real_system
+    }
+
+    /// A box around `approximation` proved to contain exactly one solution, or `None`
+    /// where no box of the tried sizes passes the test (a singular or not-yet-converged
+    /// point, or one too ill-conditioned for double precision).
+    pub fn certify(&mut self, approximation: &[C64]) -> Option<RootBox> {
+        if approximation.len() != self.n || approximation.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let center = self.polish(approximation)?;
+        let scale = 1.0 + center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        let nearly_real = center.iter().all(|v| v.im.abs() <= 1e-6 * scale);
+        if self.real_system && nearly_real {
+            let real_center: Vec<C64> = center.iter().map(|v| C64::new(v.re, 0.0)).collect();
+            if let Some(found) = self.certify_at(&real_center, true) {
+                return Some(found);
+            }
+        }
+        self.certify_at(&center, false)
+    }
+
+    /// Newton's method from `x` (residual in double-double); `None` if the Jacobian is
+    /// singular.
+    fn polish(&mut self, x: &[C64]) -> Option<Vec<C64>> {
+        let n = self.n;
+        let mut x = x.to_vec();
+        let mut f = vec![C64::new(0.0, 0.0); n];
+        let mut jac = vec![C64::new(0.0, 0.0); n * n];
+        for _ in 0..POLISH_STEPS {
+            self.system.evaluate_with_jacobian(
+                &x,
+                &self.parameters,
+                &mut self.work,
+                &mut f,
+                &mut jac,
+            );
+            self.system
+                .evaluate_extended(&x, &self.parameters, &mut self.work, &mut f);
+            if !self.lu.factor(&jac) {
+                return None;
+            }
+            self.lu.solve_in_place(&mut f);
+            for (xi, dxi) in x.iter_mut().zip(&f) {
+                *xi -= dxi;
+            }
+        }
+        x.iter().all(|v| v.is_finite()).then_some(x)
+    }
+
+    /// The Krawczyk test on boxes around `center` of growing size. With `symmetric`
+    /// (a real centre of a real system) a success proves the solution real.
+    fn certify_at(&mut self, center: &[C64], symmetric: bool) -> Option<RootBox> {
+        let n = self.n;
+        let mut f = vec![C64::new(0.0, 0.0); n];
+        let mut jac = vec![C64::new(0.0, 0.0); n * n];
+        self.system.evaluate_with_jacobian(
+            center,
+            &self.parameters,
+            &mut self.work,
+            &mut f,
+            &mut jac,
+        );
+        if !self.lu.factor(&jac) {
+            return None;
+        }
+        // Y = J(c)⁻¹, column by column (row-major storage).
+        let mut inverse = vec![C64::new(0.0, 0.0); n * n];
+        let mut column = vec![C64::new(0.0, 0.0); n];
+        for j in 0..n {
+            column.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+            column[j] = C64::new(1.0, 0.0);
+            self.lu.solve_in_place(&mut column);
+            for i in 0..n {
+                inverse[i * n + j] = column[i];
+            }
+        }
+        let inverse: Vec<ComplexInterval> =
+            inverse.into_iter().map(ComplexInterval::point).collect();
+        let center_box: Vec<ComplexInterval> =
+            center.iter().map(|&v| ComplexInterval::point(v)).collect();
+        // Y·F(c), with F(c) enclosed by evaluating on the point box.
+        let mut f_box = vec![ComplexInterval::default(); n];
+        let mut jac_box = vec![ComplexInterval::default(); n * n];
+        self.system.evaluate_interval_with_jacobian(
+            &center_box,
+            &self.parameter_boxes,
+            &mut f_box,
+            &mut jac_box,
+        );
+        // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
+        // ("Verification methods", §13.1) grows a box E around it until
+        // z + (I − Y·J(c + E))·E lies inside E.
+        let step: Vec<ComplexInterval> = multiply(&inverse, &f_box, n)
+            .into_iter()
+            .map(|v| -v)
+            .collect();
+        if step.iter().any(|v| !v.is_bounded()) {
+            return None;
+        }
+        let mut offsets = step.clone();
+        let mut m = vec![ComplexInterval::default(); n * n];
+        for _ in 0..INFLATION_STEPS {
+            let trial: Vec<ComplexInterval> = offsets
+                .iter()
+                .zip(center)
+                .map(|(e, c)| inflate(e, c.norm(), symmetric))
+                .collect();
+            let bounds: Vec<ComplexInterval> = center
+                .iter()
+                .zip(&trial)
+                .map(|(&c, e)| ComplexInterval::point(c) + *e)
+                .collect();
+            self.system.evaluate_interval_with_jacobian(
+                &bounds,
+                &self.parameter_boxes,
+                &mut f_box,
+                &mut jac_box,
+            );
+            // M = I − Y·J(c + E).
+            for i in 0..n {
+                for j in 0..n {
+                    let mut sum = ComplexInterval::default();
+                    for l in 0..n {
+                        sum = sum + inverse[i * n + l] * jac_box[l * n + j];
+                    }
+                    let identity = if i == j { 1.0 } else { 0.0 };
+                    m[i * n + j] = ComplexInterval::point(C64::new(identity, 0.0)) - sum;
+                }
+            }
+            let image: Vec<ComplexInterval> = multiply(&m, &trial, n)
+                .into_iter()
+                .zip(&step)
+                .map(|(spread, z)| *z + spread)
+                .collect();
+            if image.iter().any(|v| !v.is_bounded()) {
+                return None;
+            }
+            if image.iter().zip(&trial).all(|(k, e)| k.strictly_inside(e)) {
+                let enclosure: Vec<ComplexInterval> = center
+                    .iter()
+                    .zip(&image)
+                    .map(|(&c, k)| ComplexInterval::point(c) + *k)
+                    .collect();
+                let realness = if symmetric {
+                    Realness::Real
+                } else if self.real_system && enclosure.iter().any(|b| !b.im.contains_zero()) {
+                    Realness::NonReal
+                } else {
+                    Realness::Undecided
+                };
+                let radius = enclosure
+                    .iter()
+                    .fold(0.0f64, |r, b| r.max(b.re.width()).max(b.im.width()))
+                    * 0.5;
+                return Some(RootBox {
+                    bounds,
+                    enclosure,
+                    center: center.to_vec(),
+                    radius,
+                    realness,
+                });
+            }
+            offsets = image;
+        }
+        None
+    }
+}
+
+/// Rump's ε-inflation of an offset box `e` around a centre of modulus `scale`: each
+/// part widened by a tenth of its width and a few ulps of the centre; with `symmetric`
+/// the imaginary part is made symmetric about zero (a box closed under conjugation).
+fn inflate(e: &ComplexInterval, scale: f64, symmetric: bool) -> ComplexInterval {
+    let floor = 4.0 * f64::EPSILON * scale + f64::MIN_POSITIVE;
+    let grow = |v: Interval| {
+        let pad = 0.1 * v.width() + floor;
+        Interval {
+            lo: v.lo - pad,
+            hi: v.hi + pad,
+        }
+        .widened()
+    };
+    let re = grow(e.re);
+    let mut im = grow(e.im);
+    if symmetric {
+        let m = im.magnitude();
+        im = Interval { lo: -m, hi: m };
+    }
+    ComplexInterval { re, im }
+}
+
+/// `A·v` for a row-major n × n interval matrix.
+fn multiply(a: &[ComplexInterval], v: &[ComplexInterval], n: usize) -> Vec<ComplexInterval> {
+    (0..n)
+        .map(|i| {
+            (0..n).fold(ComplexInterval::default(), |sum, j| {
+                sum + a[i * n + j] * v[j]
+            })
+        })
+        .collect()
+}
+
+/// The certificates of a list of approximate solutions.
+#[derive(Clone, Debug, Default)]
+pub struct CertifiedSolutions {
+    /// Per input point: its box, or `None` where the test failed.
+    pub boxes: Vec<Option<RootBox>>,
+    /// Index pairs of certified boxes that overlap (possibly one solution twice).
+    pub overlapping: Vec<(usize, usize)>,
+}
+
+impl CertifiedSolutions {
+    /// Number of solutions proved distinct: certified boxes not overlapping an earlier
+    /// certified box.
+    pub fn distinct(&self) -> usize {
+        let mut duplicate = vec![false; self.boxes.len()];
+        for &(_, j) in &self.overlapping {
+            duplicate[j] = true;
+        }
+        self.boxes
+            .iter()
+            .zip(&duplicate)
+            .filter(|(b, d)| b.is_some() && !**d)
+            .count()
+    }
+
+    /// Number of points whose test failed.
+    pub fn uncertified(&self) -> usize {
+        self.boxes.iter().filter(|b| b.is_none()).count()
+    }
+
+    /// Whether every point is certified and every pair of boxes is disjoint.
+    pub fn all_distinct(&self) -> bool {
+        self.uncertified() == 0 && self.overlapping.is_empty()
+    }
+}
+
+/// Certifies every point of `solutions` as a solution of `system` at `parameters`,
+/// and checks the boxes pairwise for overlap. `None` unless the system is square.
+pub fn certify_solutions(
+    system: &CompiledSystem,
+    parameters: &[C64],
+    solutions: &[Vec<C64>],
+) -> Option<CertifiedSolutions> {
+    let mut test = Krawczyk::new(system, parameters)?;
+    let boxes: Vec<Option<RootBox>> = solutions.iter().map(|x| test.certify(x)).collect();
+    let mut overlapping = Vec::new();
+    for i in 0..boxes.len() {
+        for j in i + 1..boxes.len() {
+            if let (Some(a), Some(b)) = (&boxes[i], &boxes[j])
+                && a.meets(b)
+            {
+                overlapping.push((i, j));
+            }
+        }
+    }
+    Some(CertifiedSolutions { boxes, overlapping })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::system::bertini;
+
+    /// Compiles `f1; f2` in `x, y` (Bertini input).
+    fn compile(f1: &str, f2: &str) -> CompiledSystem {
+        let text = format!(
+            "INPUT\nvariable_group x, y;\nfunction f1, f2;\nf1 = {f1};\nf2 = {f2};\nEND;\n"
+        );
+        CompiledSystem::new(&bertini::read(&text).expect("system parses"))
+    }
+
+    #[test]
+    fn circle_and_line_roots_are_real_and_distinct() {
+        // x² + y² = 2, x = y: the roots (1, 1) and (−1, −1).
+        let system = compile("x^2 + y^2 - 2", "x - y");
+        let near = |a: f64| vec![C64::new(a + 1e-9, 1e-10), C64::new(a - 1e-9, 0.0)];
+        let result = certify_solutions(&system, &[], &[near(1.0), near(-1.0)]).unwrap();
+        assert!(result.all_distinct(), "{result:?}");
+        assert_eq!(result.distinct(), 2);
+        for b in result.boxes.iter().flatten() {
+            assert_eq!(b.realness, Realness::Real);
+            assert!(b.radius < 1e-12, "radius {}", b.radius);
+        }
+    }
+
+    #[test]
+    fn complex_roots_are_proved_non_real() {
+        // x² + 1 = 0, y = x: roots ±i.
+        let system = compile("x^2 + 1", "y - x");
+        let i = C64::new(0.0, 1.0);
+        let result = certify_solutions(&system, &[], &[vec![i, i], vec![-i, -i]]).unwrap();
+        assert!(result.all_distinct());
+        for b in result.boxes.iter().flatten() {
+            assert_eq!(b.realness, Realness::NonReal);
+        }
+    }
+
+    #[test]
+    fn a_point_that_is_not_a_root_and_a_double_root_fail() {
+        let system = compile("x^2 + y^2 - 2", "x - y");
+        // Newton from a point between the roots lands on one of them; from exactly
+        // the symmetric point the Jacobian is singular.
+        let midpoint = vec![C64::new(0.0, 0.0), C64::new(0.0, 0.0)];
+        let result = certify_solutions(&system, &[], &[midpoint]).unwrap();
+        assert_eq!(result.uncertified(), 1);
+        // A double root (x − 1)² = 0 is singular: no box passes.
+        let double = compile("x^2 - 2*x + 1", "y");
+        let near = vec![C64::new(1.0 + 1e-9, 0.0), C64::new(0.0, 0.0)];
+        let result = certify_solutions(&double, &[], &[near]).unwrap();
+        assert_eq!(result.uncertified(), 1);
+    }
+
+    #[test]
+    fn the_same_root_twice_is_caught() {
+        let system = compile("x^2 + y^2 - 2", "x - y");
+        let a = vec![C64::new(1.0, 0.0), C64::new(1.0, 0.0)];
+        let b = vec![C64::new(1.0 + 1e-12, 0.0), C64::new(1.0, 1e-13)];
+        let result = certify_solutions(&system, &[], &[a, b]).unwrap();
+        assert_eq!(result.uncertified(), 0);
+        assert_eq!(result.overlapping, vec![(0, 1)]);
+        assert_eq!(result.distinct(), 1);
+    }
+}

@@ -1,0 +1,67 @@
+//! Krawczyk certificates of the shipped start solutions: at the start file's (complex,
+//! generic) parameters every stored critical point of every sub-problem is proved to
+//! be an exact solution in its own box, and the boxes are pairwise disjoint, so the
+//! file holds as many distinct solutions as it claims.
+
+use singdist::C64;
+use singdist::certify::krawczyk::{Realness, certify_solutions};
+use singdist::pipeline::curve::default_start_solutions;
+use singdist::problem::LagrangeProblem;
+use singdist::problem::ProblemId;
+
+#[test]
+fn every_start_solution_is_certified_and_distinct() {
+    let mut report = Vec::new();
+    let mut failed = Vec::new();
+    for id in ProblemId::all() {
+        let Ok(problem) = LagrangeProblem::new(id) else {
+            continue;
+        };
+        let start = default_start_solutions(id).expect("start file");
+        let parameters: Vec<C64> = problem
+            .parameter_names()
+            .iter()
+            .map(|name| start.parameters[name])
+            .collect();
+        assert_eq!(start.variables, problem.variable_names(), "{}", id.name());
+        let result = certify_solutions(problem.evaluator(), &parameters, &start.solutions)
+            .expect("square system");
+        let widest = result
+            .boxes
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, b| m.max(b.radius));
+        // Complex parameters: realness is not decided.
+        assert!(
+            result
+                .boxes
+                .iter()
+                .flatten()
+                .all(|b| b.realness != Realness::Real),
+            "{}",
+            id.name()
+        );
+        report.push(format!(
+            "{}: {} of {} certified, {} overlapping pairs, widest box {:.1e}",
+            id.name(),
+            result.distinct(),
+            start.solutions.len(),
+            result.overlapping.len(),
+            widest
+        ));
+        if !result.all_distinct() || result.distinct() != start.solutions.len() {
+            failed.push(report.last().unwrap().clone());
+            for (k, b) in result.boxes.iter().enumerate() {
+                if b.is_none() {
+                    let norm = start.solutions[k]
+                        .iter()
+                        .fold(0.0f64, |m, v| m.max(v.norm()));
+                    failed.push(format!("  solution {k} uncertified, |x|∞ = {norm:.2e}"));
+                }
+            }
+        }
+    }
+    println!("{}", report.join("\n"));
+    assert!(failed.is_empty(), "{}", failed.join("\n"));
+    assert!(report.len() >= 9, "too few sub-problems: {report:?}");
+}
