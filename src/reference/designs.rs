@@ -98,6 +98,16 @@ fn regular(radius: f64, rotation: f64) -> [Point<f64>; 3] {
     })
 }
 
+/// [`regular`] with its first vertex moved `offset·radius` along the circle and
+/// `offset·radius` outwards: an equilateral part as a workshop builds it.
+fn nearly_regular(radius: f64, rotation: f64, offset: f64) -> [Point<f64>; 3] {
+    let mut p = regular(radius, rotation);
+    let angle = rotation + FRAC_PI_2 + offset;
+    let r = radius * (1.0 + offset);
+    p[0] = [r * angle.cos(), r * angle.sin()];
+    p
+}
+
 fn isosceles(radius: f64, apex_angle: f64) -> [Point<f64>; 3] {
     // Apex on the y axis, base symmetric about it; legs of length 1.4·radius.
     let leg = 1.4 * radius;
@@ -262,7 +272,7 @@ fn scattered_poses(
 }
 
 /// Every class of [`design_matrix`], by name, in order.
-pub const CLASS_NAMES: [&str; 24] = [
+pub const CLASS_NAMES: [&str; 27] = [
     "random-scale-1e-2",
     "random-scale-1",
     "random-scale-1e2",
@@ -287,6 +297,9 @@ pub const CLASS_NAMES: [&str; 24] = [
     "coincident-platform-23",
     "tiny-platform",
     "large-platform",
+    "nearly-equilateral-base",
+    "nearly-equilateral-both-aligned",
+    "nearly-equilateral-platform-1e-3",
 ];
 
 /// Base and platform anchors.
@@ -330,6 +343,12 @@ fn anchors(name: &str, rng: &mut random::SeededRng) -> Option<Anchors> {
         "nearly-collinear-platform" => (base, nearly_collinear(0.5, 1e-3)),
         "tiny-platform" => (base, scale_points(platform, 1.0 / 40.0)),
         "large-platform" => (base, scale_points(platform, 250.0)),
+        "nearly-equilateral-base" => (nearly_regular(1.0, 0.1, 1e-6), platform),
+        "nearly-equilateral-both-aligned" => (
+            nearly_regular(1.0, 0.0, 1e-6),
+            nearly_regular(0.4, 0.0, 1e-6),
+        ),
+        "nearly-equilateral-platform-1e-3" => (base, nearly_regular(0.4, -0.2, 1e-3)),
         _ => {
             let (part, pair) = name.rsplit_once('-')?;
             match part {
