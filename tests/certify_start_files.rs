@@ -6,8 +6,8 @@
 use singdist::C64;
 use singdist::certify::krawczyk::{Realness, certify_solutions};
 use singdist::pipeline::curve::default_start_solutions;
-use singdist::problem::LagrangeProblem;
 use singdist::problem::ProblemId;
+use singdist::problem::{Coordinates, LagrangeProblem};
 
 #[test]
 fn every_start_solution_is_certified_and_distinct() {
@@ -64,4 +64,61 @@ fn every_start_solution_is_certified_and_distinct() {
     println!("{}", report.join("\n"));
     assert!(failed.is_empty(), "{}", failed.join("\n"));
     assert!(report.len() >= 9, "too few sub-problems: {report:?}");
+}
+
+#[test]
+fn configuration_enclosure_contains_the_configuration() {
+    use singdist::system::interval::ComplexInterval;
+    for id in ProblemId::all() {
+        for coordinates in [Coordinates::Cartesian, Coordinates::Isotropic] {
+            let Ok(problem) = LagrangeProblem::new_in(id, coordinates) else {
+                continue;
+            };
+            let start = default_start_solutions(id).expect("start file");
+            let parameters: Vec<C64> = problem
+                .parameter_names()
+                .iter()
+                .map(|name| start.parameters[name])
+                .collect();
+            let x = &problem.from_cartesian(&start.solutions[0]);
+            let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
+            let k_prime = problem.configuration(x, &parameters, &mut work);
+            let boxes: Vec<ComplexInterval> =
+                x.iter().map(|&v| ComplexInterval::point(v)).collect();
+            let p: Vec<ComplexInterval> = parameters
+                .iter()
+                .map(|&v| ComplexInterval::point(v))
+                .collect();
+            let enclosure = problem.configuration_enclosure(&boxes, &p);
+            for (value, b) in k_prime.iter().zip(&enclosure) {
+                assert!(
+                    b.re.lo <= value.re
+                        && value.re <= b.re.hi
+                        && b.im.lo <= value.im
+                        && value.im <= b.im.hi,
+                    "{} {coordinates:?}: {value} not in {b:?}",
+                    id.name()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn interval_metric_encloses_the_metric() {
+    use singdist::metric::Metric;
+    use singdist::system::interval::Interval;
+    let k: [f64; 12] = std::array::from_fn(|i| (i as f64 * 0.37).sin());
+    let kp: [f64; 12] = std::array::from_fn(|i| (i as f64 * 0.91).cos());
+    for metric in Metric::all() {
+        let d2 = metric.distance_sq(&k, &kp);
+        let ki = k.map(Interval::point);
+        let kpi = kp.map(Interval::point);
+        let e = metric.distance_sq(&ki, &kpi);
+        assert!(
+            e.lo <= d2 && d2 <= e.hi,
+            "{}: {d2} not in {e:?}",
+            metric.name()
+        );
+    }
 }

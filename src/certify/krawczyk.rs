@@ -85,6 +85,9 @@ pub struct Krawczyk<'a> {
     parameters: Vec<C64>,
     parameter_boxes: Vec<ComplexInterval>,
     real_system: bool,
+    /// First index of every isotropic pair `(u, v)` of unknowns (see
+    /// [`Krawczyk::with_isotropic_pairs`]); empty for Cartesian unknowns.
+    pairs: Vec<usize>,
     n: usize,
     work: Vec<C64>,
     lu: LuWorkspace,
@@ -93,22 +96,67 @@ pub struct Krawczyk<'a> {
 impl<'a> Krawczyk<'a> {
     /// The test for `system` at `parameters`. `None` unless the system is square.
     pub fn new(system: &'a CompiledSystem, parameters: &[C64]) -> Option<Self> {
+        let boxes: Vec<ComplexInterval> = parameters
+            .iter()
+            .map(|&v| ComplexInterval::point(v))
+            .collect();
+        Self::with_parameter_boxes(system, parameters, &boxes)
+    }
+
+    /// The test for `system` at every parameter in the boxes `parameter_boxes` (a
+    /// success proves a unique solution in the box for each of them); `parameters`, a
+    /// point of the boxes, serves Newton's method and the preconditioner.
+    pub fn with_parameter_boxes(
+        system: &'a CompiledSystem,
+        parameters: &[C64],
+        parameter_boxes: &[ComplexInterval],
+    ) -> Option<Self> {
         let n = system.num_variables();
-        if system.num_equations() != n || parameters.len() != system.num_parameters() {
+        let m = system.num_parameters();
+        if system.num_equations() != n || parameters.len() != m || parameter_boxes.len() != m {
             return None;
         }
+        let real_parameters = parameter_boxes.iter().all(|b| b.im == Interval::point(0.0));
         Some(Krawczyk {
             system,
             parameters: parameters.to_vec(),
-            parameter_boxes: parameters
-                .iter()
-                .map(|&v| ComplexInterval::point(v))
-                .collect(),
-            real_system: system.has_real_coefficients() && parameters.iter().all(|v| v.im == 0.0),
+            parameter_boxes: parameter_boxes.to_vec(),
+            real_system: system.has_real_coefficients() && real_parameters,
+            pairs: Vec::new(),
             n,
             work: system.new_workspace(),
             lu: LuWorkspace::new(n),
         })
+    }
+
+    /// Declares unknowns `(x_i, x_{i+1})` for every `i` of `pairs` as isotropic
+    /// coordinates `u = (x + iy)/√2`, `v = (x − iy)/√2` of a point of a system whose
+    /// Cartesian form is real at real parameters `real`. Its solution set is then
+    /// closed under `σ: (u, v) ↦ (v̄, ū)` (other unknowns conjugated), a real solution
+    /// is a fixed point of σ, and boxes closed under σ decide realness as conjugation-
+    /// closed boxes do for Cartesian unknowns.
+    pub fn with_isotropic_pairs(mut self, pairs: &[usize], real: bool) -> Self {
+        self.pairs = pairs.iter().copied().filter(|&i| i + 1 < self.n).collect();
+        self.real_system = real;
+        self
+    }
+
+    /// Partner of unknown `i` under σ (itself for a non-isotropic unknown).
+    fn partner(&self, i: usize) -> usize {
+        for &p in &self.pairs {
+            if i == p {
+                return p + 1;
+            }
+            if i == p + 1 {
+                return p;
+            }
+        }
+        i
+    }
+
+    /// `σ(x)`: conjugated, isotropic pairs swapped.
+    fn involution(&self, x: &[C64]) -> Vec<C64> {
+        (0..self.n).map(|i| x[self.partner(i)].conj()).collect()
     }
 
     /// Whether the system at these parameters has real coefficients (realness can
@@ -126,9 +174,18 @@ impl<'a> Krawczyk<'a> {
         }
         let center = self.polish(approximation)?;
         let scale = 1.0 + center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-        let nearly_real = center.iter().all(|v| v.im.abs() <= 1e-6 * scale);
+        let mirrored = self.involution(&center);
+        let nearly_real = center
+            .iter()
+            .zip(&mirrored)
+            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale);
         if self.real_system && nearly_real {
-            let real_center: Vec<C64> = center.iter().map(|v| C64::new(v.re, 0.0)).collect();
+            // The nearest fixed point of σ: (x + σ(x))/2.
+            let real_center: Vec<C64> = center
+                .iter()
+                .zip(&mirrored)
+                .map(|(a, b)| (a + b) * 0.5)
+                .collect();
             if let Some(found) = self.certify_at(&real_center, true) {
                 return Some(found);
             }
@@ -217,11 +274,14 @@ impl<'a> Krawczyk<'a> {
         let mut offsets = step.clone();
         let mut m = vec![ComplexInterval::default(); n * n];
         for _ in 0..INFLATION_STEPS {
-            let trial: Vec<ComplexInterval> = offsets
+            let mut trial: Vec<ComplexInterval> = offsets
                 .iter()
                 .zip(center)
-                .map(|(e, c)| inflate(e, c.norm(), symmetric))
+                .map(|(e, c)| inflate(e, c.norm()))
                 .collect();
+            if symmetric {
+                self.close_under_involution(&mut trial);
+            }
             let bounds: Vec<ComplexInterval> = center
                 .iter()
                 .zip(&trial)
@@ -260,7 +320,7 @@ impl<'a> Krawczyk<'a> {
                     .collect();
                 let realness = if symmetric {
                     Realness::Real
-                } else if self.real_system && enclosure.iter().any(|b| !b.im.contains_zero()) {
+                } else if self.real_system && self.misses_real_points(&enclosure) {
                     Realness::NonReal
                 } else {
                     Realness::Undecided
@@ -283,10 +343,58 @@ impl<'a> Krawczyk<'a> {
     }
 }
 
+impl Krawczyk<'_> {
+    /// Enlarges offsets `e` around a σ-fixed centre so that the box is closed under σ:
+    /// `E_u ← E_u ∪ conj(E_v)`, `E_v ← conj(E_u)` per isotropic pair, and a symmetric
+    /// imaginary part for the other unknowns.
+    fn close_under_involution(&self, e: &mut [ComplexInterval]) {
+        for i in 0..self.n {
+            let j = self.partner(i);
+            if j == i {
+                let m = e[i].im.magnitude();
+                e[i].im = Interval { lo: -m, hi: m };
+            } else if i < j {
+                let mirrored = conjugate(&e[j]);
+                let hull = ComplexInterval {
+                    re: hull(e[i].re, mirrored.re),
+                    im: hull(e[i].im, mirrored.im),
+                };
+                e[i] = hull;
+                e[j] = conjugate(&hull);
+            }
+        }
+    }
+
+    /// Whether the box contains no fixed point of σ (no real solution can lie in it).
+    fn misses_real_points(&self, b: &[ComplexInterval]) -> bool {
+        (0..self.n).any(|i| {
+            let j = self.partner(i);
+            if j == i {
+                !b[i].im.contains_zero()
+            } else {
+                !b[i].meets(&conjugate(&b[j]))
+            }
+        })
+    }
+}
+
+fn conjugate(z: &ComplexInterval) -> ComplexInterval {
+    ComplexInterval {
+        re: z.re,
+        im: -z.im,
+    }
+}
+
+fn hull(a: Interval, b: Interval) -> Interval {
+    Interval {
+        lo: a.lo.min(b.lo),
+        hi: a.hi.max(b.hi),
+    }
+}
+
 /// Rump's ε-inflation of an offset box `e` around a centre of modulus `scale`: each
-/// part widened by a tenth of its width and a few ulps of the centre; with `symmetric`
-/// the imaginary part is made symmetric about zero (a box closed under conjugation).
-fn inflate(e: &ComplexInterval, scale: f64, symmetric: bool) -> ComplexInterval {
+/// part widened by a tenth of its width and a few ulps of the centre.
+fn inflate(e: &ComplexInterval, scale: f64) -> ComplexInterval {
     let floor = 4.0 * f64::EPSILON * scale + f64::MIN_POSITIVE;
     let grow = |v: Interval| {
         let pad = 0.1 * v.width() + floor;
@@ -296,13 +404,10 @@ fn inflate(e: &ComplexInterval, scale: f64, symmetric: bool) -> ComplexInterval 
         }
         .widened()
     };
-    let re = grow(e.re);
-    let mut im = grow(e.im);
-    if symmetric {
-        let m = im.magnitude();
-        im = Interval { lo: -m, hi: m };
+    ComplexInterval {
+        re: grow(e.re),
+        im: grow(e.im),
     }
-    ComplexInterval { re, im }
 }
 
 /// `A·v` for a row-major n × n interval matrix.

@@ -11,4 +11,5 @@
 //! solutions at any parameter is at most the generic number: Morgan, Sommese,
 //! "Coefficient-parameter polynomial continuation", Appl. Math. Comput. 1989).
 
+pub mod distance;
 pub mod krawczyk;

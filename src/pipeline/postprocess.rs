@@ -13,6 +13,7 @@
 //! 5. a pose is on a cut locus when a second minimiser with a different `K′` attains
 //!    the minimum within `cut_locus_tolerance` (paper §6): both are reported.
 
+use crate::certify::distance::{MetricCertificate, SubproblemCertificate};
 use crate::metric::Metric;
 use crate::problem::SubProblem;
 use serde::{Deserialize, Serialize};
@@ -41,6 +42,9 @@ pub struct SubproblemDistance {
     pub accounted_paths: usize,
     /// Number of paths tracked from the seed (its finite solutions).
     pub expected_paths: usize,
+    /// What interval arithmetic proved about its critical points (when certifying).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub certificate: Option<SubproblemCertificate>,
 }
 
 /// An alternative minimiser reported at a cut locus.
@@ -72,6 +76,9 @@ pub struct MetricDistance {
     pub minimisers: Vec<Minimiser>,
     /// Per sub-problem: its own distance and closest configuration.
     pub subproblems: BTreeMap<String, SubproblemDistance>,
+    /// Whether the distance is a proved global minimum (when certifying).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub certificate: Option<MetricCertificate>,
 }
 
 /// One sub-problem's real candidates with its finite and expected endpoint counts.
@@ -106,6 +113,7 @@ pub fn subproblem_distance(
         real_critical_points: candidates.len(),
         accounted_paths,
         expected_paths,
+        certificate: None,
     }
 }
 
@@ -168,6 +176,7 @@ pub fn metric_distance(
                 )
             })
             .collect(),
+        certificate: None,
     })
 }
 

@@ -5,6 +5,7 @@ use crate::C64;
 use crate::algebra::{Cartesian, Isotropic, Plane, Point};
 use crate::mechanism::rpr::{self, Design};
 use crate::metric::Part;
+use crate::system::interval::ComplexInterval;
 use crate::system::{CompiledSystem, Evaluator, Expr, System};
 
 /// Errors of the problem layer.
@@ -476,6 +477,16 @@ impl LagrangeProblem {
         self.convert_points(x, crate::algebra::to_cartesian)
     }
 
+    /// First index of every point's coordinate pair `(u, v)` among the unknowns when
+    /// they are [`Coordinates::Isotropic`] (empty for Cartesian ones): what
+    /// certification needs to decide realness (`(u, v) ↦ (v̄, ū)`).
+    pub fn isotropic_pairs(&self) -> Vec<usize> {
+        match self.coordinates {
+            Coordinates::Isotropic => self.point_variables.clone(),
+            Coordinates::Cartesian => Vec::new(),
+        }
+    }
+
     /// The complex conjugate solution: for real parameters the system has real
     /// coefficients in Cartesian coordinates, so with `x` also `x̄` is a solution. In
     /// this problem's coordinates: every entry conjugated, and for
@@ -565,6 +576,20 @@ impl LagrangeProblem {
     pub fn configuration(&self, x: &[C64], p: &[C64], work: &mut [C64]) -> [C64; 12] {
         let mut out = [C64::new(0.0, 0.0); 12];
         self.configuration_map.evaluate(x, p, work, &mut out);
+        out
+    }
+
+    /// [`LagrangeProblem::configuration`] over boxes: twelve rectangles that contain
+    /// `K′(ξ; π)` for every `ξ ∈ x`, `π ∈ p` (interval arithmetic, outward rounding).
+    pub fn configuration_enclosure(
+        &self,
+        x: &[ComplexInterval],
+        p: &[ComplexInterval],
+    ) -> [ComplexInterval; 12] {
+        let mut out = [ComplexInterval::default(); 12];
+        let mut jacobian = vec![ComplexInterval::default(); 12 * x.len()];
+        self.configuration_map
+            .evaluate_interval_with_jacobian(x, p, &mut out, &mut jacobian);
         out
     }
 

@@ -93,6 +93,14 @@ impl Interval {
         self.lo.is_finite() && self.hi.is_finite()
     }
 
+    /// `1/self` for an interval that excludes zero (`None` otherwise).
+    pub fn recip(&self) -> Option<Interval> {
+        if self.contains_zero() || !self.lo.is_finite() || !self.hi.is_finite() {
+            return None;
+        }
+        Some(Interval::from_rounded(1.0 / self.hi, 1.0 / self.lo))
+    }
+
     /// `sqrt` of the non-negative part (`None` if the interval is entirely negative).
     pub fn sqrt(&self) -> Option<Interval> {
         if self.hi < 0.0 {

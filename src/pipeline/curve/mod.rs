@@ -62,10 +62,18 @@
 
 use super::postprocess::{self, Candidate, MetricDistance};
 
-/// Per (pose, sub-problem): real candidates, finite endpoints, failure, paths tracked.
-type PoseEntry = (Vec<Candidate>, usize, Option<PathFailure>, usize);
+/// Per (pose, sub-problem): real candidates, finite endpoints, failure, paths tracked,
+/// and the certificate of its critical points ([`CurveOptions::certify`]).
+type PoseEntry = (
+    Vec<Candidate>,
+    usize,
+    Option<PathFailure>,
+    usize,
+    Option<SubproblemCertificate>,
+);
 use super::start_file::StartSolutions;
 use crate::C64;
+use crate::certify::distance::{self as certification, SubproblemCertificate};
 use crate::homotopy::{
     FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus,
     PolylinePath, Tracker, TrackerOptions,
@@ -252,6 +260,14 @@ impl Normalization {
     /// `(K − c)/s`.
     pub fn apply(&self, k: &[C64; 12]) -> [C64; 12] {
         std::array::from_fn(|i| (k[i] - self.center[i % 2]) / self.scale)
+    }
+
+    /// The similarity as a certification frame (real centre).
+    pub fn frame(&self) -> certification::Frame {
+        certification::Frame {
+            center: [self.center[0].re, self.center[1].re],
+            scale: self.scale,
+        }
     }
 
     /// `s·K + c`.
@@ -656,11 +672,32 @@ fn problem_at_pose(
         k,
         options.real_tolerance,
     );
+    let certificate = options
+        .certify
+        .then(|| certify_endpoints(stage, seeded, &endpoints, k));
     let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
     ProblemAtPose {
-        entry: (list, best, failure, tracked),
+        entry: (list, best, failure, tracked, certificate),
         complete,
     }
+}
+
+/// The certificate of a sub-problem's finite endpoints (normalised frame, tracking
+/// coordinates) at configuration `k` of its design, against the generic count.
+fn certify_endpoints(
+    stage: &SeedStage,
+    seeded: &SeededProblem,
+    endpoints: &[Vec<C64>],
+    k: &[f64; 12],
+) -> SubproblemCertificate {
+    certification::certify_subproblem(
+        &seeded.problem,
+        seeded.id.metric,
+        (&seeded.design, k),
+        stage.normalization.frame(),
+        endpoints,
+        seeded.generic_count,
+    )
 }
 
 fn assemble_pose(
@@ -676,9 +713,19 @@ fn assemble_pose(
     let mut failures = Vec::new();
     let mut paths_tracked = 0;
     let mut by_metric: BTreeMap<String, Vec<postprocess::SubproblemCandidates>> = BTreeMap::new();
-    for (seeded, (list, finite, failure, tracked)) in stage.problems.iter().zip(per_problem) {
+    let mut certificates: BTreeMap<(String, String), SubproblemCertificate> = BTreeMap::new();
+    for (seeded, (list, finite, failure, tracked, certificate)) in
+        stage.problems.iter().zip(per_problem)
+    {
         failures.extend(failure);
         paths_tracked += tracked;
+        if let Some(certificate) = certificate {
+            let key = (
+                seeded.id.metric.name(),
+                seeded.id.subproblem.name().to_string(),
+            );
+            certificates.insert(key, certificate);
+        }
         by_metric.entry(seeded.id.metric.name()).or_default().push((
             seeded.id.subproblem,
             list,
@@ -704,13 +751,16 @@ fn assemble_pose(
     for metric in metrics {
         let name = metric.name();
         if let Some(data) = by_metric.get(&name)
-            && let Some(result) = postprocess::metric_distance(
+            && let Some(mut result) = postprocess::metric_distance(
                 *metric,
                 data,
                 singularity,
                 options.cut_locus_tolerance,
             )
         {
+            if options.certify {
+                attach_certificates(&name, &mut result, &mut certificates);
+            }
             results.insert(name, result);
         }
     }
@@ -723,6 +773,28 @@ fn assemble_pose(
         failures,
         paths_tracked,
     }
+}
+
+/// Moves the sub-problems' certificates of metric `name` into `result` and combines
+/// them into the metric's ([`certification::combine`]).
+fn attach_certificates(
+    name: &str,
+    result: &mut MetricDistance,
+    certificates: &mut BTreeMap<(String, String), SubproblemCertificate>,
+) {
+    for (subproblem, distance) in result.subproblems.iter_mut() {
+        distance.certificate = certificates.remove(&(name.to_string(), subproblem.clone()));
+    }
+    let parts: Vec<(String, Option<&SubproblemCertificate>)> = result
+        .subproblems
+        .iter()
+        .map(|(sub, d)| (sub.clone(), d.certificate.as_ref()))
+        .collect();
+    result.certificate = Some(certification::combine(
+        &parts,
+        result.distance,
+        &result.subproblem,
+    ));
 }
 
 /// Samples the motion: `n` poses evenly spaced in τ (explicit pose lists as given).

@@ -57,6 +57,11 @@ pub struct CurveOptions {
     /// independent seed stage and compare ([`SelfCheck`]); on by default.
     #[serde(default = "default_self_check")]
     pub self_check: bool,
+    /// Certify every pose's critical points in interval arithmetic
+    /// ([`crate::certify::distance`]) and report per metric whether the distance is a
+    /// proved global minimum; off by default.
+    #[serde(default)]
+    pub certify: bool,
 }
 
 fn default_self_check() -> bool {
@@ -121,6 +126,7 @@ impl Default for CurveOptions {
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
             self_check: default_self_check(),
+            certify: false,
         }
     }
 }

@@ -1,0 +1,340 @@
+//! Certified singularity distances at one pose of a 3-RPR.
+//!
+//! For one sub-problem (a Lagrange system `∇Λ = 0` of Cartesian unknowns) at the
+//! configuration `K` (twelve doubles) of a pose:
+//!
+//! The unknowns may be Cartesian or isotropic (`u = (x + iy)/√2`, `v = (x − iy)/√2`
+//! per point, in which points far out along isotropic lines stay well-conditioned);
+//! realness is then decided under `(u, v) ↦ (v̄, ū)` ([`Krawczyk::with_isotropic_pairs`]).
+//!
+//! 1. the parameters are enclosed in intervals: the normalised configuration
+//!    `(K − c)/s` of the similarity the pipeline works in (any `c`, `s` are a valid
+//!    choice, since every sub-problem is equivariant under similarities), and the rigid
+//!    parts' shape constants `u = (w·e)/|e|²`, `v = (w·Ee)/|e|²`, `r² = |e|²`
+//!    (`e = p₂ − p₁`, `w = p₃ − p₁`) computed from the design's anchors;
+//! 2. every computed critical point is certified by [`super::krawczyk`] for every
+//!    parameter in those boxes (unique solution in its box, distinct from the others,
+//!    real or not);
+//! 3. for each certified real one, `D(K, K′)` is enclosed by evaluating the
+//!    configuration map `K′(x; p)` and the metric over the boxes: `D = s·D((K − c)/s,
+//!    K′_normalised)`;
+//! 4. the sub-problem is **complete** when as many distinct solutions are certified as
+//!    the family's generic count and every one's realness is decided: then no other
+//!    isolated critical point exists (Morgan, Sommese, "Coefficient-parameter
+//!    polynomial continuation", Appl. Math. Comput. 1989: no parameter has more
+//!    isolated solutions than the generic number), and the smallest enclosure is the
+//!    sub-problem's minimum over its isolated critical points.
+//!
+//! The statement is about the configuration `K` and the anchors exactly as the
+//! doubles given; the rounding of `cos φ`, `sin φ` in computing `K` from a pose is not
+//! part of it.
+
+use super::krawczyk::{Krawczyk, Realness, RootBox};
+use crate::C64;
+use crate::mechanism::rpr::Design;
+use crate::metric::Metric;
+use crate::problem::LagrangeProblem;
+use crate::system::interval::{ComplexInterval, Interval};
+use serde::{Deserialize, Serialize};
+
+/// The similarity `K ↦ (K − c)/s` in which a sub-problem's system is solved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// `c`.
+    pub center: [f64; 2],
+    /// `s > 0`.
+    pub scale: f64,
+}
+
+/// What was proved about one sub-problem at one pose.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SubproblemCertificate {
+    /// The family's generic number of critical points (the start file's count).
+    pub expected: usize,
+    /// Critical points proved to be distinct exact solutions.
+    pub certified: usize,
+    /// Of those, proved real.
+    pub real: usize,
+    /// Of those, whose realness is not decided.
+    pub undecided: usize,
+    /// Computed points that failed the test (singular, or too ill-conditioned).
+    pub uncertified: usize,
+    /// `certified == expected` with every realness decided: no other isolated
+    /// critical point exists.
+    pub complete: bool,
+    /// Enclosure `[lo, hi]` of the smallest `D` over the certified real points.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub distance: Option<[f64; 2]>,
+}
+
+/// Interval shape constants `(u, v, r²)` of a rigid part from its anchors.
+fn shape_enclosure(p: &[[f64; 2]; 3]) -> Option<(Interval, Interval, Interval)> {
+    let point = |q: [f64; 2]| [Interval::point(q[0]), Interval::point(q[1])];
+    let [p1, p2, p3] = [point(p[0]), point(p[1]), point(p[2])];
+    let e = [p2[0] - p1[0], p2[1] - p1[1]];
+    let w = [p3[0] - p1[0], p3[1] - p1[1]];
+    let r2 = e[0] * e[0] + e[1] * e[1];
+    let inverse = r2.recip()?;
+    // E e = (−e_y, e_x).
+    let u = (w[0] * e[0] + w[1] * e[1]) * inverse;
+    let v = (w[1] * e[0] - w[0] * e[1]) * inverse;
+    Some((u, v, r2))
+}
+
+/// The parameter boxes of `problem` at configuration `k` of `design` in `frame`:
+/// `(K − c)/s`, then the shape constants in the frame's units (see
+/// [`LagrangeProblem::parameters_in_units`]). `None` if a shape is degenerate.
+pub fn parameter_enclosure(
+    problem: &LagrangeProblem,
+    design: &Design,
+    k: &[f64; 12],
+    frame: Frame,
+) -> Option<Vec<ComplexInterval>> {
+    let inverse_scale = Interval::point(frame.scale).recip()?;
+    let real = |v: Interval| ComplexInterval {
+        re: v,
+        im: Interval::point(0.0),
+    };
+    let mut out: Vec<ComplexInterval> = (0..12)
+        .map(|i| {
+            real((Interval::point(k[i]) - Interval::point(frame.center[i % 2])) * inverse_scale)
+        })
+        .collect();
+    let base = shape_enclosure(design.base())?;
+    let platform = shape_enclosure(design.platform())?;
+    for name in &problem.parameter_names()[12..] {
+        let (u, v, r2) = if name.ends_with("_base") {
+            base
+        } else {
+            platform
+        };
+        let length = r2.sqrt()? * inverse_scale;
+        let value = if name.starts_with("s2_") {
+            length
+        } else if name.starts_with("s3_") {
+            u * length
+        } else if name.starts_with("u_") {
+            u
+        } else if name.starts_with("v_") {
+            v
+        } else {
+            r2 * inverse_scale * inverse_scale
+        };
+        out.push(real(value));
+    }
+    Some(out)
+}
+
+/// The enclosure of `D(K, K′)` of the real solution in `root`.
+fn distance_enclosure(
+    problem: &LagrangeProblem,
+    metric: Metric,
+    root: &RootBox,
+    parameters: &[ComplexInterval],
+    frame: Frame,
+) -> Option<Interval> {
+    // The solution lies in the enclosure and its K′ is real: the real parts of the
+    // configuration map's enclosure contain it (in Cartesian or isotropic unknowns).
+    let k_prime = problem
+        .configuration_enclosure(&root.enclosure, parameters)
+        .map(|v| v.re);
+    let k: [Interval; 12] = std::array::from_fn(|i| parameters[i].re);
+    let squared = metric.distance_sq(&k, &k_prime);
+    let d = squared.sqrt()? * Interval::point(frame.scale);
+    d.is_bounded().then_some(d)
+}
+
+/// Certifies the computed critical points `solutions` (unknowns of `problem`, Cartesian
+/// or isotropic, in the normalised `frame`) of one sub-problem of `metric` at the
+/// configuration `k` of `design`; `expected` is the family's generic count.
+pub fn certify_subproblem(
+    problem: &LagrangeProblem,
+    metric: Metric,
+    (design, k): (&Design, &[f64; 12]),
+    frame: Frame,
+    solutions: &[Vec<C64>],
+    expected: usize,
+) -> SubproblemCertificate {
+    let failed = SubproblemCertificate {
+        expected,
+        certified: 0,
+        real: 0,
+        undecided: 0,
+        uncertified: solutions.len(),
+        complete: false,
+        distance: None,
+    };
+    let Some(parameter_boxes) = parameter_enclosure(problem, design, k, frame) else {
+        return failed;
+    };
+    let midpoints: Vec<C64> = parameter_boxes.iter().map(|b| b.midpoint()).collect();
+    let Some(test) =
+        Krawczyk::with_parameter_boxes(problem.evaluator(), &midpoints, &parameter_boxes)
+    else {
+        return failed;
+    };
+    // The parameter boxes are real: the Cartesian system is real, and so is the
+    // isotropic one under (u, v) ↦ (v̄, ū).
+    let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
+    let boxes: Vec<Option<RootBox>> = solutions.iter().map(|x| test.certify(x)).collect();
+    // Keep the first of every group of overlapping enclosures.
+    let mut kept: Vec<&RootBox> = Vec::new();
+    let mut uncertified = 0;
+    for b in &boxes {
+        match b {
+            None => uncertified += 1,
+            Some(b) => {
+                if kept.iter().all(|k| !k.meets(b)) {
+                    kept.push(b);
+                }
+            }
+        }
+    }
+    let real: Vec<&RootBox> = kept
+        .iter()
+        .copied()
+        .filter(|b| b.realness == Realness::Real)
+        .collect();
+    let undecided = kept
+        .iter()
+        .filter(|b| b.realness == Realness::Undecided)
+        .count();
+    let mut distance: Option<Interval> = None;
+    let mut enclosed_all = true;
+    for root in &real {
+        match distance_enclosure(problem, metric, root, &parameter_boxes, frame) {
+            Some(d) => {
+                distance = Some(match distance {
+                    None => d,
+                    Some(m) => Interval {
+                        lo: m.lo.min(d.lo),
+                        hi: m.hi.min(d.hi),
+                    },
+                })
+            }
+            None => enclosed_all = false,
+        }
+    }
+    SubproblemCertificate {
+        expected,
+        certified: kept.len(),
+        real: real.len(),
+        undecided,
+        uncertified,
+        complete: kept.len() == expected && undecided == 0 && enclosed_all,
+        distance: distance.map(|d| [d.lo, d.hi]),
+    }
+}
+
+/// How much of a metric's distance at a pose is proved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CertifiedStatus {
+    /// Every sub-problem complete: the distance is the certified global minimum over
+    /// the isolated critical points, enclosed in `distance`.
+    GlobalMinimum,
+    /// The reported minimiser is a certified real critical point with its `D` enclosed,
+    /// but some sub-problem is not complete.
+    MinimiserOnly,
+    /// Nothing about the reported distance is proved.
+    None,
+}
+
+/// What was proved about one metric's distance at one pose.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MetricCertificate {
+    /// The status.
+    pub status: CertifiedStatus,
+    /// Why it is not stronger (empty for a global minimum).
+    #[serde(skip_serializing_if = "String::is_empty", default)]
+    pub reason: String,
+    /// Enclosure `[lo, hi]` of the certified value (global minimum or minimiser's `D`).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub distance: Option<[f64; 2]>,
+}
+
+/// Relative slack allowed between the reported distance (computed in double from the
+/// tracked point) and the enclosure (from the polished, certified one).
+const REPORTED_SLACK: f64 = 1e-9;
+
+fn contains(enclosure: [f64; 2], value: f64) -> bool {
+    let slack = REPORTED_SLACK * value.abs().max(1e-300);
+    enclosure[0] - slack <= value && value <= enclosure[1] + slack
+}
+
+/// Combines the sub-problems' certificates of one metric (`None` for a sub-problem
+/// without one, e.g. solved in closed form) into the metric's: `reported` is the
+/// distance the pipeline reports and `reported_subproblem` the sub-problem attaining it.
+pub fn combine(
+    subproblems: &[(String, Option<&SubproblemCertificate>)],
+    reported: f64,
+    reported_subproblem: &str,
+) -> MetricCertificate {
+    let mut missing = Vec::new();
+    let mut enclosure: Option<[f64; 2]> = None;
+    for (name, certificate) in subproblems {
+        match certificate {
+            None => missing.push(format!("{name}: not certified (closed form)")),
+            Some(c) => {
+                if !c.complete {
+                    missing.push(format!(
+                        "{name}: {} of {} critical points certified{}",
+                        c.certified,
+                        c.expected,
+                        if c.undecided > 0 {
+                            format!(", {} of undecided realness", c.undecided)
+                        } else {
+                            String::new()
+                        }
+                    ));
+                }
+                if let Some(d) = c.distance {
+                    enclosure = Some(match enclosure {
+                        None => d,
+                        Some(e) => [e[0].min(d[0]), e[1].min(d[1])],
+                    });
+                }
+            }
+        }
+    }
+    let minimiser = subproblems
+        .iter()
+        .find(|(name, _)| name == reported_subproblem)
+        .and_then(|(_, c)| c.and_then(|c| c.distance))
+        .filter(|d| contains(*d, reported));
+    if missing.is_empty() {
+        return match enclosure {
+            Some(e) if contains(e, reported) => MetricCertificate {
+                status: CertifiedStatus::GlobalMinimum,
+                reason: String::new(),
+                distance: Some(e),
+            },
+            Some(e) => MetricCertificate {
+                status: CertifiedStatus::None,
+                reason: format!(
+                    "the reported distance {reported:e} is outside the certified minimum [{:e}, {:e}]",
+                    e[0], e[1]
+                ),
+                distance: Some(e),
+            },
+            None => MetricCertificate {
+                status: CertifiedStatus::None,
+                reason: "no real critical point certified".to_string(),
+                distance: None,
+            },
+        };
+    }
+    let reason = format!("completeness not certified: {}", missing.join("; "));
+    match minimiser {
+        Some(d) => MetricCertificate {
+            status: CertifiedStatus::MinimiserOnly,
+            reason,
+            distance: Some(d),
+        },
+        None => MetricCertificate {
+            status: CertifiedStatus::None,
+            reason,
+            distance: None,
+        },
+    }
+}

@@ -1,0 +1,107 @@
+//! Certified distances along a curve: every critical point the pipeline keeps at a
+//! pose is proved by Krawczyk's test, and the reported distance is checked against the
+//! certified global minimum.
+
+use singdist::certify::distance::CertifiedStatus;
+use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_design, example_motion};
+use singdist::metric::Metric;
+use singdist::pipeline::curve::{CurveOptions, compute_curve, default_start_solutions};
+use std::time::Instant;
+
+/// Runs the curve with certification; returns (global minima, metric-poses, lines).
+fn certified_run(design: &Design, motion: &Motion, poses: usize) -> (usize, usize, Vec<String>) {
+    let options = CurveOptions {
+        certify: true,
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let started = Instant::now();
+    let result = compute_curve(
+        design,
+        motion,
+        poses,
+        &Metric::all(),
+        &options,
+        &default_start_solutions,
+        &|_| {},
+    )
+    .expect("curve runs");
+    println!("certified run: {:.2} s", started.elapsed().as_secs_f64());
+    assert!(result.failures.is_empty(), "{:?}", result.failures);
+    let (mut global, mut total) = (0, 0);
+    let mut lines = Vec::new();
+    for pose in &result.poses {
+        for (name, metric) in &pose.metrics {
+            total += 1;
+            let certificate = metric.certificate.as_ref().expect("certificate attached");
+            lines.push(format!(
+                "pose {} {name}: {:?} {}",
+                pose.index, certificate.status, certificate.reason
+            ));
+            // A certified value that contradicts the reported one is a wrong distance.
+            assert!(
+                !certificate.reason.contains("outside"),
+                "{}",
+                lines.last().unwrap()
+            );
+            if let Some([lo, hi]) = certificate.distance {
+                assert!(
+                    lo <= hi && hi - lo <= 1e-9 * (1.0 + hi),
+                    "{name}: [{lo}, {hi}]"
+                );
+                assert!(
+                    lo <= metric.distance * (1.0 + 1e-9) && metric.distance <= hi * (1.0 + 1e-9)
+                );
+            }
+            for (sub, distance) in &metric.subproblems {
+                match distance.certificate.as_ref() {
+                    // Solved in closed form (pedal points): not certified.
+                    None => assert_ne!(certificate.status, CertifiedStatus::GlobalMinimum),
+                    Some(c) => {
+                        // Certified real points are real points the pipeline kept.
+                        assert!(c.real <= distance.real_critical_points, "{name} {sub}");
+                        assert!(c.certified <= c.expected, "{name} {sub}");
+                        if certificate.status == CertifiedStatus::GlobalMinimum {
+                            assert!(c.complete, "{name} {sub}");
+                        }
+                    }
+                }
+            }
+            if certificate.status == CertifiedStatus::GlobalMinimum {
+                global += 1;
+            }
+        }
+    }
+    (global, total, lines)
+}
+
+#[test]
+fn example_curve_distances_are_certified() {
+    let (global, total, lines) = certified_run(&example_design(), &example_motion(), 6);
+    println!(
+        "{}\n{global} of {total} certified global minima",
+        lines.join("\n")
+    );
+    // bars/plate and bars/bars use closed forms; the rest are certified at most poses.
+    assert!(global * 2 >= total, "{global} of {total}");
+}
+
+#[test]
+fn scaled_design_with_scattered_poses_is_certified() {
+    // The example's anchors in millimetres and a few scattered poses.
+    let design = example_design();
+    let scale = |p: &[[f64; 2]; 3]| p.map(|q| [1000.0 * q[0], 1000.0 * q[1]]);
+    let scaled = Design::new(scale(design.base()), scale(design.platform())).expect("design");
+    let poses = vec![
+        Pose::new(4000.0, 3000.0, 0.3),
+        Pose::new(4500.0, 2500.0, -0.4),
+        Pose::new(3000.0, 4000.0, 1.1),
+    ];
+    let motion = Motion::Poses(PoseList { poses });
+    let (global, total, lines) = certified_run(&scaled, &motion, 0);
+    println!(
+        "{}\n{global} of {total} certified global minima",
+        lines.join("\n")
+    );
+    assert!(global * 2 >= total, "{global} of {total}");
+}
