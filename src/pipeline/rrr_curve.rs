@@ -134,8 +134,9 @@ pub struct RrrSubproblemResult {
     /// at infinity). Fewer than `expected_endpoints` means lost paths (an entry in
     /// `failures`).
     pub accounted_paths: usize,
-    /// Paths tracked from the seed (the seed's finite solutions, normally the generic
-    /// root count).
+    /// Paths tracked from the seed: the seed's distinct finite solutions, at most the
+    /// generic root count (below it only when confirmed at an independent seed point, or
+    /// with a seed-stage failure). `accounted_paths` never exceeds it.
     pub expected_endpoints: usize,
 }
 
