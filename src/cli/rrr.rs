@@ -131,14 +131,12 @@ fn load_trajectory(args: &RrrCurveArgs) -> Result<RrrTrajectory> {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    let (design, mut modes) = match &args.design {
-        Some(path) => load_rrr_design(path)?,
-        None => (example_design(), EXAMPLE_MODES),
-    };
-    if let Some(text) = &args.modes {
-        modes = parse_modes(text)?;
-    }
-    let trajectory = RrrTrajectory::new(design, modes, motion).context("--motion")?;
+    let trajectory = trajectory_of(
+        args.design.as_deref(),
+        args.modes.as_deref(),
+        motion,
+        "--motion",
+    )?;
     Ok(if args.hold_modes {
         trajectory.holding_modes()
     } else {
@@ -166,18 +164,23 @@ pub(super) fn parse_modes(text: &str) -> Result<WorkingModes> {
     Ok(modes)
 }
 
-/// The design file's (or the built-in example's) 3-RRR with its working modes, moved
-/// along `motion`; errors of the motion (e.g. a pose out of reach) name `option`.
+/// The design file's (or the built-in example's) 3-RRR with its working modes (or
+/// `modes`, the `--modes` text, when given), moved along `motion`; errors of the motion
+/// (e.g. a pose out of reach) name `option`.
 pub(super) fn trajectory_of(
     design: Option<&Path>,
+    modes: Option<&str>,
     motion: RrrMotion,
     option: &str,
 ) -> Result<RrrTrajectory> {
-    let (design, modes) = match design {
+    let (design, mut initial) = match design {
         Some(path) => load_rrr_design(path)?,
         None => (example_design(), EXAMPLE_MODES),
     };
-    RrrTrajectory::new(design, modes, motion).with_context(|| option.to_string())
+    if let Some(text) = modes {
+        initial = parse_modes(text)?;
+    }
+    RrrTrajectory::new(design, initial, motion).with_context(|| option.to_string())
 }
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
