@@ -141,3 +141,42 @@ fn a_motion_leaving_the_workspace_between_grid_points_is_refused() {
     assert!(message.contains("leg 0"), "{message}");
     assert!(message.contains("leaves the workspace"), "{message}");
 }
+
+/// `rrr curve --modes … --hold-modes` uses those modes at every pose and says so in the
+/// CSV; without `--hold-modes` the example's leg 1 flips at its fold.
+#[test]
+fn modes_given_on_the_command_line_are_reported_per_pose() {
+    let dir = std::env::temp_dir().join(format!("singdist-rrr-modes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let column = |extra: &[&str]| -> Vec<String> {
+        let out = dir.join("curve.csv");
+        let mut args = vec![
+            "rrr", "curve", "--quiet", "--poses", "4", "--modes", "+,-,+",
+        ];
+        args.extend_from_slice(extra);
+        let out_text = out.display().to_string();
+        args.extend_from_slice(&["--out", &out_text]);
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_singdist"))
+            .args(&args)
+            .output()
+            .expect("run singdist");
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let mut reader = csv::Reader::from_path(&out).expect("CSV");
+        let headers = reader.headers().expect("header").clone();
+        let index = headers
+            .iter()
+            .position(|h| h == "working_modes")
+            .expect("working_modes column");
+        reader
+            .records()
+            .map(|r| r.expect("row")[index].to_string())
+            .collect()
+    };
+    assert_eq!(column(&["--hold-modes"]), vec!["+,-,+"; 4]);
+    // τ = 0, 2π/3, 4π/3, 2π: leg 1 folds at τ₁ ≈ 2.214.
+    assert_eq!(column(&[]), vec!["+,-,+", "+,-,+", "-,-,+", "-,-,+"]);
+}
