@@ -345,3 +345,27 @@ fn results_are_identical_for_one_and_two_threads() {
     };
     assert_eq!(run(1), run(2));
 }
+
+/// An invalid design file's error states its cause once, also when the error chain is
+/// printed (message, then each source).
+#[test]
+fn design_file_errors_state_their_cause_once() {
+    let path = temp_file(
+        "rrr_negative_proximal.json",
+        r#"{"base": [[0, 1], [-0.866, -0.5], [0.866, -0.5]], "proximal": [0.8, -0.8, 0.8],
+            "distal": [0.8, 0.8, 0.8], "platform": [[0, 0.4], [-0.35, -0.2], [0.35, -0.2]]}"#,
+    );
+    let error = load_rrr_design(&path).expect_err("negative proximal length");
+    let mut chain = error.to_string();
+    let mut source = std::error::Error::source(&error);
+    while let Some(cause) = source {
+        chain.push_str(&format!(": {cause}"));
+        source = cause.source();
+    }
+    assert_eq!(
+        chain.matches("proximal[1] must be positive").count(),
+        1,
+        "{chain}"
+    );
+    assert!(chain.contains("rrr_negative_proximal.json"), "{chain}");
+}

@@ -19,7 +19,8 @@ use singdist::io::load_motion;
 use singdist::io::report::{report_html, rrr_report};
 use singdist::io::rrr::load_rrr_design;
 use singdist::mechanism::rrr::{
-    EXAMPLE_MODES, RrrMotion, RrrTrajectory, example_design, example_motion,
+    EXAMPLE_MODES, ElbowMode, RrrMotion, RrrTrajectory, WorkingModes, example_design,
+    example_motion,
 };
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
@@ -78,6 +79,14 @@ pub struct RrrCurveArgs {
     /// No timing line on stderr.
     #[arg(long)]
     quiet: bool,
+    /// Working modes of the three legs at the start of the motion, e.g. `+,-,+` (or
+    /// `1,-1,1`); overrides the design file's `working_modes`.
+    #[arg(long, value_name = "S1,S2,S3", allow_hyphen_values = true)]
+    modes: Option<String>,
+    /// Hold the working modes along the whole motion instead of continuing the
+    /// configuration through leg singularities.
+    #[arg(long)]
+    hold_modes: bool,
 }
 
 /// Arguments of `singdist rrr ab-initio`.
@@ -117,30 +126,65 @@ pub fn run(command: RrrCommand) -> Result<Outcome> {
     }
 }
 
-fn load_trajectory(design: Option<&Path>, motion: Option<&Path>) -> Result<RrrTrajectory> {
-    let motion = match motion {
+fn load_trajectory(args: &RrrCurveArgs) -> Result<RrrTrajectory> {
+    let motion = match &args.motion {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    trajectory_of(design, motion, "--motion")
+    let trajectory = trajectory_of(
+        args.design.as_deref(),
+        args.modes.as_deref(),
+        motion,
+        "--motion",
+    )?;
+    Ok(if args.hold_modes {
+        trajectory.holding_modes()
+    } else {
+        trajectory
+    })
 }
 
-/// The design file's (or the built-in example's) 3-RRR with its working modes, moved
-/// along `motion`; errors of the motion (e.g. a pose out of reach) name `option`.
+/// `--modes`: three signs `+`/`-` (or `1`/`-1`, `+1`) separated by commas.
+pub(super) fn parse_modes(text: &str) -> Result<WorkingModes> {
+    let items: Vec<&str> = text.split(',').map(str::trim).collect();
+    if items.len() != 3 {
+        bail!(
+            "--modes: expected three signs like +,-,+, got {} item(s) in `{text}`",
+            items.len()
+        );
+    }
+    let mut modes = EXAMPLE_MODES;
+    for (leg, item) in items.iter().enumerate() {
+        modes[leg] = match *item {
+            "+" | "1" | "+1" => ElbowMode::Positive,
+            "-" | "-1" => ElbowMode::Negative,
+            other => bail!("--modes[{leg}]: expected + or -, got `{other}`"),
+        };
+    }
+    Ok(modes)
+}
+
+/// The design file's (or the built-in example's) 3-RRR with its working modes (or
+/// `modes`, the `--modes` text, when given), moved along `motion`; errors of the motion
+/// (e.g. a pose out of reach) name `option`.
 pub(super) fn trajectory_of(
     design: Option<&Path>,
+    modes: Option<&str>,
     motion: RrrMotion,
     option: &str,
 ) -> Result<RrrTrajectory> {
-    let (design, modes) = match design {
+    let (design, mut initial) = match design {
         Some(path) => load_rrr_design(path)?,
         None => (example_design(), EXAMPLE_MODES),
     };
-    RrrTrajectory::new(design, modes, motion).with_context(|| option.to_string())
+    if let Some(text) = modes {
+        initial = parse_modes(text)?;
+    }
+    RrrTrajectory::new(design, initial, motion).with_context(|| option.to_string())
 }
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
-    let trajectory = load_trajectory(args.design.as_deref(), args.motion.as_deref())?;
+    let trajectory = load_trajectory(&args)?;
     let count = pose_count(trajectory.motion(), args.poses);
     check_pose_count(
         count,
@@ -220,7 +264,8 @@ fn cell(v: Option<f64>) -> String {
 }
 
 /// CSV: `tau, x, y, phi, parallel, leg1, leg2, leg3, distance, nearest,
-/// parallel_determinant_abs_scaled, lost_paths` (`lost_paths`: paths lost at that pose
+/// parallel_determinant_abs_scaled, working_modes, lost_paths` (`working_modes`: the
+/// three legs' modes at that pose, e.g. `+,-,+`; `lost_paths`: paths lost at that pose
 /// plus those lost at the seed, which affect every pose).
 pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
@@ -236,6 +281,7 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
         "distance",
         "nearest",
         "parallel_determinant_abs_scaled",
+        "working_modes",
         "lost_paths",
     ])?;
     for p in &result.poses {
@@ -251,6 +297,9 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
             cell(p.distance),
             p.nearest.clone().unwrap_or_default(),
             p.parallel_determinant_abs_scaled.to_string(),
+            p.working_modes
+                .map(|m| if m < 0 { "-" } else { "+" })
+                .join(","),
             lost_paths(&p.failures, &result.failures).to_string(),
         ])?;
     }
@@ -261,12 +310,12 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
 fn print_table(result: &RrrCurveResult) {
     let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
     println!(
-        "{:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8}",
-        "tau", "parallel", "leg1", "leg2", "leg3", "distance", "nearest", "|detJ|~"
+        "{:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8} {:>6}",
+        "tau", "parallel", "leg1", "leg2", "leg3", "distance", "nearest", "|detJ|~", "modes"
     );
     for p in &result.poses {
         println!(
-            "{:>9.4} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8.4}",
+            "{:>9.4} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8.4} {:>6}",
             p.tau,
             show(p.parallel),
             show(p.leg1),
@@ -274,7 +323,10 @@ fn print_table(result: &RrrCurveResult) {
             show(p.leg3),
             show(p.distance),
             p.nearest.as_deref().unwrap_or("-"),
-            p.parallel_determinant_abs_scaled
+            p.parallel_determinant_abs_scaled,
+            p.working_modes
+                .map(|m| if m < 0 { "-" } else { "+" })
+                .join(",")
         );
     }
     let list = |v: &[f64]| {

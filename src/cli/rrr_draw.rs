@@ -25,9 +25,13 @@ pub struct RrrDrawArgs {
     #[arg(long, value_name = "FILE")]
     design: Option<PathBuf>,
     /// The pose `x,y,phi`: platform position (design length unit) and orientation φ
-    /// (radians); the design's working modes choose the elbows.
+    /// (radians); the design's working modes (or `--modes`) choose the elbows.
     #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
     pose: String,
+    /// Working modes of the three legs, e.g. `+,-,+`; overrides the design file's
+    /// `working_modes`.
+    #[arg(long, value_name = "S1,S2,S3", allow_hyphen_values = true)]
+    modes: Option<String>,
     /// Output drawing (`.svg`).
     #[arg(long, value_name = "FILE.svg")]
     out: PathBuf,
@@ -44,7 +48,12 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
     check_output_file("--out", &args.out, &["svg"])?;
     let pose = parse_pose(&args.pose)?;
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
-    let trajectory = trajectory_of(args.design.as_deref(), motion, "--pose")?;
+    let trajectory = trajectory_of(
+        args.design.as_deref(),
+        args.modes.as_deref(),
+        motion,
+        "--pose",
+    )?;
     let configuration = trajectory.configuration(0.0).context("--pose")?;
     let options = RrrCurveOptions {
         seed: args.seed,

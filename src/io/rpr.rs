@@ -47,21 +47,24 @@ pub enum FileError {
         /// What is wrong.
         reason: String,
     },
-    /// The values are well-formed but the design or motion is invalid.
-    #[error("{path}: {source}")]
+    /// The values are well-formed but the design or motion is invalid. The validation
+    /// error is part of the message and deliberately not an error source, so that a
+    /// printed error chain states it once.
+    #[error("{path}: {error}")]
     Invalid {
         /// The file.
         path: PathBuf,
         /// The validation error (names the field).
-        source: RprError,
+        error: RprError,
     },
-    /// The values are well-formed but the 3-RRR design is invalid.
-    #[error("{path}: {source}")]
+    /// The values are well-formed but the 3-RRR design is invalid (the validation error
+    /// is part of the message, not an error source, as for [`FileError::Invalid`]).
+    #[error("{path}: {error}")]
     InvalidRrr {
         /// The file.
         path: PathBuf,
         /// The validation error (names the field).
-        source: crate::mechanism::rrr::RrrError,
+        error: crate::mechanism::rrr::RrrError,
     },
 }
 
@@ -292,9 +295,9 @@ fn attach(path: &Path, error: ParseError) -> FileError {
             },
             reason,
         },
-        ParseError::Invalid(source) => FileError::Invalid {
+        ParseError::Invalid(error) => FileError::Invalid {
             path: path.to_path_buf(),
-            source,
+            error,
         },
     }
 }

@@ -130,9 +130,9 @@ pub fn load_rrr_design(path: impl AsRef<Path>) -> Result<(RrrDesign, WorkingMode
             field,
             reason,
         },
-        RrrParseError::Invalid(source) => RrrFileError::InvalidRrr {
+        RrrParseError::Invalid(error) => RrrFileError::InvalidRrr {
             path: path.to_path_buf(),
-            source,
+            error,
         },
     })
 }

@@ -4,6 +4,7 @@ pub mod rpr;
 
 pub mod prrr;
 pub mod rrr;
+pub mod rrr_reach;
 
 /// Largest magnitude accepted for any number of a design, motion or pose (coordinates,
 /// lengths, angles, motion coefficients, τ range): `|v| ≤ 1e12`.

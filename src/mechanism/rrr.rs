@@ -42,6 +42,7 @@ use crate::algebra::{
     Point as RingPoint, Ring, cross as algebra_cross, difference as algebra_difference,
 };
 use crate::mechanism::rpr::{self, AnalyticMotion, CosineTerm, MotionCoordinate};
+use crate::mechanism::rrr_reach;
 use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use crate::metric::{segment_distance_sq, triangle_distance_sq};
 use nalgebra::Vector2;
@@ -643,13 +644,6 @@ pub fn circular_translation(
     })
 }
 
-/// Grid intervals used to scan an analytic motion for reachability and leg crossings.
-const SCAN_INTERVALS: usize = 4096;
-
-/// A leg passes through a leg singularity when `|C_i − O_i|` attains a boundary of its
-/// annulus `[|b − c|, b + c]` within this tolerance relative to `b + c`.
-pub const LEG_CROSSING_TOLERANCE: f64 = 1e-9;
-
 /// Errors of a 3-RRR moving along a motion.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum TrajectoryError {
@@ -666,19 +660,23 @@ pub enum TrajectoryError {
     },
 }
 
+/// Grid intervals of the inverse-kinematics check of an analytic motion (after the exact
+/// reach check of [`rrr_reach::leg_reach`]).
+const CHECK_INTERVALS: usize = 4096;
+
 /// A 3-RRR design moving along a motion, with the working modes continued along it.
 ///
 /// The working modes `initial_modes` hold at the start of the motion. With a fixed
 /// working mode the leg determinant `(B_i − O_i) × (C_i − B_i) = σ_i b L sin α` never
-/// changes sign; a leg reaches a leg singularity only where `L = |C_i − O_i|` touches a
-/// boundary of its annulus `[|b − c|, b + c]` (fully stretched or folded), and the
-/// analytic continuation of the inverse kinematics through that pose is the *other*
-/// working mode (the elbow angle `α` changes sign, e.g. `α ≈ K (τ − τ₀)` at a tangential
-/// touch, or `C_i` passing through `O_i` when `b = c`). So for analytic motions the mode
-/// of leg i flips at every τ where `L_i(τ)` has a local extremum on the boundary (within
-/// [`LEG_CROSSING_TOLERANCE`]); these τ are found on a grid of `SCAN_INTERVALS`
-/// intervals refined by golden-section search. Explicit pose lists keep the given modes
-/// (no continuation is possible between isolated poses).
+/// changes sign; a leg meets its leg singularity only where `L = |C_i − O_i|` touches a
+/// boundary of its ring `[|b − c|, b + c]` (stretched, folded, or `C_i` through `O_i`
+/// when `b = c`). The configuration is continued analytically along the motion: the mode
+/// of leg i flips exactly where its determinant changes sign, i.e. at a zero of odd
+/// `m` of the ring factors (order `2m`, [`rrr_reach`]); a leg that only comes close to
+/// the boundary, or touches it with even `m` (e.g. `L = (b + c) − a(τ − τ₀)⁴`), keeps its
+/// mode. The reach is checked exactly on the whole motion ([`rrr_reach::leg_reach`]).
+/// Explicit pose lists keep the given modes (no continuation is possible between
+/// isolated poses), as does a trajectory built with [`RrrTrajectory::holding_modes`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct RrrTrajectory {
     design: RrrDesign,
@@ -687,36 +685,11 @@ pub struct RrrTrajectory {
     switches: [Vec<f64>; 3],
 }
 
-fn golden_section(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let ratio = (5.0_f64.sqrt() - 1.0) / 2.0;
-    let mut a = hi - ratio * (hi - lo);
-    let mut b = lo + ratio * (hi - lo);
-    let (mut fa, mut fb) = (f(a), f(b));
-    for _ in 0..200 {
-        if (hi - lo).abs() <= 1e-15 * (1.0 + lo.abs().max(hi.abs())) {
-            break;
-        }
-        if fa < fb {
-            hi = b;
-            b = a;
-            fb = fa;
-            a = hi - ratio * (hi - lo);
-            fa = f(a);
-        } else {
-            lo = a;
-            a = b;
-            fa = fb;
-            b = lo + ratio * (hi - lo);
-            fb = f(b);
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 impl RrrTrajectory {
-    /// Validates the motion, finds the leg-singularity crossings (module documentation of
-    /// [`RrrTrajectory`]) and checks that the inverse kinematics exists on the whole
-    /// motion (analytic: on the scan grid; pose list: at every pose).
+    /// Validates the motion, checks the reach of every leg on the whole motion (analytic:
+    /// exactly, [`rrr_reach::leg_reach`]; pose list: at every pose), finds the τ where a
+    /// working mode flips (type documentation) and checks the inverse kinematics (on a
+    /// grid of analytic motions).
     pub fn new(
         design: RrrDesign,
         initial_modes: WorkingModes,
@@ -726,37 +699,37 @@ impl RrrTrajectory {
             .validate()
             .map_err(|e| TrajectoryError::Motion(e.to_string()))?;
         let mut switches: [Vec<f64>; 3] = Default::default();
-        if let rpr::Motion::Analytic(_) = &motion {
-            let [lo, hi] = motion.tau_range();
-            let tau_at = |j: usize| lo + (hi - lo) * j as f64 / SCAN_INTERVALS as f64;
+        if let rpr::Motion::Analytic(analytic) = &motion {
             for (leg, leg_switches) in switches.iter_mut().enumerate() {
-                let reach = |tau: f64| -> f64 {
-                    motion.pose(tau).map_or(f64::NAN, |p| {
-                        let joint = design.platform_joints(&RrrPose::new(p.x, p.y, p.phi))[leg];
-                        (joint - design.base[leg]).norm()
-                    })
+                let geometry = rrr_reach::LegGeometry {
+                    base: [design.base[leg].x, design.base[leg].y],
+                    platform: [design.platform[leg].x, design.platform[leg].y],
+                    proximal: design.proximal[leg],
+                    distal: design.distal[leg],
                 };
-                let (b, c) = (design.proximal[leg], design.distal[leg]);
-                let boundaries = [(b - c).abs(), b + c];
-                let values: Vec<f64> = (0..=SCAN_INTERVALS).map(|j| reach(tau_at(j))).collect();
-                for j in 1..SCAN_INTERVALS {
-                    let (l, m, r) = (values[j - 1], values[j], values[j + 1]);
-                    let is_min = m <= l && m <= r;
-                    let is_max = m >= l && m >= r;
-                    if !(is_min || is_max) {
-                        continue;
+                match rrr_reach::leg_reach(&geometry, analytic) {
+                    Ok(touches) => {
+                        *leg_switches = touches
+                            .iter()
+                            .filter(|t| t.flips())
+                            .map(|t| t.tau)
+                            .collect();
                     }
-                    let sign = if is_min { 1.0 } else { -1.0 };
-                    let tau = golden_section(|t| sign * reach(t), tau_at(j - 1), tau_at(j + 1));
-                    let extremum = reach(tau);
-                    let on_boundary = boundaries
-                        .iter()
-                        .any(|v| (extremum - v).abs() <= LEG_CROSSING_TOLERANCE * (b + c));
-                    let known = leg_switches
-                        .last()
-                        .is_some_and(|&t: &f64| (t - tau).abs() <= 1e-9 * (1.0 + tau.abs()));
-                    if on_boundary && !known && tau > lo && tau < hi {
-                        leg_switches.push(tau);
+                    Err(violation) => {
+                        let tau = violation.tau;
+                        let pose = motion.pose(tau).unwrap_or(rpr::Pose::new(0.0, 0.0, 0.0));
+                        let joint =
+                            design.platform_joints(&RrrPose::new(pose.x, pose.y, pose.phi))[leg];
+                        let (b, c) = (design.proximal[leg], design.distal[leg]);
+                        return Err(TrajectoryError::OutsideWorkspace {
+                            tau,
+                            reason: RrrError::Unreachable {
+                                leg,
+                                distance: (joint - design.base[leg]).norm(),
+                                min_reach: (b - c).abs(),
+                                max_reach: b + c,
+                            },
+                        });
                     }
                 }
             }
@@ -770,23 +743,25 @@ impl RrrTrajectory {
         let taus: Vec<f64> = match &trajectory.motion {
             rpr::Motion::Analytic(_) => {
                 let [lo, hi] = trajectory.motion.tau_range();
-                (0..=SCAN_INTERVALS)
-                    .map(|j| lo + (hi - lo) * j as f64 / SCAN_INTERVALS as f64)
+                (0..=CHECK_INTERVALS)
+                    .map(|j| lo + (hi - lo) * j as f64 / CHECK_INTERVALS as f64)
                     .collect()
             }
             rpr::Motion::Poses(list) => (0..list.poses.len()).map(|j| j as f64).collect(),
         };
         for tau in taus {
             if let Err(reason) = trajectory.configuration(tau) {
-                // The grid may land on a crossing through a base joint (C_i = O_i with
-                // b = c), where only the elbow direction is undetermined.
-                if matches!(reason, RrrError::DegenerateLeg { .. }) {
-                    continue;
-                }
                 return Err(TrajectoryError::OutsideWorkspace { tau, reason });
             }
         }
         Ok(trajectory)
+    }
+
+    /// The same trajectory with the initial working modes held along the whole motion
+    /// (no flip at leg singularities).
+    pub fn holding_modes(mut self) -> Self {
+        self.switches = Default::default();
+        self
     }
 
     /// The design.
@@ -826,10 +801,72 @@ impl RrrTrajectory {
         self.motion.pose(tau).map(|p| RrrPose::new(p.x, p.y, p.phi))
     }
 
-    /// Configuration of the nine points at τ with the continued working modes.
+    /// Configuration of the nine points at τ with the continued working modes. Where a
+    /// platform joint coincides with its base joint (`b = c`, [`RrrError::DegenerateLeg`])
+    /// the elbow of an analytic motion is the limit of the continued configuration from
+    /// the left (from the right at the start of the motion): `θ = atan2(u) − σ·π/2` with
+    /// `u` the direction of `C_i − O_i` as it tends to 0 (`∓(C_i − O_i)′`, computed by a
+    /// complex step) and σ the mode on that side.
     pub fn configuration(&self, tau: f64) -> Result<RrrConfiguration, RrrError> {
         let pose = self.pose(tau).ok_or(RrrError::NoPose { tau })?;
-        self.design.inverse_kinematics(&pose, &self.modes_at(tau))
+        match self.design.inverse_kinematics(&pose, &self.modes_at(tau)) {
+            Err(RrrError::DegenerateLeg { leg }) => self.configuration_on_fold(tau, &pose, leg),
+            other => other,
+        }
+    }
+
+    /// [`configuration`](Self::configuration) where leg `leg` is degenerate.
+    fn configuration_on_fold(
+        &self,
+        tau: f64,
+        pose: &RrrPose,
+        degenerate: usize,
+    ) -> Result<RrrConfiguration, RrrError> {
+        let rpr::Motion::Analytic(_) = &self.motion else {
+            return Err(RrrError::DegenerateLeg { leg: degenerate });
+        };
+        let [lo, hi] = self.motion.tau_range();
+        let eta = 1e-7 * (hi - lo);
+        // From the left, except at the start of the motion.
+        let side = if tau - eta >= lo { -1.0 } else { 1.0 };
+        let modes = self.modes_at(tau + side * eta);
+        let platform = self.design.platform_joints(pose);
+        let mut elbow = [Point::zeros(); 3];
+        for leg in 0..3 {
+            if leg != degenerate {
+                elbow[leg] = self.design.leg_elbow(leg, platform[leg], modes[leg])?;
+                continue;
+            }
+            let joint = |t: C64| -> Option<[C64; 2]> {
+                let [x, y, phi] = self.motion.pose_complex(t)?;
+                let q = self.design.platform[leg];
+                let (s, c) = (phi.sin(), phi.cos());
+                Some([x + c * q.x - s * q.y, y + s * q.x + c * q.y])
+            };
+            let step = 1e-20;
+            let derivative = joint(C64::new(tau, step))
+                .map(|[x, y]| Point::new(x.im / step, y.im / step))
+                .unwrap_or_else(Point::zeros);
+            let scale = self.design.proximal[leg] + self.design.distal[leg];
+            let direction = if derivative.norm() > 1e-9 * scale / (hi - lo) {
+                derivative * side
+            } else {
+                // A zero of higher order: the direction at a small distance.
+                let t = tau + side * 1e-4 * (hi - lo);
+                let p = self.pose(t).ok_or(RrrError::NoPose { tau: t })?;
+                self.design.platform_joints(&p)[leg] - self.design.base[leg]
+            };
+            let theta =
+                direction.y.atan2(direction.x) - modes[leg].sign() * std::f64::consts::FRAC_PI_2;
+            elbow[leg] = self.design.base[leg]
+                + self.design.proximal[leg] * Point::new(theta.cos(), theta.sin());
+        }
+        Ok(RrrConfiguration {
+            operation_point: pose.point(),
+            base: self.design.base,
+            elbow,
+            platform,
+        })
     }
 
     /// Configuration at complex τ (analytic motions; `None` for pose lists) with the modes

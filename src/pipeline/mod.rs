@@ -5,6 +5,7 @@ pub mod curve;
 pub mod postprocess;
 pub mod rrr_ab_initio;
 pub mod rrr_curve;
+pub mod rrr_seed;
 pub mod start_file;
 pub mod start_pair;
 

@@ -1,42 +1,44 @@
 //! 3-RRR singularity-distance curves along a motion (SPEC Part C, paper §6.3, Fig. 17).
 //!
-//! Four sub-problems ([`RrrSubProblem`]): the parallel singularity and the three leg
+//! Four sub-problems ([`crate::problem::rrr::RrrSubProblem`]): the parallel singularity and the three leg
 //! singularities, each with the all-deformable metric of SPEC Part C. Stages, as for the
 //! 3-RPR (SPEC A.9):
 //!
-//! 1. **Seed** (user homotopy, paper Eqs. 65–66): the generic start solutions
-//!    ([`super::rrr_ab_initio`]) are tracked along the straight parameter segment from
-//!    their source configuration to `K*`: the trajectory's configuration at a random
-//!    complex `τ*` ([`RrrTrajectory::configuration_complex`], complex inverse kinematics)
-//!    plus a small random complex perturbation of all 18 coordinates (for pose lists: the
-//!    first pose's configuration plus a larger perturbation).
-//! 2. **Parameter homotopy** (paper §5.3): seed solutions → the real configuration of
-//!    every pose, all (pose, sub-problem) pairs in parallel (rayon); each path is a pure
+//! 1. **Seed** (user homotopy, paper Eqs. 65–66; [`super::rrr_seed`]): the generic start
+//!    solutions ([`super::rrr_ab_initio`]) are tracked to `K*`, the trajectory's
+//!    configuration at a random complex `τ*` plus a small random complex perturbation,
+//!    in the run's normalised frame ([`RrrFrame`]: centroid and RMS radius of the first
+//!    configuration), so that a design and its scaled copy are solved alike. At most the
+//!    generic count of distinct seed solutions is kept; a count below it must be
+//!    confirmed at an independent seed point or is reported.
+//! 2. **Parameter homotopy** (paper §5.3): seed solutions → the real (normalised)
+//!    configuration of every pose, all (pose, sub-problem) pairs in parallel (rayon); each path is a pure
 //!    function of its inputs, so results do not depend on the thread count.
 //! 3. **No silent losses** (the 3-RPR machinery, [`super::curve`]): a (pose,
 //!    sub-problem) with failed paths re-tracks them with conservative settings, then
 //!    every path along polylines through a random complex detour point near the target
-//!    ([`PolylinePath`]); finite endpoints of all attempts are merged. A path counts as
+//!    ([`crate::homotopy::PolylinePath`]); finite endpoints of all attempts are merged. A path counts as
 //!    accounted for only with a finite endpoint or when the endgame classifies it
 //!    [`crate::homotopy::PathStatus::AtInfinity`] (e.g. `λ → ∞` with `K′` finite: `K′`
 //!    tends to a singular point of the constraint variety); what is still missing is
 //!    reported as an [`RrrPathFailure`].
-//! 4. **Post-processing**: real critical points (`max |Im| ≤ tol·(1+‖x‖∞)`), `D(K, K′)`
-//!    recomputed in f64 ([`distance`]), minimum per sub-problem; the signed distance
+//! 4. **Post-processing**: real critical points (`max |Im| ≤ tol·(1+‖x‖∞)`), `K′` mapped
+//!    back to the caller's frame, `D(K, K′)` recomputed in f64 ([`distance`]), minimum per sub-problem; the signed distance
 //!    carries the sign of the sub-problem's determinant at K (parallel determinant, or
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (paper Remark 11).
 
-use super::curve::{Retried, TrackingPlan, split_seed_results, track_with_retries};
+use super::curve::{Retried, TrackingPlan, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
+use super::rrr_seed::route;
+pub use super::rrr_seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
 use super::start_file::StartSolutions;
 use crate::C64;
-use crate::homotopy::{PolylinePath, TrackerOptions};
+use crate::homotopy::TrackerOptions;
 use crate::mechanism::rrr::{
     CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
 };
-use crate::problem::rrr::{RrrProblem, RrrProblemError, RrrSubProblem};
-use crate::random;
+use crate::problem::rrr::{RrrProblem, RrrProblemError};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -114,32 +116,6 @@ fn default_seed_retry_attempts() -> usize {
 /// paths with a finite endpoint or classified at infinity.
 pub type RrrPathFailure = super::curve::PathFailure;
 
-/// One sub-problem prepared at the seed.
-pub struct RrrSeededProblem {
-    /// The compiled system.
-    pub problem: RrrProblem,
-    /// Seed parameters `K*`.
-    pub seed_parameters: Vec<C64>,
-    /// Finite solutions at the seed.
-    pub seed_solutions: Vec<Vec<C64>>,
-    /// Number of paths tracked from the seed to every pose: the seed's finite solutions
-    /// (the generic count unless the source → seed homotopy lost paths, which is then
-    /// reported in [`RrrSeedStage::failures`]).
-    pub start_count: usize,
-}
-
-/// Every sub-problem at the common seed.
-pub struct RrrSeedStage {
-    /// Parallel, leg 1, leg 2, leg 3.
-    pub problems: Vec<RrrSeededProblem>,
-    /// Complex motion parameter of the seed (`None` for pose lists).
-    pub tau_star: Option<C64>,
-    /// Paths lost in the seed stage.
-    pub failures: Vec<RrrPathFailure>,
-    /// Paths tracked in the seed stage.
-    pub paths_tracked: usize,
-}
-
 /// One sub-problem at one pose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RrrSubproblemResult {
@@ -158,8 +134,9 @@ pub struct RrrSubproblemResult {
     /// at infinity). Fewer than `expected_endpoints` means lost paths (an entry in
     /// `failures`).
     pub accounted_paths: usize,
-    /// Paths tracked from the seed (the seed's finite solutions, normally the generic
-    /// root count).
+    /// Paths tracked from the seed: the seed's distinct finite solutions, at most the
+    /// generic root count (below it only when confirmed at an independent seed point, or
+    /// with a seed-stage failure). `accounted_paths` never exceeds it.
     pub expected_endpoints: usize,
 }
 
@@ -222,181 +199,22 @@ pub struct RrrCurveResult {
     pub paths_tracked: usize,
 }
 
-/// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal
-/// per coordinate, `ε = 0.1·(1 + ‖target‖∞)`.
-fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
-    let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
-    target
-        .iter()
-        .map(|v| v + random::complex_normal(rng) * scale)
-        .collect()
-}
-
-/// The route of attempt `attempt` from `from` to `to`: the straight segment for attempt
-/// 0, else the polyline through a random complex detour point near `to` (seeded by
-/// `(seed, stream, attempt)`).
-fn route(from: &[C64], to: &[C64], seed: u64, stream: u64, attempt: usize) -> PolylinePath {
-    let mut points = vec![from.to_vec()];
-    if attempt > 0 {
-        let mut rng = random::stream(seed, stream.wrapping_mul(16).wrapping_add(attempt as u64));
-        points.push(detour_point(to, &mut rng));
-    }
-    points.push(to.to_vec());
-    PolylinePath::new(points)
-}
-
-/// Characteristic length of the design: largest base-joint or moving-frame platform-joint
-/// norm, link length, at least 1.
-fn length_scale(trajectory: &RrrTrajectory) -> f64 {
-    let design = trajectory.design();
-    design
-        .base()
-        .iter()
-        .chain(design.platform().iter())
-        .map(|p| p.norm())
-        .chain(design.proximal().iter().copied())
-        .chain(design.distal().iter().copied())
-        .fold(1.0, f64::max)
-}
-
-/// Seed configuration `K*` (stage 1, module documentation).
-pub fn seed_configuration(
-    trajectory: &RrrTrajectory,
-    seed: u64,
-) -> Result<(Option<C64>, [C64; CONFIGURATION_LEN]), RrrCurveError> {
-    let mut rng = random::stream(seed, 0x5eed);
-    let scale = length_scale(trajectory);
-    let [lo, hi] = trajectory.motion().tau_range();
-    let width = (hi - lo).max(1e-3);
-    let tau_star = C64::new(
-        random::uniform(&mut rng, lo, hi),
-        random::uniform(&mut rng, 0.1, 0.3) * width.min(3.0),
-    );
-    let (tau, mut k, amplitude) = match trajectory.configuration_complex(tau_star) {
-        Some(k) if k.iter().all(|v| v.re.is_finite() && v.im.is_finite()) => {
-            (Some(tau_star), k, 0.05)
-        }
-        _ => {
-            let first = trajectory
-                .configuration(lo)
-                .map_err(|e| RrrCurveError::Pose {
-                    index: 0,
-                    tau: lo,
-                    message: e.to_string(),
-                })?;
-            (None, first.to_array().map(|v| C64::new(v, 0.0)), 0.3)
-        }
-    };
-    for v in k.iter_mut() {
-        *v += random::complex_normal(&mut rng) * (amplitude * scale);
-    }
-    Ok((tau, k))
-}
-
-/// Stage 1: builds the four sub-problems, takes their start solutions from `provider`
-/// and tracks them to the common seed (in parallel).
-pub fn rrr_seed_stage(
-    trajectory: &RrrTrajectory,
-    options: &RrrCurveOptions,
-    provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
-) -> Result<RrrSeedStage, RrrCurveError> {
-    let (tau_star, k_star) = seed_configuration(trajectory, options.seed)?;
-    let seed_parameters = k_star.to_vec();
-    let mut prepared = Vec::new();
-    for kind in RrrSubProblem::ALL {
-        let problem = RrrProblem::new(kind)?;
-        let start = provider(&problem)?;
-        let source = start
-            .parameter_vector(problem.parameter_names())
-            .map_err(|name| RrrCurveError::StartSolutions {
-                problem: kind.name(),
-                message: format!("parameter `{name}` missing"),
-            })?;
-        let n = problem.variable_names().len();
-        if start.variables != problem.variable_names() {
-            return Err(RrrCurveError::StartSolutions {
-                problem: kind.name(),
-                message: "field `variables` does not match the problem's unknowns".to_string(),
-            });
-        }
-        if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
-            return Err(RrrCurveError::StartSolutions {
-                problem: kind.name(),
-                message: format!("a solution has {} entries, expected {n}", bad.len()),
-            });
-        }
-        prepared.push((problem, source, start.solutions));
-    }
-    let tracked: Vec<(RrrSeededProblem, Option<RrrPathFailure>, usize)> = prepared
-        .into_par_iter()
-        .enumerate()
-        .map(|(index, (problem, source, starts))| {
-            let expected = starts.len();
-            let Retried {
-                endpoints: solutions,
-                accounted,
-                tracked,
-                reasons,
-            } = track_with_retries(
-                problem.evaluator(),
-                &starts,
-                |attempt| {
-                    route(
-                        &source,
-                        &seed_parameters,
-                        options.seed,
-                        (index as u64) << 32,
-                        attempt,
-                    )
-                },
-                options.seed_retry_attempts,
-                TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
-            );
-            let failure = (accounted < expected).then(|| RrrPathFailure {
-                pose_index: None,
-                tau: None,
-                problem: problem.kind().name(),
-                expected,
-                accounted,
-                reasons,
-            });
-            // The seed is generic (all 18 coordinates perturbed): every path should end
-            // finite there; the poses expect the seed's finite solutions.
-            let start_count = solutions.len();
-            (
-                RrrSeededProblem {
-                    problem,
-                    seed_parameters: seed_parameters.clone(),
-                    seed_solutions: solutions,
-                    start_count,
-                },
-                failure,
-                tracked,
-            )
-        })
-        .collect();
-    let (problems, failures, paths_tracked) = split_seed_results(tracked);
-    Ok(RrrSeedStage {
-        problems,
-        tau_star,
-        failures,
-        paths_tracked,
-    })
-}
-
 /// Per (pose, sub-problem): sub-problem result, failure, paths tracked.
 type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
 
-/// Stages 2–4 for one sub-problem at the real configuration `k`.
+/// Stages 2–4 for one sub-problem at the real configuration `k`: tracked in `frame`
+/// (the seed's), the closest configuration mapped back and `D(K, K′)` recomputed in the
+/// caller's frame.
 fn solve_subproblem(
     seeded: &RrrSeededProblem,
+    frame: &RrrFrame,
     k: &[f64; CONFIGURATION_LEN],
     index: usize,
     tau: f64,
     problem_index: usize,
     options: &RrrCurveOptions,
 ) -> Entry {
-    let target: Vec<C64> = k.iter().map(|&v| C64::new(v, 0.0)).collect();
+    let target: Vec<C64> = frame.apply(k).iter().map(|&v| C64::new(v, 0.0)).collect();
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let Retried {
         endpoints,
@@ -434,7 +252,7 @@ fn solve_subproblem(
             continue;
         }
         real += 1;
-        let k_prime = RrrProblem::configuration(x).map(|v| v.re);
+        let k_prime = frame.restore(&RrrProblem::configuration(x).map(|v| v.re));
         let d = distance(k, &k_prime);
         if best_candidate.is_none_or(|(b, _)| d < b) {
             best_candidate = Some((d, k_prime));
@@ -573,7 +391,15 @@ pub fn compute_rrr_curve_at(
     let entries: Vec<Entry> = jobs
         .par_iter()
         .map(|&(j, p)| {
-            solve_subproblem(&stage.problems[p], &arrays[j], j, samples[j].0, p, options)
+            solve_subproblem(
+                &stage.problems[p],
+                &stage.frame,
+                &arrays[j],
+                j,
+                samples[j].0,
+                p,
+                options,
+            )
         })
         .collect();
     let max_parallel = arrays

@@ -1,0 +1,159 @@
+//! 3-RRR distances are equivariant under scaling: a design and its motion scaled by `f`
+//! (every length and position times `f`, orientations unchanged) give every distance
+//! times `f`, with no lost paths and never more accounted paths than expected.
+use singdist::mechanism::rpr::{AnalyticMotion, Motion, MotionCoordinate};
+use singdist::mechanism::rrr::*;
+use singdist::pipeline::rrr_curve::*;
+use singdist::problem::rrr::RrrSubProblem;
+
+fn scaled_coordinate(c: &MotionCoordinate, factor: f64) -> MotionCoordinate {
+    let mut out = c.clone();
+    out.polynomial.iter_mut().for_each(|v| *v *= factor);
+    out.cosines.iter_mut().for_each(|t| t.amplitude *= factor);
+    out
+}
+
+fn scaled(trajectory: &RrrTrajectory, factor: f64) -> RrrTrajectory {
+    let d = trajectory.design();
+    let design = RrrDesign::new(
+        d.base().map(|p| p * factor),
+        d.proximal().map(|v| v * factor),
+        d.distal().map(|v| v * factor),
+        d.platform().map(|p| p * factor),
+    )
+    .expect("scaled design");
+    let Motion::Analytic(m) = trajectory.motion() else {
+        panic!("analytic motions only")
+    };
+    let motion = Motion::Analytic(AnalyticMotion {
+        tau_range: m.tau_range,
+        x: scaled_coordinate(&m.x, factor),
+        y: scaled_coordinate(&m.y, factor),
+        phi: m.phi.clone(),
+    });
+    RrrTrajectory::new(design, trajectory.initial_modes(), motion).expect("scaled trajectory")
+}
+
+/// Three design classes: the built-in example (equal links, a leg folding through its
+/// base joint), an asymmetric design with unequal links, and a symmetric design with
+/// unequal links and an oscillating orientation.
+fn trajectories() -> Vec<RrrTrajectory> {
+    let asymmetric = RrrDesign::new(
+        [
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.2),
+            Point::new(0.8, 1.9),
+        ],
+        [1.0, 0.9, 1.1],
+        [0.9, 1.2, 1.0],
+        [
+            Point::new(-0.2, -0.15),
+            Point::new(0.3, -0.1),
+            Point::new(0.05, 0.3),
+        ],
+    )
+    .expect("design");
+    let symmetric = RrrDesign::symmetric(1.0, 0.3, 0.6, 0.7).expect("design");
+    let mut oscillating = circular_translation(Point::new(0.05, 0.0), 0.1, 0.0, [0.0, 6.0]);
+    if let Motion::Analytic(m) = &mut oscillating {
+        m.phi = MotionCoordinate {
+            polynomial: vec![0.1],
+            cosines: vec![[0.3, 1.0, 0.0].into()],
+        };
+    }
+    vec![
+        example_trajectory(),
+        RrrTrajectory::new(
+            asymmetric,
+            [
+                ElbowMode::Positive,
+                ElbowMode::Negative,
+                ElbowMode::Positive,
+            ],
+            circular_translation(Point::new(1.0, 0.7), 0.1, 0.2, [0.0, 6.0]),
+        )
+        .expect("trajectory"),
+        RrrTrajectory::new(symmetric, POSITIVE_MODES, oscillating).expect("trajectory"),
+    ]
+}
+
+fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {
+    compute_rrr_curve_at(
+        trajectory,
+        taus,
+        &RrrCurveOptions::default(),
+        &default_rrr_start_solutions,
+    )
+    .expect("curve")
+}
+
+fn distances(curve: &RrrCurveResult) -> Vec<f64> {
+    curve
+        .poses
+        .iter()
+        .flat_map(|p| {
+            RrrSubProblem::ALL.map(|kind| {
+                p.subproblems[&kind.short_name()]
+                    .distance
+                    .expect("a real critical point")
+            })
+        })
+        .collect()
+}
+
+fn assert_complete(curve: &RrrCurveResult, label: &str) {
+    assert!(curve.failures.is_empty(), "{label}: {:?}", curve.failures);
+    for pose in &curve.poses {
+        for result in pose.subproblems.values() {
+            assert_eq!(result.accounted_paths, result.expected_endpoints, "{label}");
+        }
+    }
+}
+
+#[test]
+fn distances_scale_with_the_design() {
+    // τ ≈ 1.49 and 4.26 are the poses where the unnormalised pipeline went wrong at
+    // size 0.01.
+    let taus = [1.49, 4.26];
+    for (t, trajectory) in trajectories().iter().enumerate() {
+        let reference = curve_at(trajectory, &taus);
+        assert_complete(&reference, &format!("design {t}"));
+        let expected = distances(&reference);
+        for factor in [0.01, 100.0] {
+            let curve = curve_at(&scaled(trajectory, factor), &taus);
+            let label = format!("design {t} scaled by {factor}");
+            assert_complete(&curve, &label);
+            for (got, want) in distances(&curve).iter().zip(&expected) {
+                let relative = (got - factor * want).abs() / (factor * want).max(1e-300);
+                assert!(
+                    relative <= 1e-9,
+                    "{label}: {got} vs {} (relative {relative:e})",
+                    factor * want
+                );
+            }
+        }
+    }
+}
+
+/// The seed stage keeps at most the generic count of distinct solutions, and a count
+/// below it counts only when two seed points agree.
+#[test]
+fn seed_counts_never_exceed_the_generic_count() {
+    use singdist::C64;
+    use singdist::pipeline::rrr_seed::{distinct_solutions, seed_count_confirmed};
+    let point = |v: f64| vec![C64::new(v, 0.5), C64::new(-v, 0.0)];
+    // Three distinct points, one repeated to rounding, one beyond the limit.
+    let endpoints = vec![
+        point(1.0),
+        point(1.0 + 1e-13),
+        point(2.0),
+        point(3.0),
+        point(4.0),
+    ];
+    assert_eq!(distinct_solutions(endpoints.clone(), 10).len(), 4);
+    assert_eq!(distinct_solutions(endpoints, 3).len(), 3);
+    assert!(seed_count_confirmed(&[50], 50));
+    assert!(!seed_count_confirmed(&[48], 50));
+    assert!(!seed_count_confirmed(&[48, 49], 50));
+    assert!(seed_count_confirmed(&[48, 49, 49], 50));
+}
