@@ -403,7 +403,7 @@ fn main() {
     let _ = std::fs::remove_dir_all(&work);
     let count = |v: &str| rows.iter().filter(|r| r.verdict == v).count();
     println!(
-        "\n{} systems: agree {} (+{} with a root counted twice by singdist), only singdist right {}, only phc right {}, neither {}, timeout/error {}",
+        "\n{} systems: agree {} (+{} where singdist's reported nonsingular count differs from its refined distinct count), only singdist right {}, only phc right {}, neither {}, timeout/error {}",
         rows.len(),
         count("agree"),
         count("agree*"),
