@@ -84,3 +84,16 @@ fn non_square_header_and_errors() {
         Err(phc::PhcWriteError::InvalidName(_))
     ));
 }
+
+/// PHCpack's own files go on after the polynomials (a title, root counts, the solution
+/// list `phc -b` appends): the reader stops after the declared number of polynomials.
+#[test]
+fn text_after_the_polynomials_is_ignored() {
+    let text =
+        "2\n x^2 + y - 1;\n x*y - 2;\n\nTITLE : a small system\n\nTHE SOLUTIONS :\n1 2\n=====\n";
+    let system = phc::read(text).unwrap();
+    assert_eq!(system.variables(), ["x", "y"]);
+    assert_eq!(system.degrees(), vec![2, 2]);
+    // Fewer polynomials than declared is still an error.
+    assert!(phc::read("3\n x^2 + y - 1;\n x*y - 2;\n").is_err());
+}

@@ -85,6 +85,7 @@ fn reason_name(reason: FailureReason) -> &'static str {
         FailureReason::WindingNumberTooLarge => "WindingNumberTooLarge",
         FailureReason::EndgameDidNotConverge => "EndgameDidNotConverge",
         FailureReason::NonFiniteValue => "NonFiniteValue",
+        FailureReason::PathJumped => "PathJumped",
         FailureReason::CorrectorDidNotConverge => "CorrectorDidNotConverge",
     }
 }

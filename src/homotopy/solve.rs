@@ -5,12 +5,16 @@
 //! point and the tracker's state is reset per path, so no per-path random stream is
 //! needed), so they are bit-identical for any thread count. After the first pass, paths
 //! that failed, and nonsingular endpoints reached by more than one path (the signature
-//! of path jumping), are re-tracked with [`TrackerOptions::conservative`] — never
-//! dropped silently. Finite endpoints are then clustered to give multiplicities.
+//! of path jumping; decided by a Newton-cluster test, not a fixed distance), are
+//! re-tracked with [`TrackerOptions::conservative`] — never dropped silently. Endpoints
+//! that still share a nonsingular root after that are reported as failed
+//! ([`FailureReason::PathJumped`]), so no root is counted twice. Finite endpoints are
+//! then clustered to give multiplicities.
 
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
+use super::refine::{group_roots, newton_refine};
 use super::start::TotalDegreeStartSystem;
-use super::tracker::{PathResult, PathStatus, Tracker, TrackerOptions};
+use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
 use crate::C64;
 use crate::system::Evaluator;
 use rayon::prelude::*;
@@ -287,11 +291,13 @@ where
     let mut retracked = 0;
     if options.retry_failed {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
+        let duplicated = duplicated_nonsingular(homotopy, &paths);
         let suspicious: Vec<usize> = paths
             .iter()
             .filter(|p| {
                 matches!(p.status, PathStatus::Failed(_))
                     || (p.status == PathStatus::Nonsingular && p.multiplicity > 1)
+                    || duplicated[p.path_index]
             })
             .map(|p| p.path_index)
             .collect();
@@ -306,12 +312,131 @@ where
         }
     }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
+    mark_jumped_paths(homotopy, &mut paths);
     let summary = summarize(&paths, options.real_tolerance, retracked);
     SolveResult {
         paths,
         summary,
         gamma: C64::new(1.0, 0.0),
     }
+}
+
+/// Relative Newton tolerance of the duplicate test on nonsingular endpoints.
+const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
+/// Two refined nonsingular endpoints closer than this (relative, plus their accuracy
+/// 10·κ·ε at condition κ) are the same root.
+const DUPLICATE_TOLERANCE: f64 = 1e-10;
+
+/// For every path, the root group of its nonsingular endpoint (the index of the group's
+/// first path; `None` for other statuses), by the Newton-cluster test: each endpoint is
+/// refined by Newton's method on `H(·, 1)` and the limits are compared at their
+/// attainable accuracy ([`super::refine::group_roots`]). Endpoints of an
+/// ill-conditioned root can lie further apart than any fixed tolerance and still be
+/// one root.
+fn nonsingular_root_groups<H: Homotopy + ?Sized>(
+    homotopy: &H,
+    paths: &[PathResult],
+) -> Vec<Option<usize>> {
+    let nonsingular: Vec<&PathResult> = paths
+        .iter()
+        .filter(|p| p.status == PathStatus::Nonsingular)
+        .collect();
+    let target = TargetSystem { homotopy };
+    let refined: Vec<(Vec<C64>, f64)> = nonsingular
+        .par_iter()
+        .map(|p| {
+            let r = newton_refine(&target, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
+            if r.converged {
+                (r.point, r.condition.max(p.condition))
+            } else {
+                (p.solution.clone(), p.condition)
+            }
+        })
+        .collect();
+    let mut groups = vec![None; paths.len()];
+    for (k, g) in group_roots(&refined, DUPLICATE_TOLERANCE)
+        .into_iter()
+        .enumerate()
+    {
+        groups[nonsingular[k].path_index] = Some(nonsingular[g].path_index);
+    }
+    groups
+}
+
+/// Whether each path's nonsingular root was also reached by another path.
+fn duplicated_nonsingular<H: Homotopy + ?Sized>(homotopy: &H, paths: &[PathResult]) -> Vec<bool> {
+    let groups = nonsingular_root_groups(homotopy, paths);
+    let mut size = vec![0usize; paths.len()];
+    for g in groups.iter().flatten() {
+        size[*g] += 1;
+    }
+    groups
+        .iter()
+        .map(|g| g.is_some_and(|g| size[g] > 1))
+        .collect()
+}
+
+/// After the re-runs: of the nonsingular endpoints that still share a root, all but the
+/// first (in path order) are marked `Failed(PathJumped)`, so the root is counted once
+/// and the lost root is reported rather than hidden.
+fn mark_jumped_paths<H: Homotopy + ?Sized>(homotopy: &H, paths: &mut [PathResult]) {
+    let groups = nonsingular_root_groups(homotopy, paths);
+    for (i, group) in groups.into_iter().enumerate() {
+        if group.is_some_and(|g| g != i) {
+            paths[i].status = PathStatus::Failed(FailureReason::PathJumped);
+            paths[i].multiplicity = 0;
+        }
+    }
+}
+
+/// `H(·, 1)` of a homotopy as an [`Evaluator`] without parameters (the target system),
+/// for Newton refinement of endpoints.
+struct TargetSystem<'a, H: Homotopy + ?Sized> {
+    homotopy: &'a H,
+}
+
+impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
+    fn num_variables(&self) -> usize {
+        self.homotopy.dimension()
+    }
+    fn num_equations(&self) -> usize {
+        self.homotopy.dimension()
+    }
+    fn num_parameters(&self) -> usize {
+        0
+    }
+    fn workspace_len(&self) -> usize {
+        self.homotopy.workspace_len()
+    }
+    fn evaluate(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.homotopy.evaluate(x, C64::new(1.0, 0.0), work, f);
+    }
+    fn evaluate_extended(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.homotopy
+            .evaluate_extended(x, C64::new(1.0, 0.0), work, f);
+    }
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        _: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        self.homotopy
+            .evaluate_with_jacobian(x, C64::new(1.0, 0.0), work, f, jac);
+    }
+    fn evaluate_parameter_derivative(
+        &self,
+        _: &[C64],
+        _: &[C64],
+        _: &[C64],
+        _: &mut [C64],
+        out: &mut [C64],
+    ) {
+        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
+    fn evaluate_parameter_jacobian(&self, _: &[C64], _: &[C64], _: &mut [C64], _: &mut [C64]) {}
 }
 
 /// Sets `multiplicity` of every finite path to the number of finite paths ending at

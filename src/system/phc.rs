@@ -124,11 +124,36 @@ pub fn write(system: &System, parameter_values: &[(String, C64)]) -> Result<Stri
     Ok(out)
 }
 
-/// Reads PHCpack input text: the counts line, then the polynomials separated by `;`.
-/// The unknowns are the names in order of first appearance; `i` and `I` are the
+/// The counts line and the first `n` polynomials of PHCpack input (`n` from the counts
+/// line): what PHCpack itself reads. Titles, root counts and the solution lists `phc`
+/// appends to its input files come after them. The whole text when the counts line or
+/// the `n` semicolons are missing (the parser then reports the error).
+fn system_part(text: &str) -> &str {
+    let start = text.len() - text.trim_start().len();
+    let first_line = text[start..].lines().next().unwrap_or("");
+    let Some(n) = first_line
+        .split_whitespace()
+        .next()
+        .and_then(|w| w.parse::<usize>().ok())
+    else {
+        return text;
+    };
+    let mut end = start + first_line.len();
+    for _ in 0..n {
+        match text[end..].find(';') {
+            Some(k) => end += k + 1,
+            None => return text,
+        }
+    }
+    &text[..end]
+}
+
+/// Reads PHCpack input text: the counts line, then the polynomials separated by `;`;
+/// text after the last polynomial (a title, a solution list) is ignored, as PHCpack
+/// does. The unknowns are the names in order of first appearance; `i` and `I` are the
 /// imaginary unit.
 pub fn read(text: &str) -> Result<System, ParseError> {
-    let mut cursor = TokenCursor::new(tokenize(text)?);
+    let mut cursor = TokenCursor::new(tokenize(system_part(text))?);
     let count = |cursor: &mut TokenCursor| -> Result<Option<usize>, ParseError> {
         match cursor.peek().token {
             Token::Number(v, _) if v.fract() == 0.0 && (0.0..1e9).contains(&v) => {

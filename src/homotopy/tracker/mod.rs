@@ -232,6 +232,9 @@ pub enum FailureReason {
     EndgameDidNotConverge,
     /// NaN or infinity appeared in the evaluation.
     NonFiniteValue,
+    /// The path ended at a nonsingular root another path of the run also reached
+    /// (even after re-tracking): one of them jumped, and a root may be missing.
+    PathJumped,
     /// Newton's method from a predicted point ([`Tracker::correct_at`]) stopped
     /// contracting, or its limit is singular.
     CorrectorDidNotConverge,

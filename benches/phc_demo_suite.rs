@@ -1,0 +1,424 @@
+//! PHCpack's demo systems solved side by side by `singdist solve --threads 1` and
+//! `phc -b -t1`, every root of both refined by Newton's method against the original
+//! polynomials to decide the true number of distinct nonsingular roots.
+//!
+//! Usage (after `cargo build --release`):
+//!
+//! ```text
+//! cargo bench --bench phc_demo_suite -- [--dir DIR] [--max-degree N] [--timeout S]
+//!     [--only NAME,NAME] [--seed SEED] [--singdist PATH]
+//! ```
+//!
+//! `DIR` defaults to `/usr/share/doc/phcpack/examples` (Debian package `phcpack`, files
+//! possibly gzipped); systems of total degree above `N` (default 1000) are skipped; each
+//! solver run is killed after `S` seconds (default 120). Skips cleanly when `phc` is not
+//! installed. Per system the table gives the Bézout number, singdist's counts (paths
+//! reported nonsingular, distinct nonsingular roots after refinement, singular, at
+//! infinity, failed), PHCpack's distinct nonsingular roots, the union of both (the
+//! true count unless both miss a root), who is right, and the phc/singdist time ratio.
+
+use serde_json::Value;
+use singdist::C64;
+use singdist::homotopy::{group_roots, newton_refine};
+use singdist::system::{CompiledSystem, System, bertini, phc};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+/// Newton stops at corrections below this (relative).
+const NEWTON_TOLERANCE: f64 = 1e-13;
+/// Condition number below which a converged Newton limit is a nonsingular root.
+const NONSINGULAR_CONDITION: f64 = 1e11;
+/// Two refined nonsingular roots closer than this (relative, plus their accuracy
+/// 10·κ·ε) are the same root.
+const SAME_ROOT_TOLERANCE: f64 = 1e-10;
+
+struct Arguments {
+    dir: PathBuf,
+    max_degree: u128,
+    timeout: f64,
+    only: Vec<String>,
+    seed: Option<u64>,
+    singdist: PathBuf,
+}
+
+fn arguments() -> Arguments {
+    let mut a = Arguments {
+        dir: PathBuf::from("/usr/share/doc/phcpack/examples"),
+        max_degree: 1000,
+        timeout: 120.0,
+        only: Vec::new(),
+        seed: None,
+        singdist: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/release/singdist"),
+    };
+    let mut args = std::env::args().skip(1);
+    while let Some(flag) = args.next() {
+        let mut value = || {
+            args.next()
+                .unwrap_or_else(|| panic!("{flag} needs a value"))
+        };
+        match flag.as_str() {
+            "--dir" => a.dir = PathBuf::from(value()),
+            "--max-degree" => a.max_degree = value().parse().expect("--max-degree: integer"),
+            "--timeout" => a.timeout = value().parse().expect("--timeout: seconds"),
+            "--only" => a.only = value().split(',').map(str::to_string).collect(),
+            "--seed" => a.seed = Some(value().parse().expect("--seed: integer")),
+            "--singdist" => a.singdist = PathBuf::from(value()),
+            "--bench" => {}
+            other => panic!("unknown argument {other}"),
+        }
+    }
+    a
+}
+
+/// The text of a demo file (gunzipped if needed).
+fn read_demo(path: &Path) -> Option<String> {
+    if path.extension().is_some_and(|e| e == "gz") {
+        let out = Command::new("gzip").arg("-dc").arg(path).output().ok()?;
+        return String::from_utf8(out.stdout).ok();
+    }
+    std::fs::read_to_string(path).ok()
+}
+
+/// The system part of a PHCpack file: the counts line and the first `n` polynomials
+/// (each ended by `;`), dropping titles, root counts and solution lists after them.
+fn system_text(text: &str) -> Option<String> {
+    let trimmed = text.trim_start();
+    let first_line = trimmed.lines().next()?;
+    let n: usize = first_line.split_whitespace().next()?.parse().ok()?;
+    let rest = &trimmed[first_line.len()..];
+    let mut end = 0;
+    for _ in 0..n {
+        end += rest[end..].find(';')? + 1;
+    }
+    Some(format!("{first_line}{}\n", &rest[..end]))
+}
+
+/// Runs `command` with a timeout; returns (wall seconds, exit code, stdout), exit code
+/// `None` when killed by the timeout.
+fn run_timed(command: &mut Command, timeout: f64) -> (f64, Option<i32>, String) {
+    let started = Instant::now();
+    let mut child = command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("cannot start a solver");
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = std::io::Read::read_to_string(&mut stdout, &mut text);
+        text
+    });
+    loop {
+        if let Some(status) = child.try_wait().expect("wait for a solver") {
+            let seconds = started.elapsed().as_secs_f64();
+            return (seconds, status.code(), reader.join().unwrap_or_default());
+        }
+        if started.elapsed().as_secs_f64() > timeout {
+            let _ = child.kill();
+            let _ = child.wait();
+            return (timeout, None, String::new());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+/// Distinct nonsingular roots among approximate roots, after Newton refinement:
+/// (number of distinct roots, the refined representatives with their condition).
+fn distinct_nonsingular(
+    system: &CompiledSystem,
+    points: &[Vec<C64>],
+) -> (usize, Vec<(Vec<C64>, f64)>) {
+    let refined: Vec<(Vec<C64>, f64)> = points
+        .iter()
+        .map(|x| newton_refine(system, x, &[], NEWTON_TOLERANCE, 60))
+        .filter(|r| r.is_nonsingular(NONSINGULAR_CONDITION))
+        .map(|r| (r.point, r.condition))
+        .collect();
+    let groups = group_roots(&refined, SAME_ROOT_TOLERANCE);
+    let representatives: Vec<(Vec<C64>, f64)> = groups
+        .iter()
+        .enumerate()
+        .filter(|&(i, &g)| i == g)
+        .map(|(i, _)| refined[i].clone())
+        .collect();
+    (representatives.len(), representatives)
+}
+
+fn json_point(value: &Value) -> Vec<C64> {
+    value
+        .as_array()
+        .map(|coordinates| {
+            coordinates
+                .iter()
+                .map(|c| {
+                    C64::new(
+                        c[0].as_f64().unwrap_or(f64::NAN),
+                        c[1].as_f64().unwrap_or(f64::NAN),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+struct Row {
+    name: String,
+    bezout: u128,
+    line: String,
+    ratio: Option<f64>,
+    verdict: &'static str,
+}
+
+fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &Path) -> Row {
+    let bezout = system.bezout_number();
+    let mut row = Row {
+        name: name.to_string(),
+        bezout,
+        line: String::new(),
+        ratio: None,
+        verdict: "error",
+    };
+    let bertini_text = match bertini::write(system) {
+        Ok(t) => t,
+        Err(e) => {
+            row.line = format!("cannot write Bertini input: {e}");
+            return row;
+        }
+    };
+    let bertini_file = work.join(format!("{name}.input"));
+    let phc_file = work.join(format!("{name}.phc"));
+    let phc_out = work.join(format!("{name}.phc.out"));
+    std::fs::write(&bertini_file, bertini_text).expect("write the Bertini file");
+    std::fs::write(&phc_file, input).expect("write the PHCpack file");
+    let _ = std::fs::remove_file(&phc_out);
+
+    let mut ours = Command::new(&args.singdist);
+    ours.arg("solve")
+        .arg(&bertini_file)
+        .args(["--threads", "1", "--json"]);
+    if let Some(seed) = args.seed {
+        ours.args(["--seed", &seed.to_string()]);
+    }
+    let (our_time, our_code, our_out) = run_timed(&mut ours, args.timeout);
+    let mut theirs = Command::new("phc");
+    theirs.arg("-b").arg("-t1").arg(&phc_file).arg(&phc_out);
+    let (phc_time, phc_code, _) = run_timed(&mut theirs, args.timeout);
+
+    let compiled = system.compile();
+    let names = system.variables();
+    // singdist: finite endpoints (nonsingular and singular) in its variable order.
+    let ours_json: Option<Value> = our_code
+        .filter(|&c| c == 0 || c == 3)
+        .and_then(|_| serde_json::from_str(&our_out).ok());
+    let (ours_summary, our_points, our_reported) = match &ours_json {
+        Some(v) => {
+            let order: Vec<String> = v["variables"]
+                .as_array()
+                .map(|a| {
+                    a.iter()
+                        .filter_map(|s| s.as_str().map(String::from))
+                        .collect()
+                })
+                .unwrap_or_default();
+            let permutation: Vec<usize> = names
+                .iter()
+                .map(|n| order.iter().position(|o| o == n).unwrap_or(0))
+                .collect();
+            let solutions = v["solutions"].as_array().cloned().unwrap_or_default();
+            let points: Vec<Vec<C64>> = solutions
+                .iter()
+                .map(|s| {
+                    let x = json_point(&s["coordinates"]);
+                    permutation
+                        .iter()
+                        .map(|&k| x.get(k).copied().unwrap_or_default())
+                        .collect()
+                })
+                .collect();
+            let s = &v["summary"];
+            let count = |field: &str| s[field].as_u64().unwrap_or(0);
+            let summary = format!(
+                "{:>6} {:>6} {:>5} {:>6} {:>6}",
+                count("nonsingular"),
+                "",
+                count("singular"),
+                count("at_infinity"),
+                count("failed")
+            );
+            (
+                Some(summary),
+                points,
+                s["nonsingular"].as_u64().unwrap_or(0),
+            )
+        }
+        None => (None, Vec::new(), 0),
+    };
+    // PHCpack: every solution of its final list (`phc -b` appends it to its input file;
+    // the output file holds the intermediate lists).
+    let phc_points: Option<Vec<Vec<C64>>> = phc_code.map(|_| {
+        let text = std::fs::read_to_string(&phc_file).unwrap_or_default();
+        phc::read_last_solutions(&text)
+            .iter()
+            .map(|s| {
+                names
+                    .iter()
+                    .map(|n| s.value(n).unwrap_or_default())
+                    .collect()
+            })
+            .collect()
+    });
+    let (our_distinct, our_roots) = distinct_nonsingular(&compiled, &our_points);
+    let (phc_distinct, phc_roots) = match &phc_points {
+        Some(p) => distinct_nonsingular(&compiled, p),
+        None => (0, Vec::new()),
+    };
+    let union: Vec<(Vec<C64>, f64)> = our_roots.into_iter().chain(phc_roots).collect();
+    let groups = group_roots(&union, SAME_ROOT_TOLERANCE);
+    let true_count = groups.iter().enumerate().filter(|&(i, &g)| i == g).count();
+
+    let ours_text = match &ours_summary {
+        Some(s) => s.replacen("      ", &format!("{our_distinct:>6}"), 1),
+        None => format!(
+            "{:>34}",
+            if our_code.is_none() {
+                "timeout"
+            } else {
+                "error"
+            }
+        ),
+    };
+    let phc_text = if phc_points.is_some() {
+        format!("{phc_distinct:>6}")
+    } else {
+        format!("{:>6}", "timeout")
+    };
+    row.verdict = match (ours_summary.is_some(), phc_points.is_some()) {
+        (true, true) if our_distinct == true_count && phc_distinct == true_count => {
+            if our_reported as usize == our_distinct {
+                "agree"
+            } else {
+                "agree*"
+            }
+        }
+        (true, _) if our_distinct == true_count => "singdist",
+        (_, true) if phc_distinct == true_count => "phc",
+        (true, true) => "neither",
+        _ => "timeout",
+    };
+    if ours_summary.is_some() && phc_points.is_some() {
+        row.ratio = Some(phc_time / our_time.max(1e-3));
+    }
+    row.line = format!(
+        "{ours_text} {phc_text} {true_count:>6} {:>9} {our_time:>9.3} {phc_time:>9.3} {:>8}",
+        row.verdict,
+        row.ratio.map_or("-".into(), |r| format!("{r:.2}"))
+    );
+    row
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+fn main() {
+    let args = arguments();
+    if !phc::available() {
+        println!("phc_demo_suite: phc (PHCpack) not found; skipping");
+        return;
+    }
+    assert!(
+        args.singdist.exists(),
+        "{} not built; run `cargo build --release` first",
+        args.singdist.display()
+    );
+    let Ok(entries) = std::fs::read_dir(&args.dir) else {
+        println!("phc_demo_suite: {} not found; skipping", args.dir.display());
+        return;
+    };
+    let mut files: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    files.sort();
+    let work = std::env::temp_dir().join(format!("phc_demo_suite.{}", std::process::id()));
+    std::fs::create_dir_all(&work).expect("create the work directory");
+    println!(
+        "{:<12} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+        "system",
+        "bezout",
+        "ns",
+        "dist",
+        "sing",
+        "inf",
+        "fail",
+        "phc",
+        "true",
+        "right",
+        "t_ours",
+        "t_phc",
+        "phc/ours"
+    );
+    let mut rows = Vec::new();
+    for path in files {
+        let name = path
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .trim_end_matches(".gz")
+            .to_string();
+        if !args.only.is_empty() && !args.only.contains(&name) {
+            continue;
+        }
+        let Some(text) = read_demo(&path) else {
+            continue;
+        };
+        let Some(input) = system_text(&text) else {
+            continue;
+        };
+        let system = match phc::read(&input) {
+            Ok(s) => s,
+            Err(e) => {
+                println!("{name:<12} skipped: {e}");
+                continue;
+            }
+        };
+        if system.num_equations() != system.variables().len() {
+            continue;
+        }
+        let bezout = system.bezout_number();
+        if bezout > args.max_degree {
+            continue;
+        }
+        let row = solve_one(&args, &name, &system, &input, &work);
+        println!("{:<12} {:>6} {}", row.name, row.bezout, row.line);
+        rows.push(row);
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    let count = |v: &str| rows.iter().filter(|r| r.verdict == v).count();
+    println!(
+        "\n{} systems: agree {} (+{} where singdist's reported nonsingular count differs from its refined distinct count), only singdist right {}, only phc right {}, neither {}, timeout/error {}",
+        rows.len(),
+        count("agree"),
+        count("agree*"),
+        count("singdist"),
+        count("phc"),
+        count("neither"),
+        count("timeout") + count("error")
+    );
+    let mut ratios: Vec<f64> = rows.iter().filter_map(|r| r.ratio).collect();
+    if !ratios.is_empty() {
+        let geometric = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len() as f64).exp();
+        println!(
+            "phc/singdist time ratio over {} systems: geometric mean {geometric:.2}, median {:.2}",
+            ratios.len(),
+            median(&mut ratios)
+        );
+    }
+}

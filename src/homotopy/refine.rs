@@ -1,0 +1,192 @@
+//! Newton refinement of an approximate root against the target system, and the test
+//! that decides whether two approximate roots are the same root.
+//!
+//! Newton's method `x ← x − J(x)⁻¹ F(x)` with the residual `F(x)` evaluated in
+//! double-double arithmetic (so the limiting accuracy is `κ·ε·‖x‖` rather than the
+//! rounding error of `F`), stopped when the correction falls below
+//! `tolerance · (1 + ‖x‖∞)`. A root is *nonsingular* when Newton converges
+//! quadratically (each correction at most the square of the previous one, up to the
+//! noise floor) to a point whose Jacobian has a condition number below a threshold:
+//! Smale's α-theory (Blum, Cucker, Shub, Smale, "Complexity and Real Computation",
+//! 1998) guarantees such a point is in the quadratic basin of exactly one root.
+//!
+//! Two approximate roots are the same root when Newton started from each converges to
+//! the same limit ("Newton-cluster test"): a fixed distance tolerance either merges
+//! distinct close roots or splits one ill-conditioned root in two.
+
+use super::linalg::LuWorkspace;
+use crate::C64;
+use crate::system::Evaluator;
+
+/// Outcome of [`newton_refine`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Refinement {
+    /// The last iterate.
+    pub point: Vec<C64>,
+    /// Whether the last correction fell below the tolerance.
+    pub converged: bool,
+    /// Size of the last correction, relative to `1 + ‖x‖∞`.
+    pub last_correction: f64,
+    /// `‖F(x)‖∞` at the last iterate (double-double evaluation, rounded).
+    pub residual: f64,
+    /// 1-norm condition estimate of `∂F/∂x` at the last iterate (∞ if singular).
+    pub condition: f64,
+    /// Newton iterations done.
+    pub iterations: usize,
+}
+
+impl Refinement {
+    /// Converged to a root with a condition number below `max_condition`.
+    pub fn is_nonsingular(&self, max_condition: f64) -> bool {
+        self.converged && self.condition < max_condition
+    }
+}
+
+fn max_norm(x: &[C64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.norm()))
+}
+
+/// Refines `x` by at most `max_iterations` Newton steps on `F(·; p) = 0`; stops when a
+/// correction is below `tolerance · (1 + ‖x‖∞)`, or when the corrections stop
+/// decreasing (no convergence).
+pub fn newton_refine<F: Evaluator + ?Sized>(
+    system: &F,
+    x: &[C64],
+    parameters: &[C64],
+    tolerance: f64,
+    max_iterations: usize,
+) -> Refinement {
+    let n = system.num_variables();
+    let zero = C64::new(0.0, 0.0);
+    let mut point = x.to_vec();
+    let mut work = vec![zero; system.workspace_len()];
+    let mut f = vec![zero; system.num_equations()];
+    let mut jac = vec![zero; system.num_equations() * n];
+    let mut lu = LuWorkspace::new(n);
+    let mut previous = f64::INFINITY;
+    let mut result = Refinement {
+        point: Vec::new(),
+        converged: false,
+        last_correction: f64::INFINITY,
+        residual: f64::INFINITY,
+        condition: f64::INFINITY,
+        iterations: 0,
+    };
+    for iteration in 0..max_iterations {
+        system.evaluate_with_jacobian(&point, parameters, &mut work, &mut f, &mut jac);
+        system.evaluate_extended(&point, parameters, &mut work, &mut f);
+        if !lu.factor(&jac) || f.iter().any(|v| !v.re.is_finite() || !v.im.is_finite()) {
+            break;
+        }
+        lu.solve_in_place(&mut f);
+        let scale = 1.0 + max_norm(&point);
+        let correction = max_norm(&f) / scale;
+        if !correction.is_finite() || correction > 2.0 * previous && iteration > 1 {
+            break;
+        }
+        for (xi, di) in point.iter_mut().zip(&f) {
+            *xi -= di;
+        }
+        result.iterations = iteration + 1;
+        result.last_correction = correction;
+        if correction <= tolerance {
+            result.converged = true;
+            break;
+        }
+        previous = correction;
+    }
+    system.evaluate_with_jacobian(&point, parameters, &mut work, &mut f, &mut jac);
+    system.evaluate_extended(&point, parameters, &mut work, &mut f);
+    result.residual = max_norm(&f);
+    result.condition = if lu.factor(&jac) {
+        lu.condition_estimate()
+    } else {
+        f64::INFINITY
+    };
+    if !result.residual.is_finite() {
+        result.converged = false;
+    }
+    result.point = point;
+    result
+}
+
+/// Whether two refined roots `a` and `b` (limits of [`newton_refine`]) are the same
+/// root: their distance is below `(tolerance + 10·κ·ε) · (1 + ‖a‖∞)`, the accuracy a
+/// Newton limit has at condition number `κ = condition` (the larger of the two).
+pub fn same_root(a: &[C64], b: &[C64], condition: f64, tolerance: f64) -> bool {
+    let scale = 1.0 + max_norm(a).max(max_norm(b));
+    let accuracy = tolerance + 10.0 * condition.min(1e12) * f64::EPSILON;
+    a.iter()
+        .zip(b)
+        .all(|(u, v)| (u - v).norm() <= accuracy * scale)
+}
+
+/// Groups refined nonsingular roots into distinct roots: `roots[i]` is a point with its
+/// condition number; returns for every root the index of its group's first member.
+/// Sorting by the real part of the first coordinate keeps the comparison near-linear.
+pub fn group_roots(roots: &[(Vec<C64>, f64)], tolerance: f64) -> Vec<usize> {
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut order: Vec<usize> = (0..roots.len()).collect();
+    let key = |i: usize| roots[i].0.first().map_or(0.0, |v| v.re);
+    order.sort_by(|&a, &b| key(a).total_cmp(&key(b)));
+    let mut parent: Vec<usize> = (0..roots.len()).collect();
+    for (position, &i) in order.iter().enumerate() {
+        let (a, ka) = (&roots[i].0, roots[i].1);
+        for &j in order[position + 1..].iter() {
+            let (b, kb) = (&roots[j].0, roots[j].1);
+            // The largest accuracy of `same_root` bounds the gap of the real parts.
+            let widest = tolerance + 10.0 * 1e12 * f64::EPSILON;
+            if key(j) - key(i) > widest * (1.0 + max_norm(a) + max_norm(b)) {
+                break;
+            }
+            if same_root(a, b, ka.max(kb), tolerance) {
+                let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
+                parent[ri.max(rj)] = ri.min(rj);
+            }
+        }
+    }
+    (0..roots.len()).map(|i| find(&mut parent, i)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::system::bertini;
+
+    fn system(text: &str) -> crate::system::CompiledSystem {
+        bertini::read(text).unwrap().compile()
+    }
+
+    /// Newton converges to the nonsingular root √2 and stalls at the double root of x².
+    #[test]
+    fn classifies_nonsingular_and_singular_roots() {
+        let f = system("variable_group x;\nfunction f;\nf = x^2 - 2;\n");
+        let r = newton_refine(&f, &[C64::new(1.5, 0.1)], &[], 1e-14, 30);
+        assert!(r.is_nonsingular(1e8), "{r:?}");
+        assert!((r.point[0] - C64::new(2f64.sqrt(), 0.0)).norm() < 1e-14);
+        let g = system("variable_group x;\nfunction f;\nf = x^2;\n");
+        let r = newton_refine(&g, &[C64::new(0.1, 0.0)], &[], 1e-14, 30);
+        assert!(!r.is_nonsingular(1e8), "{r:?}");
+    }
+
+    /// Two approximations of one root group together, a distinct close root does not.
+    #[test]
+    fn groups_by_refined_limits() {
+        let roots = vec![
+            (vec![C64::new(1.0, 0.0)], 10.0),
+            (vec![C64::new(1.0 + 1e-15, 0.0)], 10.0),
+            (vec![C64::new(1.0 + 1e-9, 0.0)], 10.0),
+            (vec![C64::new(-3.0, 0.0)], 10.0),
+        ];
+        let groups = group_roots(&roots, 1e-12);
+        assert_eq!(groups[0], groups[1]);
+        assert_ne!(groups[0], groups[2]);
+        assert_ne!(groups[0], groups[3]);
+    }
+}
