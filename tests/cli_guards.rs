@@ -282,7 +282,7 @@ fn output_paths_are_checked_before_computing() {
         (
             curve("--out", &txt),
             &txt,
-            vec!["--out", "x.txt", ".json or .csv"],
+            vec!["--out", "x.txt", ".jsonl or .csv"],
         ),
         (
             owned(&["indices", "--poses", "900000", "--plot", &pdf]),
