@@ -5,7 +5,7 @@
 use super::curve_log::{PoseLines, RunLog};
 use super::failures::warn_failures;
 use super::outcome::Outcome;
-use super::output::{check_output_file, extension, write_file};
+use super::output::{PartialFile, check_output_file, extension, write_file};
 use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
@@ -79,7 +79,7 @@ pub struct CurveArgs {
     no_self_check: bool,
     /// Continue the interrupted run of `--out FILE` from `FILE.partial`: its complete
     /// windows are kept, the rest is computed again; the output is byte for byte that of
-    /// an uninterrupted run. Refused (naming the difference) if the arguments that
+    /// an uninterrupted run (without `FILE.partial`, the run starts afresh). Refused (naming the difference) if the arguments that
     /// determine the results (design, motion, metrics, poses, seed, chain, window,
     /// self-check) differ from the interrupted run's.
     #[arg(long)]
@@ -269,12 +269,20 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         let tau_of = |j: usize| samples.get(j).map(|s| s.tau);
         let mut log = match &args.out {
             None => None,
-            Some(out) if args.resume => {
+            Some(out) if args.resume && PartialFile::path_for(out).exists() => {
                 let log = RunLog::resume(out, log_header, (lines, &metrics[..]), &tau_of)?;
                 progress.set_position(log.totals.poses as u64);
                 Some(log)
             }
-            Some(out) => Some(RunLog::create(out, log_header, lines, &metrics)?),
+            Some(out) => {
+                if args.resume {
+                    eprintln!(
+                        "singdist: note: --resume: {} does not exist; starting from the first window",
+                        PartialFile::path_for(out).display()
+                    );
+                }
+                Some(RunLog::create(out, log_header, lines, &metrics)?)
+            }
         };
         let mut kept = Vec::new();
         if kind == OutputKind::Table {

@@ -164,16 +164,8 @@ impl RunLog {
     ) -> Result<Self> {
         let path = PartialFile::path_for(out);
         let shown_path = path.display().to_string();
-        let file = std::fs::File::open(&path).map_err(|e| {
-            if out.exists() {
-                anyhow!(
-                    "--resume: {shown_path}: {e} ({} is complete: nothing to resume)",
-                    out.display()
-                )
-            } else {
-                anyhow!("--resume: {shown_path}: {e} (nothing to resume)")
-            }
-        })?;
+        let file = std::fs::File::open(&path)
+            .map_err(|e| anyhow!("--resume: {shown_path}: cannot read: {e}"))?;
         let mut reader = std::io::BufReader::new(file);
         let mut line = String::new();
         let (mut offset, mut kept, mut number) = (0u64, 0u64, 0usize);
