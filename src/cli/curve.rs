@@ -198,7 +198,11 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     // Only a `.json` document, a plot or a report holds every pose until the end.
     let in_memory = kind == OutputKind::Json || args.plot.is_some() || args.html.is_some();
     if in_memory {
-        check_metric_pose_count(count, metrics.len())?;
+        check_metric_pose_count(count, metrics.len()).map_err(|e| {
+            anyhow!(
+                "{e}; a .json document, --plot and --html hold every pose: stream long runs with --out FILE.csv or FILE.jsonl"
+            )
+        })?;
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }

@@ -52,7 +52,8 @@
 //!    attempt; at the seed, through random complex parameters near `p*`, more
 //!    attempts); finite endpoints of all attempts are merged. Paths classified at
 //!    infinity are accounted for.
-//!    **Rescue from neighbours**: once every pose is done, each run of consecutive
+//!    **Rescue from neighbours**: once every pose of a window
+//!    ([`CurveOptions::window_poses`]) is done, each run of consecutive
 //!    poses at which a sub-problem still lost paths is re-solved pose by pose from the
 //!    complete finite solution set of the pose before the run (forward), then of the
 //!    pose after it (backward), through a random complex midpoint between the two
