@@ -282,7 +282,7 @@ fn output_paths_are_checked_before_computing() {
         (
             curve("--out", &txt),
             &txt,
-            vec!["--out", "x.txt", ".json or .csv"],
+            vec!["--out", "x.txt", ".jsonl or .csv"],
         ),
         (
             owned(&["indices", "--poses", "900000", "--plot", &pdf]),
@@ -345,7 +345,10 @@ fn a_failed_write_names_its_partial_file() {
     let partial = format!("{out}.partial");
     assert_one_line_error(&r, &["--out", "cannot write", &partial]);
     let lines = std::fs::read_to_string(&partial).expect("partial file kept");
-    assert_eq!(lines.lines().count(), 4, "{lines}");
+    // The run log: a header record, the four poses' CSV rows, one window record.
+    let rows = lines.lines().filter(|l| !l.starts_with("{\"record\":"));
+    assert_eq!(rows.count(), 4, "{lines}");
+    assert_eq!(lines.lines().count(), 6, "{lines}");
 }
 
 #[test]

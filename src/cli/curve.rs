@@ -2,10 +2,11 @@
 //! nine extrinsic metrics (SPEC A.9): JSON / CSV table, SVG plot, compact table on
 //! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
-use super::failures::{lost_paths, warn_failures};
+use super::curve_log::{PoseLines, RunLog};
+use super::failures::warn_failures;
 use super::outcome::Outcome;
-use super::output::{PartialFile, check_output_file, is_csv, write_file};
-use super::resources::{check_metric_pose_count, with_threads};
+use super::output::{PartialFile, check_output_file, extension, write_file};
+use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -16,8 +17,8 @@ use singdist::mechanism::rpr::{
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, PoseResult, compute_curve, default_start_solutions, sample_motion,
-    singular_parameters,
+    CurveOptions, CurveResult, CurveRun, PathFailure, PoseResult, collect_curve,
+    default_start_solutions, sample_motion, singular_parameters,
 };
 use std::path::{Path, PathBuf};
 
@@ -31,21 +32,22 @@ pub struct CurveArgs {
     /// Motion file (analytic motion or explicit pose list); default: the built-in example.
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given); poses ×
-    /// metrics at most 100,000 (every pose's results stay in memory until the end).
+    /// Number of poses evenly spaced in τ (pose lists are used as given). Streamed
+    /// outputs (`.csv`, `.jsonl`, the table on stdout) hold one window of poses at a
+    /// time, up to 1,000,000 poses; a `.json` document, `--plot` and `--html` hold every
+    /// pose, poses × metrics at most 100,000.
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
     /// Metrics: `all`, or names like `plate/plate bars/rigid` (or comma separated).
     #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
     metric: Vec<String>,
-    /// Output table: `.json` (full detail) or `.csv` (signed distance per metric, and
-    /// `lost_paths` per pose: paths lost there plus those lost at the seed, which
-    /// affect every pose). Checked, like `--plot`, before the computation.
-    /// Partial results are appended to `FILE.partial` (JSON lines, each with its pose
-    /// `index`) while running, in the order poses complete: the chain's start pose
-    /// (nearest Re τ*) first, then forwards and backwards from it, block by block. A
-    /// pose re-solved by the rescue pass (from a neighbouring pose) appears again, the
-    /// later line wins.
+    /// Output table: `.csv` (signed distance per metric, and `lost_paths` per pose:
+    /// paths lost there plus those lost at the seed, which affect every pose), `.jsonl`
+    /// (JSON Lines, full detail: a header record, one object per pose, a record per
+    /// window, a closing summary with every failure) or `.json` (one document, full
+    /// detail). Checked, like `--plot`, before the computation. While running, every
+    /// window of poses is appended to `FILE.partial` (JSON Lines) as soon as it is
+    /// final; `--resume` continues from it.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// SVG plot of the signed distance curves against τ, singular poses marked.
@@ -75,6 +77,19 @@ pub struct CurveArgs {
     /// twice the rest of a 90-pose run of the example; skipping it is not recommended.
     #[arg(long)]
     no_self_check: bool,
+    /// Continue the interrupted run of `--out FILE` from `FILE.partial`: its complete
+    /// windows are kept, the rest is computed again; the output is byte for byte that of
+    /// an uninterrupted run (without `FILE.partial`, the run starts afresh). Refused (naming the difference) if the arguments that
+    /// determine the results (design, motion, metrics, poses, seed, chain, window,
+    /// self-check) differ from the interrupted run's.
+    #[arg(long)]
+    resume: bool,
+    /// Poses per window: the motion is solved window by window, each window completely
+    /// (chains, rescue, self-check of its first, last and closest poses) before it is
+    /// written and dropped. Chains stay within a window. Results depend on it, not on
+    /// the thread count.
+    #[arg(long, value_name = "N", default_value_t = CurveOptions::default().window_poses)]
+    window: usize,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -126,18 +141,89 @@ pub fn check_samples(motion: Option<&Path>, samples: &[SampledPose]) -> Result<(
     })
 }
 
+/// Where the poses of a run go as windows complete.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum OutputKind {
+    /// The compact table on stdout.
+    Table,
+    /// `.json`: one document, written at the end (every pose kept in memory).
+    Json,
+    /// `.jsonl`: the run log with its summary line.
+    JsonLines,
+    /// `.csv`: one row per pose.
+    Csv,
+}
+
+impl OutputKind {
+    fn of(out: Option<&Path>) -> Self {
+        match out.map(|p| extension(p).unwrap_or_default()) {
+            None => OutputKind::Table,
+            Some(e) if e == "csv" => OutputKind::Csv,
+            Some(e) if e == "jsonl" => OutputKind::JsonLines,
+            Some(_) => OutputKind::Json,
+        }
+    }
+}
+
+/// `(name, value)` of every argument the results depend on, as the run log's header
+/// records them (a resume must match them all).
+fn run_arguments(
+    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    poses: usize,
+    options: &CurveOptions,
+) -> Result<Vec<(String, serde_json::Value)>> {
+    let json = |name: &str, v: serde_json::Value| (name.to_string(), v);
+    Ok(vec![
+        json("program", serde_json::json!(env!("CARGO_PKG_VERSION"))),
+        json("design", serde_json::to_value(design)?),
+        json("motion", serde_json::to_value(motion)?),
+        json(
+            "metric",
+            serde_json::json!(metrics.iter().map(Metric::name).collect::<Vec<_>>()),
+        ),
+        json("poses", serde_json::json!(poses)),
+        json("seed", serde_json::json!(options.seed)),
+        json("chain", serde_json::json!(options.chain_length)),
+        json("window", serde_json::json!(options.window_poses)),
+        json("self-check", serde_json::json!(options.self_check)),
+    ])
+}
+
 /// Runs `singdist curve`.
 pub fn run(args: CurveArgs) -> Result<Outcome> {
     let (design, motion) = load_inputs(args.design.as_deref(), args.motion.as_deref())?;
     let metrics = parse_metrics(&args.metric)?;
-    check_metric_pose_count(pose_count(&motion, args.poses), metrics.len())?;
+    let kind = OutputKind::of(args.out.as_deref());
+    let count = pose_count(&motion, args.poses);
+    // Only a `.json` document, a plot or a report holds every pose until the end.
+    let in_memory = kind == OutputKind::Json || args.plot.is_some() || args.html.is_some();
+    if in_memory {
+        check_metric_pose_count(count, metrics.len()).map_err(|e| {
+            anyhow!(
+                "{e}; a .json document, --plot and --html hold every pose: stream long runs with --out FILE.csv or FILE.jsonl"
+            )
+        })?;
+    } else {
+        check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
+    }
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
     check_samples(args.motion.as_deref(), &samples)?;
     if args.chain == 0 {
         bail!("--chain: must be at least 1");
     }
+    if args.window == 0 {
+        bail!("--window: must be at least 1");
+    }
     if let Some(out) = &args.out {
-        check_output_file("--out", out, &["json", "csv"])?;
+        check_output_file("--out", out, &["json", "jsonl", "csv"])?;
+    }
+    if args.resume && !matches!(kind, OutputKind::Csv | OutputKind::JsonLines) {
+        bail!(
+            "--resume: continues a streamed run: needs --out FILE.csv or FILE.jsonl (the run to continue is FILE.partial)"
+        );
+    }
+    if args.resume && (args.plot.is_some() || args.html.is_some()) {
+        bail!("--resume: --plot and --html need every pose in memory; resume without them");
     }
     if let Some(plot) = &args.plot {
         check_output_file("--plot", plot, &["svg"])?;
@@ -152,12 +238,10 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         seed: args.seed,
         chain_length: args.chain,
         self_check: !args.no_self_check,
+        window_poses: args.window,
         ..CurveOptions::default()
     };
-    let partial = match &args.out {
-        Some(out) => Some(PartialFile::create("--out", out)?),
-        None => None,
-    };
+    let arguments = run_arguments((&design, &motion, &metrics), samples.len(), &options)?;
     let progress = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -171,124 +255,141 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         bar.set_message("start solutions + seed");
         bar
     };
-    let on_pose = |pose: &PoseResult| {
+    let on_pose = |_: &PoseResult| {
         progress.set_message("poses");
         progress.inc(1);
-        if let Some(file) = &partial
-            && let Ok(line) = serde_json::to_string(pose)
-        {
-            file.append_line(&line);
-        }
     };
     let started = std::time::Instant::now();
-    let computed = with_threads(args.threads, || {
-        compute_curve(
-            &design,
-            &motion,
-            args.poses,
-            &metrics,
-            &options,
-            &default_start_solutions,
-            &on_pose,
-        )
-    })
-    .and_then(|r| Ok(r?));
-    progress.finish_and_clear();
-    let result = match computed {
-        Ok(result) => result,
-        Err(error) => return Err(abandon(partial, error)),
-    };
-    let elapsed = started.elapsed().as_secs_f64();
-    let singular = singular_parameters(&design, &motion, &samples);
-    match &args.out {
-        Some(path) => {
-            if let Err(error) = write_output(path, &result, &metrics) {
-                return Err(abandon(partial, error));
+    let context = (&design, &motion, &metrics[..]);
+    let streamed = with_threads(args.threads, || -> Result<Streamed> {
+        let run = CurveRun::new(context, args.poses, &options, &default_start_solutions)?;
+        let header = run.header();
+        let lines = match kind {
+            OutputKind::Csv => PoseLines::Csv,
+            _ => PoseLines::Json,
+        };
+        let log_header = (arguments, header.clone());
+        let samples = run.samples();
+        let tau_of = |j: usize| samples.get(j).map(|s| s.tau);
+        let mut log = match &args.out {
+            None => None,
+            Some(out) if args.resume && PartialFile::path_for(out).exists() => {
+                let log = RunLog::resume(out, log_header, (lines, &metrics[..]), &tau_of)?;
+                progress.set_position(log.totals.poses as u64);
+                Some(log)
             }
-            if let Some(partial) = partial {
-                // The final file supersedes the partial one.
-                partial.finish();
+            Some(out) => {
+                if args.resume {
+                    eprintln!(
+                        "singdist: note: --resume: {} does not exist; starting from the first window",
+                        PartialFile::path_for(out).display()
+                    );
+                }
+                Some(RunLog::create(out, log_header, lines, &metrics)?)
+            }
+        };
+        let mut kept = Vec::new();
+        if kind == OutputKind::Table {
+            print_table_header(&metrics);
+        }
+        let first = log.as_ref().map_or(0, |l| l.totals.windows);
+        let mut table_totals = (header.seed_paths_tracked, header.seed_failures.clone());
+        for w in first..header.windows {
+            let window = run.solve_window(w, &on_pose);
+            if let Some(file) = &mut log
+                && let Err(error) = file.write_window(&window)
+            {
+                let log = log.take().expect("the log is open");
+                return Err(log.abandon(error));
+            }
+            if kind == OutputKind::Table {
+                print_table_rows(&window.poses, &metrics);
+                table_totals.0 += window.paths_tracked;
+                table_totals
+                    .1
+                    .extend(window.poses.iter().flat_map(|p| p.failures.iter().cloned()));
+            }
+            if in_memory {
+                kept.push(window);
             }
         }
-        None => print_table(&result, &metrics, &singular),
+        let (paths_tracked, failures) = match &log {
+            Some(file) => (file.paths_tracked(), file.failures()),
+            None => table_totals,
+        };
+        let curve = in_memory.then(|| collect_curve(header, kept));
+        Ok(Streamed {
+            log,
+            curve,
+            paths_tracked,
+            failures,
+        })
+    })
+    .and_then(|r| r);
+    progress.finish_and_clear();
+    let streamed = streamed?;
+    let elapsed = started.elapsed().as_secs_f64();
+    let singular = singular_parameters(&design, &motion, &samples);
+    if let (Some(path), Some(log)) = (&args.out, streamed.log) {
+        match kind {
+            OutputKind::JsonLines => log.finish_jsonl(path)?,
+            OutputKind::Csv => log.finish_csv(path)?,
+            _ => {
+                let result = streamed
+                    .curve
+                    .as_ref()
+                    .expect("a .json run keeps its poses");
+                let text = serde_json::to_string_pretty(result).context("serialising the curve")?;
+                if let Err(error) = write_file("--out", path, text) {
+                    return Err(log.abandon(error));
+                }
+                // The final file supersedes the partial one.
+                log.remove();
+            }
+        }
     }
-    if let Some(path) = &args.plot {
-        plot(path, &result, &metrics, &singular)?;
+    if kind == OutputKind::Table {
+        print_table_footer(&singular);
     }
-    if let Some(path) = &args.html {
+    if let (Some(path), Some(result)) = (&args.plot, &streamed.curve) {
+        plot(path, result, &metrics, &singular)?;
+    }
+    if let (Some(path), Some(result)) = (&args.html, &streamed.curve) {
         let names: Vec<String> = metrics.iter().map(Metric::name).collect();
-        let report = rpr_report(&design, &result, &names, &singular);
+        let report = rpr_report(&design, result, &names, &singular);
         write_file("--html", path, report_html(&report))?;
     }
     if !args.quiet {
         eprintln!(
             "singdist: {} poses, {} metrics, {} paths in {:.3} s ({:.0} paths/s)",
-            result.poses.len(),
+            samples.len(),
             metrics.len(),
-            result.paths_tracked,
+            streamed.paths_tracked,
             elapsed,
-            result.paths_tracked as f64 / elapsed.max(1e-9)
+            streamed.paths_tracked as f64 / elapsed.max(1e-9)
         );
     }
-    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
+    Ok(Outcome::paths_lost_if(warn_failures(&streamed.failures)))
 }
 
-/// The error of a failed run, naming (or removing, if empty) its partial file.
-fn abandon(partial: Option<PartialFile>, error: anyhow::Error) -> anyhow::Error {
-    match partial {
-        Some(partial) => partial.abandon(error),
-        None => error,
-    }
+/// What a run leaves for its outputs once every window is done.
+struct Streamed {
+    log: Option<RunLog>,
+    curve: Option<CurveResult>,
+    paths_tracked: usize,
+    failures: Vec<PathFailure>,
 }
 
-fn write_output(path: &Path, result: &CurveResult, metrics: &[Metric]) -> Result<()> {
-    let text = if is_csv(path) {
-        csv_text(result, metrics)?
-    } else {
-        serde_json::to_string_pretty(result).context("serialising the curve")?
-    };
-    write_file("--out", path, text)
-}
-
-/// CSV: `tau, x, y, phi, S`, then one column per metric (signed distance), then
-/// `lost_paths`: the paths lost at that pose (its own failures plus the seed stage's,
-/// which affect every pose; 0 when every critical point was found).
-pub fn csv_text(result: &CurveResult, metrics: &[Metric]) -> Result<String> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
-    let mut header: Vec<String> = ["tau", "x", "y", "phi", "S"].map(String::from).to_vec();
-    header.extend(metrics.iter().map(Metric::name));
-    header.push("lost_paths".into());
-    writer.write_record(&header)?;
-    for pose in &result.poses {
-        let mut row: Vec<String> = vec![
-            pose.tau.to_string(),
-            pose.pose[0].to_string(),
-            pose.pose[1].to_string(),
-            pose.pose[2].to_string(),
-            pose.singularity.to_string(),
-        ];
-        for metric in metrics {
-            row.push(
-                pose.metrics
-                    .get(&metric.name())
-                    .map(|m| m.signed_distance.to_string())
-                    .unwrap_or_default(),
-            );
-        }
-        row.push(lost_paths(&pose.failures, &result.failures).to_string());
-        writer.write_record(&row)?;
-    }
-    let bytes = writer.into_inner().context("writing CSV")?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
-}
-
-fn print_table(result: &CurveResult, metrics: &[Metric], singular: &[f64]) {
+fn print_table_header(metrics: &[Metric]) {
     print!("{:>9} {:>11}", "tau", "S");
     for metric in metrics {
         print!(" {:>12}", metric.name());
     }
     println!();
-    for pose in &result.poses {
+}
+
+fn print_table_rows(poses: &[PoseResult], metrics: &[Metric]) {
+    for pose in poses {
         print!("{:>9.4} {:>11.4e}", pose.tau, pose.singularity);
         for metric in metrics {
             match pose.metrics.get(&metric.name()) {
@@ -302,6 +403,9 @@ fn print_table(result: &CurveResult, metrics: &[Metric], singular: &[f64]) {
         }
         println!();
     }
+}
+
+fn print_table_footer(singular: &[f64]) {
     println!(
         "signed distance to the nearest singularity (sign of S); * = cut locus; singular poses at tau = {}",
         singular

@@ -5,6 +5,7 @@
 
 pub mod ab_initio;
 pub mod curve;
+pub mod curve_log;
 pub mod distance;
 pub mod draw;
 pub mod failures;

@@ -143,10 +143,49 @@ impl PartialFile {
         })
     }
 
-    /// Appends one line; a failed append only loses the partial copy.
-    pub fn append_line(&self, line: &str) {
+    /// Opens the partial file of `out` to continue it after its first `keep` bytes
+    /// (what follows is cut off).
+    pub fn reopen(option: &str, out: &Path, keep: u64) -> Result<Self> {
+        let path = Self::path_for(out);
+        let cannot = |e: std::io::Error| {
+            anyhow!(
+                "{option}: {}: cannot continue the partial file: {e}",
+                path.display()
+            )
+        };
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(cannot)?;
+        file.set_len(keep).map_err(cannot)?;
+        Ok(PartialFile {
+            path,
+            file: std::sync::Mutex::new(file),
+        })
+    }
+
+    /// Where the partial file is.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Appends `text` in one write; the error names the file.
+    pub fn append(&self, text: &str) -> Result<()> {
         let mut file = self.file.lock().unwrap_or_else(|e| e.into_inner());
-        let _ = writeln!(file, "{line}");
+        file.write_all(text.as_bytes())
+            .and_then(|()| file.flush())
+            .map_err(|e| anyhow!("--out: {}: cannot write: {e}", self.path.display()))
+    }
+
+    /// The partial file is complete and becomes `out`.
+    pub fn rename_to(self, option: &str, out: &Path) -> Result<()> {
+        match std::fs::rename(&self.path, out) {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                let error = anyhow!("{option}: {}: cannot write: {e}", out.display());
+                Err(self.abandon(error))
+            }
+        }
     }
 
     /// The final file was written: the partial one goes.

@@ -132,12 +132,19 @@ pub(super) fn solve_chain(
     // Per (direction, sub-problem), the complete solution sets of the last poses
     // (latest first) and the latest pose: cleared where a pose went the seed route.
     type History = (usize, Vec<Vec<Vec<C64>>>);
-    let assemble = |j: usize, at_pose: Vec<ProblemAtPose>| {
+    let assemble = |j: usize, mut at_pose: Vec<ProblemAtPose>| {
         let sample = samples[j];
         let k = design.configuration(sample.pose).to_array();
         let entries = at_pose.iter().map(|p| p.entry.clone()).collect();
         let result = assemble_pose(stage, metrics, j, sample, &k, entries, options);
         on_pose(&result);
+        // Only poses that lost paths are assembled again (by the rescue pass): the
+        // others' candidates are done with.
+        if at_pose.iter().all(|p| p.entry.2.is_none()) {
+            for problem in &mut at_pose {
+                problem.entry.0 = Vec::new();
+            }
+        }
         (result, at_pose)
     };
     // Runs one sub-problem's chain through `block` (poses in chain order).
@@ -179,6 +186,8 @@ pub(super) fn solve_chain(
         .map(|(problem_index, history)| run(history, problem_index, &[anchor]).remove(0))
         .collect();
     let mut out = vec![assemble(anchor, at_anchor)];
+    let mut position: Vec<Option<usize>> = vec![None; poses.len()];
+    position[anchor - poses.start] = Some(0);
     // Both directions continue from the anchor's sets.
     let mut histories: Vec<History> = [anchor_history.clone(), anchor_history].concat();
     // The sub-problems' chains are independent: each runs through a block of poses
@@ -210,12 +219,37 @@ pub(super) fn solve_chain(
                     .iter_mut()
                     .map(|results| results.next().expect("one result per pose"))
                     .collect();
+                position[j - poses.start] = Some(out.len());
                 out.push(assemble(j, at_pose));
             }
         }
+        release_unneeded_sets(&mut out, &position);
     }
     out.sort_by_key(|(result, _)| result.index);
     out
+}
+
+/// Drops the complete solution sets of a chain's poses (`out`, with `position[i]` the
+/// place of the chain's `i`-th pose in it, if solved) that the rescue pass cannot need:
+/// it starts only from a pose next to one that lost paths for that sub-problem, so a
+/// set whose two neighbours in the chain are solved and lost nothing goes. The chain's
+/// first and last pose keep theirs (their other neighbours are in other chains). This
+/// bounds a chain's memory by its results, not by its critical points.
+fn release_unneeded_sets(out: &mut [(PoseResult, Vec<ProblemAtPose>)], position: &[Option<usize>]) {
+    let lost = |out: &[(PoseResult, Vec<ProblemAtPose>)], at: usize, p: usize| {
+        out[at].1[p].entry.2.is_some()
+    };
+    for i in 1..position.len().saturating_sub(1) {
+        let (Some(at), Some(before), Some(after)) = (position[i], position[i - 1], position[i + 1])
+        else {
+            continue;
+        };
+        for p in 0..out[at].1.len() {
+            if out[at].1[p].complete.is_some() && !lost(out, before, p) && !lost(out, after, p) {
+                out[at].1[p].complete = None;
+            }
+        }
+    }
 }
 
 /// The rescue pass (stage 3b): every run of consecutive poses at which a sub-problem
@@ -224,11 +258,13 @@ pub(super) fn solve_chain(
 /// pose after it for what is still incomplete. Near a pose the critical points move
 /// little, so short pose-to-pose paths (through a complex midpoint) follow critical
 /// points that the long seed → pose paths lose, e.g. huge ill-conditioned ones.
-/// Returns the indices of the poses whose entries changed.
+/// `samples` and `work` are one window's poses, the first of index `offset`; the
+/// runs and neighbours stay within the window. Returns the window-local indices of
+/// the poses whose entries changed.
 pub(super) fn rescue_from_neighbours(
     stage: &SeedStage,
     motion: &Motion,
-    samples: &[SampledPose],
+    (offset, samples): (usize, &[SampledPose]),
     work: &mut [Vec<ProblemAtPose>],
     options: &CurveOptions,
 ) -> Vec<usize> {
@@ -264,7 +300,7 @@ pub(super) fn rescue_from_neighbours(
                 let result = track_problem(
                     stage,
                     motion,
-                    (to, samples[to]),
+                    (offset + to, samples[to]),
                     p,
                     Route::Neighbour {
                         from: MotionPoint::target(motion, &samples[from]),

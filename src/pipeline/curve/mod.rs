@@ -52,7 +52,8 @@
 //!    attempt; at the seed, through random complex parameters near `p*`, more
 //!    attempts); finite endpoints of all attempts are merged. Paths classified at
 //!    infinity are accounted for.
-//!    **Rescue from neighbours**: once every pose is done, each run of consecutive
+//!    **Rescue from neighbours**: once every pose of a window
+//!    ([`CurveOptions::window_poses`]) is done, each run of consecutive
 //!    poses at which a sub-problem still lost paths is re-solved pose by pose from the
 //!    complete finite solution set of the pose before the run (forward), then of the
 //!    pose after it (backward), through a random complex midpoint between the two
@@ -95,6 +96,7 @@ mod options;
 mod retry;
 mod seed;
 mod self_check;
+mod window;
 pub use chain::solve_pose;
 use chain::*;
 use jump::*;
@@ -103,6 +105,7 @@ use retry::*;
 pub(crate) use retry::{Retried, TrackingPlan, track_with_retries};
 pub use seed::*;
 pub use self_check::{SELF_CHECK_TOLERANCE, SelfCheck};
+pub use window::{CurveHeader, CurveRun, CurveWindow, collect_curve, window_ranges};
 
 /// Errors of the curve pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -850,8 +853,10 @@ fn chain_blocks(
     blocks
 }
 
-/// The whole curve: seed stage, then every pose in parallel; `on_pose` is called as
-/// each pose completes (in completion order, e.g. to append partial results).
+/// The whole curve: seed stage, then every window of poses ([`CurveRun`]) in order,
+/// each with its poses in parallel; `on_pose` is called as each pose completes (in
+/// completion order, e.g. for progress). Holds every pose's results until the end:
+/// long runs use [`CurveRun`] and hand each window on instead.
 pub fn compute_curve(
     design: &Design,
     motion: &Motion,
@@ -861,61 +866,12 @@ pub fn compute_curve(
     provider: StartProvider<'_>,
     on_pose: &(dyn Fn(&PoseResult) + Sync),
 ) -> Result<CurveResult, PipelineError> {
-    let samples = sample_motion(motion, poses)?;
-    let stage = seed_stage(design, motion, metrics, options, provider)?;
-    let blocks = chain_blocks(design, &samples, options.chain_length, stage.normalization);
-    let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = blocks
-        .par_iter()
-        .flat_map_iter(|&(first, last)| {
-            solve_chain(
-                &stage,
-                design,
-                motion,
-                metrics,
-                &samples,
-                first..last,
-                options,
-                on_pose,
-            )
-        })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .unzip();
-    for j in rescue_from_neighbours(&stage, motion, &samples, &mut work, options) {
-        let k = design.configuration(samples[j].pose).to_array();
-        let entries = work[j].iter().map(|p| p.entry.clone()).collect();
-        results[j] = assemble_pose(&stage, metrics, j, samples[j], &k, entries, options);
-        on_pose(&results[j]);
-    }
-    let self_check = if options.self_check {
-        let context = (design, motion, metrics);
-        Some(self_check::self_check(
-            context,
-            &samples,
-            &mut results,
-            options,
-            provider,
-        )?)
-    } else {
-        None
-    };
-    let mut failures = stage.failures.clone();
-    failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
-    let paths_tracked =
-        stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
-    Ok(CurveResult {
-        metric_names: metrics.iter().map(Metric::name).collect(),
-        seed: options.seed,
-        tau_star: match stage.seed.point {
-            MotionPoint::Tau(t) => Some([t.re, t.im]),
-            MotionPoint::Pose(_) => None,
-        },
-        not_applicable: stage.not_applicable.clone(),
-        poses: results,
-        failures,
-        paths_tracked,
-        self_check,
-    })
+    let run = CurveRun::new((design, motion, metrics), poses, options, provider)?;
+    let header = run.header();
+    let windows = (0..header.windows)
+        .map(|w| run.solve_window(w, on_pose))
+        .collect();
+    Ok(collect_curve(header, windows))
 }
 
 /// Parameters τ where `S(K(τ))` changes sign between consecutive samples, refined by

@@ -57,11 +57,29 @@ pub struct CurveOptions {
     /// independent seed stage and compare ([`SelfCheck`]); on by default.
     #[serde(default = "default_self_check")]
     pub self_check: bool,
+    /// Poses per window: the motion is solved in consecutive windows of this many
+    /// poses, each completely (chains, rescue from neighbours, self-check) before the
+    /// next, so a run holds one window's results at a time and can hand each window
+    /// on (written, then dropped) as soon as it is final. Chains and the rescue pass
+    /// stay within a window. Fixed by the arguments, never by the thread count, so
+    /// neither are the results. Default [`DEFAULT_WINDOW_POSES`].
+    #[serde(default = "default_window_poses")]
+    pub window_poses: usize,
     /// Certify every pose's critical points in interval arithmetic
     /// ([`crate::certify::distance`]) and report per metric whether the distance is a
     /// proved global minimum; off by default.
     #[serde(default)]
     pub certify: bool,
+}
+
+/// Default [`CurveOptions::window_poses`]: 1000, the default chain length, so that a
+/// window is one chain. Its working set is a few MB (one metric) to a few tens of MB
+/// (nine), and its self-check (three to eleven poses along the seed route) costs
+/// little next to its 1000 chained poses.
+pub const DEFAULT_WINDOW_POSES: usize = 1000;
+
+fn default_window_poses() -> usize {
+    DEFAULT_WINDOW_POSES
 }
 
 fn default_self_check() -> bool {
@@ -126,6 +144,7 @@ impl Default for CurveOptions {
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
             self_check: default_self_check(),
+            window_poses: default_window_poses(),
             certify: false,
         }
     }

@@ -9,7 +9,9 @@
 //! (no chains, no Newton jumps). Where the check finds a closer real critical point
 //! than the run, the run missed one: the pose reports the check's (smaller, feasible)
 //! result and a [`PathFailure`] `self-check` (exit code 3), since the poses that were
-//! not checked may have missed it too.
+//! not checked may have missed it too. A run in windows ([`CurveOptions::window_poses`])
+//! checks every window this way (its first, last and closest poses) before the window
+//! is written.
 
 use super::*;
 
@@ -56,35 +58,56 @@ fn poses_to_check(results: &[PoseResult], metrics: &[Metric]) -> Vec<usize> {
     poses
 }
 
+/// The check's independent seed stage (seed + 24,095), built once per run and shared by
+/// every window.
+pub(super) fn check_stage(
+    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    options: &CurveOptions,
+    provider: StartProvider<'_>,
+) -> Result<(SeedStage, CurveOptions), PipelineError> {
+    let check_options = CurveOptions {
+        seed: check_seed(options.seed),
+        ..options.clone()
+    };
+    let stage = seed_stage(design, motion, metrics, &check_options, provider)?;
+    Ok((stage, check_options))
+}
+
 /// Re-solves [`poses_to_check`] from an independent seed stage and folds the
 /// comparison into `results` (see the module documentation; a disagreement is added
 /// to the pose's failures). Returns what was compared.
+#[cfg(test)]
 pub(super) fn self_check(
-    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    context: (&Design, &Motion, &[Metric]),
     samples: &[SampledPose],
     results: &mut [PoseResult],
     options: &CurveOptions,
     provider: StartProvider<'_>,
 ) -> Result<SelfCheck, PipelineError> {
-    let check_options = CurveOptions {
-        seed: check_seed(options.seed),
-        ..options.clone()
-    };
+    let (stage, check_options) = check_stage(context, options, provider)?;
+    let (design, motion, metrics) = context;
+    let checked = (&stage, &check_options);
+    Ok(check_poses(
+        checked,
+        (design, motion, metrics),
+        samples,
+        results,
+    ))
+}
+
+/// [`self_check`] with the check's stage and options given ([`check_stage`]):
+/// `results` are consecutive poses (one window of the run), `samples` every pose of
+/// the run (indexed by pose index).
+pub(super) fn check_poses(
+    (stage, check_options): (&SeedStage, &CurveOptions),
+    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    samples: &[SampledPose],
+    results: &mut [PoseResult],
+) -> SelfCheck {
     let poses = poses_to_check(results, metrics);
-    let stage = seed_stage(design, motion, metrics, &check_options, provider)?;
     let checked: Vec<PoseResult> = poses
         .par_iter()
-        .map(|&j| {
-            solve_pose(
-                &stage,
-                design,
-                motion,
-                metrics,
-                j,
-                samples[j],
-                &check_options,
-            )
-        })
+        .map(|&j| solve_pose(stage, design, motion, metrics, j, samples[j], check_options))
         .collect();
     let floor = 1e-12 * design.length_scale();
     let mut worst: f64 = 0.0;
@@ -117,12 +140,25 @@ pub(super) fn self_check(
             }
         }
     }
-    Ok(SelfCheck {
+    SelfCheck {
         seed: check_options.seed,
         poses,
         worst_relative_difference: worst,
         disagreements,
-    })
+    }
+}
+
+impl SelfCheck {
+    /// The check of a run made of windows: the checks of `self` and `later` (a later
+    /// window) together — poses of both, the larger worst difference, the sum of the
+    /// disagreements.
+    pub fn merge(&mut self, later: &SelfCheck) {
+        self.poses.extend(&later.poses);
+        self.worst_relative_difference = self
+            .worst_relative_difference
+            .max(later.worst_relative_difference);
+        self.disagreements += later.disagreements;
+    }
 }
 
 #[cfg(test)]
