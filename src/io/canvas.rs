@@ -223,16 +223,72 @@ pub(crate) fn joint_circle(out: &mut String, class: &str, p: [f64; 2]) {
 /// Distance in pixels from a point to the centre of its label.
 const LABEL_OFFSET: f64 = 18.0;
 
-/// An italic point label 18 px from pixel position `at` in the pixel direction `away`
-/// (white halo, so lines under it do not hide it).
-pub(crate) fn point_label(out: &mut String, class: &str, at: [f64; 2], away: [f64; 2], text: &str) {
-    let n = norm(away).max(1e-9);
+/// An italic label centred at pixel position `centre` (white halo, so lines under
+/// it do not hide it).
+fn label_at(out: &mut String, class: &str, centre: [f64; 2], text: &str) {
     let _ = writeln!(
         out,
         r##"<text class="{class}" x="{}" y="{}" font-size="15" font-style="italic" text-anchor="middle" dominant-baseline="central" stroke="#fff" stroke-width="4" paint-order="stroke">{text}</text>"##,
-        px(at[0] + LABEL_OFFSET * away[0] / n),
-        px(at[1] + LABEL_OFFSET * away[1] / n),
+        px(centre[0]),
+        px(centre[1]),
     );
+}
+
+/// Two label centres closer than this across and up (px) would overprint.
+const LABEL_CLEARANCE: [f64; 2] = [22.0, 16.0];
+
+/// Point labels of one drawing, placed so that none overprints an earlier one.
+#[derive(Default)]
+pub(crate) struct PointLabels {
+    placed: Vec<[f64; 2]>,
+}
+
+impl PointLabels {
+    /// Writes a label 18 px from pixel position `at` in the pixel direction `away`
+    /// unless that overprints an earlier label (coincident points, e.g. two anchors at
+    /// one place); then at the first free place among the direction turned by ±60°,
+    /// ±120°, 180° at 18 px, then the same at 34 px. A zero direction means "above".
+    pub(crate) fn place(
+        &mut self,
+        out: &mut String,
+        class: &str,
+        (at, away): ([f64; 2], [f64; 2]),
+        text: &str,
+    ) {
+        let n = norm(away);
+        let d = if n > 1e-9 {
+            [away[0] / n, away[1] / n]
+        } else {
+            [0.0, -1.0]
+        };
+        let preferred = [
+            at[0] + LABEL_OFFSET * away[0] / n.max(1e-9),
+            at[1] + LABEL_OFFSET * away[1] / n.max(1e-9),
+        ];
+        let free = |c: &[f64; 2]| {
+            self.placed.iter().all(|q| {
+                (q[0] - c[0]).abs() >= LABEL_CLEARANCE[0]
+                    || (q[1] - c[1]).abs() >= LABEL_CLEARANCE[1]
+            })
+        };
+        let centre = if n > 1e-9 && free(&preferred) {
+            preferred
+        } else {
+            let turns = [0.0f64, 60.0, -60.0, 120.0, -120.0, 180.0];
+            [LABEL_OFFSET, 34.0]
+                .iter()
+                .flat_map(|r| turns.iter().map(move |t| (*r, t.to_radians())))
+                .map(|(r, t)| {
+                    let (sin, cos) = t.sin_cos();
+                    let turned = [d[0] * cos - d[1] * sin, d[0] * sin + d[1] * cos];
+                    [at[0] + r * turned[0], at[1] + r * turned[1]]
+                })
+                .find(|c| free(c))
+                .unwrap_or(preferred)
+        };
+        label_at(out, class, centre, text);
+        self.placed.push(centre);
+    }
 }
 
 /// Thin dotted guide lines (leg lines to their meeting point, degenerate lines) in the

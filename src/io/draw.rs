@@ -17,8 +17,8 @@
 
 pub use super::canvas::Extent;
 use super::canvas::{
-    Canvas, Legend, centroid, collinear_line, guide_attributes, joint_circle, leg_line, norm,
-    open_drawing, point_label, polygon, sub, svg_document,
+    Canvas, Legend, PointLabels, centroid, collinear_line, guide_attributes, joint_circle,
+    leg_line, norm, open_drawing, polygon, sub, svg_document,
 };
 pub use super::leg_lines::{LegMeeting, leg_meeting};
 use super::leg_lines::{NEAR_MEETING, mark_meeting};
@@ -172,6 +172,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; 12]) {
         k,
         r##" stroke="#222" stroke-width="4" stroke-linecap="round""##,
     );
+    let mut labels = PointLabels::default();
     for (first, letter) in [(0, 'a'), (3, 'b')] {
         let points: Vec<[f64; 2]> = (first..first + 3).map(|j| anchor(k, j)).collect();
         let c = canvas.pixel(centroid(&points));
@@ -180,7 +181,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; 12]) {
             joint_circle(out, "anchor", p);
             // The label sits outside the triangle, 18 px from the anchor.
             let text = format!("{letter}{}", i + 1);
-            point_label(out, "anchor-label", p, sub(p, c), &text);
+            labels.place(out, "anchor-label", (p, sub(p, c)), &text);
         }
     }
     out.push_str("</g>\n");
@@ -442,5 +443,34 @@ mod tests {
         for label in ["a1", "a2", "a3", "b1", "b2", "b3"] {
             assert!(svg.contains(&format!(">{label}</text>")), "{label}");
         }
+    }
+
+    #[test]
+    fn labels_of_coincident_anchors_do_not_overprint() {
+        // a1 = a2 = (0, 0).
+        let k = [0.0, 0.0, 0.0, 0.0, 4.0, 8.0, 3.0, 2.0, 5.0, 2.0, 4.0, 4.0];
+        let scene = Scene {
+            title: "coincident".into(),
+            configuration: k,
+            overlays: vec![],
+            length_unit: "m".into(),
+        };
+        let svg = scene_svg(&scene, &scene_extent(&scene));
+        let centre = |label: &str| -> [f64; 2] {
+            let end = svg.find(&format!(">{label}</text>")).expect(label);
+            let start = svg[..end].rfind("<text").expect("text element");
+            let number = |name: &str| -> f64 {
+                let from = start + svg[start..].find(&format!(" {name}=\"")).unwrap() + 4;
+                svg[from..from + svg[from..].find('"').unwrap()]
+                    .parse()
+                    .unwrap()
+            };
+            [number("x"), number("y")]
+        };
+        let (a1, a2) = (centre("a1"), centre("a2"));
+        assert!(
+            (a1[0] - a2[0]).abs() >= 22.0 || (a1[1] - a2[1]).abs() >= 16.0,
+            "{a1:?} {a2:?}"
+        );
     }
 }

@@ -16,8 +16,8 @@
 //! `circle.meet`, `path.meet-direction`, `line.degenerate-line`, `g#legend`.
 
 use super::canvas::{
-    Canvas, Extent, Legend, centroid, collinear_line, guide_attributes, joint_circle, leg_line,
-    norm, open_drawing, point_label, polygon, sub, svg_document,
+    Canvas, Extent, Legend, PointLabels, centroid, collinear_line, guide_attributes, joint_circle,
+    leg_line, norm, open_drawing, polygon, sub, svg_document,
 };
 use super::leg_lines::{LegMeeting, NEAR_MEETING, leg_meeting, mark_meeting};
 use super::svg::{SeriesStyle, escape, px, series_style, short, stroke_attributes};
@@ -209,6 +209,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
             &(first..first + 3).map(|j| joint(k, j)).collect::<Vec<_>>(),
         ))
     };
+    let mut labels = PointLabels::default();
     for i in 0..3 {
         let (o, b, c) = (
             pixel(joint(k, i)),
@@ -226,20 +227,9 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
         }
         // O_i and C_i labels outside their triangles, B_i's beside its elbow, away
         // from the midpoint of O_i and C_i.
-        point_label(
-            out,
-            "joint-label",
-            o,
-            sub(o, centre(0)),
-            &format!("O{}", i + 1),
-        );
-        point_label(
-            out,
-            "joint-label",
-            c,
-            sub(c, centre(6)),
-            &format!("C{}", i + 1),
-        );
+        let class = "joint-label";
+        labels.place(out, class, (o, sub(o, centre(0))), &format!("O{}", i + 1));
+        labels.place(out, class, (c, sub(c, centre(6))), &format!("C{}", i + 1));
         let mid = [0.5 * (o[0] + c[0]), 0.5 * (o[1] + c[1])];
         let away = sub(b, mid);
         let away = if norm(away) > 1.0 {
@@ -247,7 +237,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
         } else {
             [-(c[1] - o[1]), c[0] - o[0]]
         };
-        point_label(out, "joint-label", b, away, &format!("B{}", i + 1));
+        labels.place(out, class, (b, away), &format!("B{}", i + 1));
     }
     out.push_str("</g>\n");
 }
