@@ -12,31 +12,80 @@ use clap::Args;
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, check_input_number};
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, default_start_solutions,
+    CurveOptions, CurveResult, PoseResult, compute_curve, default_start_solutions,
 };
 use std::path::PathBuf;
+
+/// The pose problem `distance` solves and `draw` draws: design, pose and metrics.
+#[derive(Args, Debug)]
+pub struct PoseMetricArgs {
+    /// Design file; default: the built-in example. Lengths are in its unit.
+    #[arg(long, value_name = "FILE")]
+    design: Option<PathBuf>,
+    /// The pose `x,y,phi`: platform position (design length unit) and orientation φ
+    /// (radians).
+    #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
+    pose: String,
+    /// Metrics: `all`, or names `PLATFORM/BASE` with each part `plate`, `bars` or
+    /// `rigid` (space or comma separated).
+    #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
+    metric: Vec<String>,
+}
+
+/// Worker threads and seed, the last options of the one-pose commands.
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Worker threads (default: all cores; more than the cores is clamped to them).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Seed of every random choice.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+}
 
 /// Arguments of `singdist distance`.
 #[derive(Args, Debug)]
 pub struct DistanceArgs {
-    /// Design file; default: the built-in example.
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// The pose `x,y,phi` (phi in radians).
-    #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
-    pose: String,
-    /// Metrics: `all`, or names like `plate/plate bars/rigid` (or comma separated).
-    #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
-    metric: Vec<String>,
+    #[command(flatten)]
+    problem: PoseMetricArgs,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     json: bool,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Seed of every random choice.
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    seed: u64,
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+/// A solved pose problem: the design, the metrics and the curve pipeline's result on
+/// the one pose (its only entry of `poses`).
+pub struct SolvedPose {
+    /// The design (the built-in example without `--design`).
+    pub design: Design,
+    /// The metrics asked for, in order.
+    pub metrics: Vec<Metric>,
+    /// The result; `poses[0]` is the pose.
+    pub result: CurveResult,
+}
+
+impl SolvedPose {
+    /// The pose's result (an error if the pipeline returned none).
+    pub fn at(&self) -> Result<&PoseResult> {
+        self.result.poses.first().context("no result for the pose")
+    }
+}
+
+impl PoseMetricArgs {
+    /// Parses the pose, loads the design and metrics, and solves the pose.
+    pub fn solve(&self, run: &RunArgs) -> Result<SolvedPose> {
+        let pose = parse_pose(&self.pose)?;
+        let (design, _) = load_inputs(self.design.as_deref(), None)?;
+        let metrics = parse_metrics(&self.metric)?;
+        let result = solve_pose(&design, pose, &metrics, run.seed, run.threads)?;
+        Ok(SolvedPose {
+            design,
+            metrics,
+            result,
+        })
+    }
 }
 
 /// Parses `x,y,phi` into a pose; each number must be finite and within ±1e12
@@ -104,13 +153,8 @@ pub fn labelled_points(k: &[f64; 12]) -> String {
 
 /// Runs `singdist distance`.
 pub fn run(args: DistanceArgs) -> Result<Outcome> {
-    let pose = parse_pose(&args.pose)?;
-    let (design, _) = load_inputs(args.design.as_deref(), None)?;
-    let metrics = parse_metrics(&args.metric)?;
-    let result = solve_pose(&design, pose, &metrics, args.seed, args.threads)?;
-    let Some(at) = result.poses.first() else {
-        bail!("no result for the pose");
-    };
+    let solved = args.problem.solve(&args.run)?;
+    let (at, metrics, result) = (solved.at()?, &solved.metrics, &solved.result);
     if args.json {
         println!(
             "{}",
@@ -127,7 +171,7 @@ pub fn run(args: DistanceArgs) -> Result<Outcome> {
             "pose x = {}, y = {}, phi = {}: S = {:.6e}",
             at.pose[0], at.pose[1], at.pose[2], at.singularity
         );
-        for metric in &metrics {
+        for metric in metrics {
             let name = metric.name();
             let Some(m) = at.metrics.get(&name) else {
                 println!("{name:>12}: no real critical point found");

@@ -3,6 +3,7 @@
 //! `singdist rrr curve` computes them, on the one-pose motion).
 
 use super::distance::parse_pose;
+use super::draw::DrawingOutputArgs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
@@ -32,20 +33,14 @@ pub struct RrrDrawArgs {
     /// `working_modes`.
     #[arg(long, value_name = "S1,S2,S3", allow_hyphen_values = true)]
     modes: Option<String>,
-    /// Output drawing (`.svg`).
-    #[arg(long, value_name = "FILE.svg")]
-    out: PathBuf,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Seed of every random choice.
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    seed: u64,
+    #[command(flatten)]
+    output: DrawingOutputArgs,
 }
 
 /// Runs `singdist rrr draw`.
 pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
-    check_output_file("--out", &args.out, &["svg"])?;
+    let output = &args.output;
+    check_output_file("--out", &output.out, &["svg"])?;
     let pose = parse_pose(&args.pose)?;
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
     let trajectory = trajectory_of(
@@ -56,10 +51,10 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
     )?;
     let configuration = trajectory.configuration(0.0).context("--pose")?;
     let options = RrrCurveOptions {
-        seed: args.seed,
+        seed: output.run.seed,
         ..RrrCurveOptions::default()
     };
-    let result = with_threads(args.threads, || {
+    let result = with_threads(output.run.threads, || {
         compute_rrr_curve_at(&trajectory, &[0.0], &options, &default_rrr_start_solutions)
     })??;
     let Some(at) = result.poses.first() else {
@@ -73,7 +68,7 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
     let scene = RrrScene::of_pose(&configuration, at, "design length unit");
     write_file(
         "--out",
-        &args.out,
+        &output.out,
         rrr_scene_svg(&scene, &rrr_scene_extent(&scene)),
     )?;
     Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))

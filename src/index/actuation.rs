@@ -872,11 +872,11 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
                     map.scheme.name(),
                     map.phi.to_degrees()
                 ),
-                ("sans-serif", 14),
+                ("sans-serif", 17),
             )
             .margin(6)
-            .x_label_area_size(36)
-            .y_label_area_size(44)
+            .x_label_area_size(42)
+            .y_label_area_size(50)
             .build_cartesian_2d(g.x_min..g.x_max, g.y_min..g.y_max)
             .map_err(|e| plot_error(e.to_string()))?;
         chart
@@ -885,9 +885,9 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
             .x_labels(5)
             .y_labels(5)
             .x_desc("x (design length unit)")
-            .y_desc("y")
-            .label_style(("sans-serif", 12))
-            .axis_desc_style(("sans-serif", 12))
+            .y_desc("y (design length unit)")
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 15))
             .x_label_formatter(&|v| crate::io::svg::plain(*v, 2))
             .y_label_formatter(&|v| crate::io::svg::plain(*v, 2))
             .draw()

@@ -460,6 +460,10 @@ fn equal_scale_view(x: (f64, f64), y: (f64, f64), pixels: (f64, f64)) -> ((f64, 
     (widen(x, pixels.0), widen(y, pixels.1))
 }
 
+/// Width in pixels of a map panel's colour-bar column: the bar (about 24 px), its tick
+/// marks and its tick labels.
+const COLOUR_BAR_WIDTH: u32 = 100;
+
 fn draw_svg(
     map: &ConditioningMap,
     path: &std::path::Path,
@@ -467,7 +471,13 @@ fn draw_svg(
 ) -> Result<(), String> {
     use plotters::prelude::*;
     let o = &map.options;
-    type Panel<'a> = (String, Box<dyn Fn(usize) -> Option<f64> + 'a>, (f64, f64));
+    // Title, colour-bar caption, value of node k, colour range.
+    type Panel<'a> = (
+        String,
+        String,
+        Box<dyn Fn(usize) -> Option<f64> + 'a>,
+        (f64, f64),
+    );
     let panels: Vec<Panel> = {
         let mut p: Vec<Panel> = vec![(
             format!(
@@ -480,6 +490,7 @@ fn draw_svg(
                 o.alpha,
                 map.min_value().unwrap_or(f64::NAN)
             ),
+            o.variant.formula().to_string(),
             Box::new(|k| map.values[k]),
             (0.0, 1.0),
         )];
@@ -487,6 +498,7 @@ fn draw_svg(
             for leg in 0..3 {
                 p.push((
                     format!("arg-max delta{} (m)", leg + 1),
+                    format!("δ{} (m)", leg + 1),
                     Box::new(move |k| map.best_delta[k].map(|d| d[leg])),
                     stroke,
                 ));
@@ -496,30 +508,37 @@ fn draw_svg(
     };
     let columns = if panels.len() > 1 { 2 } else { 1 };
     let rows = panels.len().div_ceil(columns);
-    let size = 520u32;
+    let (width, height) = (580u32, 540u32);
     let root =
-        SVGBackend::new(path, (size * columns as u32, size * rows as u32)).into_drawing_area();
+        SVGBackend::new(path, (width * columns as u32, height * rows as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let areas = root.split_evenly((rows, columns));
     let dx = (o.x_range.1 - o.x_range.0) / (o.nx - 1) as f64;
     let dy = (o.y_range.1 - o.y_range.0) / (o.ny - 1) as f64;
-    for ((title, value, (lo, hi)), area) in panels.iter().zip(&areas) {
-        let (main, bar) = area.split_horizontally(size - 90);
+    // plotters writes font sizes divided by 1.24: 17 is 13.7 px, 18 is 14.5 px.
+    let (labels, descriptions, titles) = (17, 18, 18);
+    for ((title, caption, value, (lo, hi)), area) in panels.iter().zip(&areas) {
+        // The map on the left, its colour bar (with the labels right of it) on the
+        // right.
+        let (main, bar) = area.split_horizontally(width - COLOUR_BAR_WIDTH);
         let main = main
-            .titled(title, ("sans-serif", 15))
+            .titled(title, ("sans-serif", titles))
             .map_err(|e| e.to_string())?;
-        let (margin, x_labels, y_labels) = (8u32, 30u32, 45u32);
-        let (width, height) = main.dim_in_pixel();
+        // Room under the x tick labels for the axis title, and left of the y tick
+        // labels for the rotated one.
+        let (margin, x_labels, y_labels) = (8u32, 52u32, 66u32);
+        let (plot_width, plot_height) = main.dim_in_pixel();
         let (x_view, y_view) = equal_scale_view(
             (o.x_range.0 - dx / 2.0, o.x_range.1 + dx / 2.0),
             (o.y_range.0 - dy / 2.0, o.y_range.1 + dy / 2.0),
             (
-                width.saturating_sub(2 * margin + y_labels).max(1) as f64,
-                height.saturating_sub(2 * margin + x_labels).max(1) as f64,
+                plot_width.saturating_sub(2 * margin + y_labels).max(1) as f64,
+                plot_height.saturating_sub(2 * margin + x_labels).max(1) as f64,
             ),
         );
         let mut chart = ChartBuilder::on(&main)
             .margin(margin)
+            .margin_right(22)
             .x_label_area_size(x_labels)
             .y_label_area_size(y_labels)
             .build_cartesian_2d(x_view.0..x_view.1, y_view.0..y_view.1)
@@ -527,10 +546,12 @@ fn draw_svg(
         chart
             .configure_mesh()
             .disable_mesh()
+            .x_labels(7)
+            .y_labels(9)
             .x_desc("x (m)")
             .y_desc("y (m)")
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 14))
+            .label_style(("sans-serif", labels))
+            .axis_desc_style(("sans-serif", descriptions))
             .x_label_formatter(&|v| crate::io::svg::plain(*v, 3))
             .y_label_formatter(&|v| crate::io::svg::plain(*v, 3))
             .draw()
@@ -546,12 +567,19 @@ fn draw_svg(
                 ))
             }))
             .map_err(|e| e.to_string())?;
-        // Colour bar.
+        // Colour bar: its caption above it, its tick labels 10 px right of it.
+        bar.draw_text(
+            caption,
+            &("sans-serif", labels).into_text_style(&bar),
+            (6, 34),
+        )
+        .map_err(|e| e.to_string())?;
         let mut legend = ChartBuilder::on(&bar)
-            .margin_top(30)
-            .margin_bottom(38)
-            .margin_right(8)
-            .y_label_area_size(50)
+            .margin_top(60)
+            .margin_bottom(70)
+            .margin_left(6)
+            .margin_right(4)
+            .right_y_label_area_size(COLOUR_BAR_WIDTH - 40)
             .build_cartesian_2d(0.0..1.0, *lo..*hi)
             .map_err(|e| e.to_string())?;
         legend
@@ -559,7 +587,8 @@ fn draw_svg(
             .disable_mesh()
             .disable_x_axis()
             .y_labels(6)
-            .label_style(("sans-serif", 13))
+            .set_tick_mark_size(LabelAreaPosition::Right, 5)
+            .label_style(("sans-serif", labels))
             .y_label_formatter(&|v| crate::io::svg::plain(*v, 3))
             .draw()
             .map_err(|e| e.to_string())?;

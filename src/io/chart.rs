@@ -65,6 +65,79 @@ const PANEL_GAP: f64 = 92.0;
 const TOP: f64 = 44.0;
 const LEGEND_ROW: f64 = 19.0;
 
+/// The pixel rectangle of a plot area.
+pub(crate) struct PlotFrame {
+    pub(crate) left: f64,
+    pub(crate) top: f64,
+    pub(crate) width: f64,
+    pub(crate) height: f64,
+}
+
+/// How a τ chart's ticks look.
+pub(crate) struct TickStyle {
+    /// Font size of the tick labels (px).
+    pub(crate) font_size: f64,
+    /// About how many ticks on the τ axis and on the value axis.
+    pub(crate) counts: (usize, usize),
+    /// Baseline of the τ labels below the plot area (px).
+    pub(crate) tau_label_drop: f64,
+    /// Colour of the grid line at value 0.
+    pub(crate) zero_line: &'static str,
+}
+
+const PANEL_TICKS: TickStyle = TickStyle {
+    font_size: 13.0,
+    counts: (10, 6),
+    tau_label_drop: 17.0,
+    zero_line: "#aaa",
+};
+
+/// Vertical grid lines and labels at "nice" τ ticks (1, 2 or 5 × 10^k) and horizontal
+/// ones at value ticks in `frame`, which shows `τ ∈ [t0, t1]` across and
+/// `value ∈ [lo, hi]` up: `x = left + (τ − t0)/(t1 − t0)·width`,
+/// `y = top + height − (value − lo)/(hi − lo)·height`.
+pub(crate) fn grid_and_ticks(
+    out: &mut String,
+    frame: &PlotFrame,
+    ((t0, t1), (lo, hi)): ((f64, f64), (f64, f64)),
+    style: &TickStyle,
+) {
+    let PlotFrame {
+        left,
+        top,
+        width: w,
+        height: h,
+    } = *frame;
+    let x = |t: f64| left + (t - t0) / (t1 - t0) * w;
+    let y = |v: f64| top + h - (v - lo) / (hi - lo) * h;
+    let size = px(style.font_size);
+    let (xs, dx) = ticks(t0, t1, style.counts.0);
+    for t in xs {
+        let _ = writeln!(
+            out,
+            r##"<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#eee"/><text x="{0}" y="{3}" font-size="{size}" text-anchor="middle">{4}</text>"##,
+            px(x(t)),
+            px(top),
+            px(top + h),
+            px(top + h + style.tau_label_drop),
+            tick_label(t, dx)
+        );
+    }
+    let (ys, dy) = ticks(lo, hi, style.counts.1);
+    for v in ys {
+        let _ = writeln!(
+            out,
+            r##"<line x1="{1}" y1="{0}" x2="{2}" y2="{0}" stroke="{3}"/><text x="{4}" y="{0}" font-size="{size}" text-anchor="end" dominant-baseline="central">{5}</text>"##,
+            px(y(v)),
+            px(left),
+            px(left + w),
+            if v == 0.0 { style.zero_line } else { "#eee" },
+            px(left - 6.0),
+            tick_label(v, dy)
+        );
+    }
+}
+
 fn data_range(panel: &Panel) -> (f64, f64) {
     if let Some(range) = panel.y_range {
         return range;
@@ -150,31 +223,13 @@ fn panel_svg(
         px(PLOT_WIDTH),
         px(h)
     );
-    let (xs, dx) = ticks(t0, t1, 10);
-    for t in xs {
-        let _ = writeln!(
-            out,
-            r##"<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#eee"/><text x="{0}" y="{3}" font-size="13" text-anchor="middle">{4}</text>"##,
-            px(x(t)),
-            px(top),
-            px(top + h),
-            px(top + h + 17.0),
-            tick_label(t, dx)
-        );
-    }
-    let (ys, dy) = ticks(lo, hi, 6);
-    for v in ys {
-        let _ = writeln!(
-            out,
-            r##"<line x1="{1}" y1="{0}" x2="{2}" y2="{0}" stroke="{3}"/><text x="{4}" y="{0}" font-size="13" text-anchor="end" dominant-baseline="central">{5}</text>"##,
-            px(y(v)),
-            px(LEFT),
-            px(LEFT + PLOT_WIDTH),
-            if v == 0.0 { "#aaa" } else { "#eee" },
-            px(LEFT - 6.0),
-            tick_label(v, dy)
-        );
-    }
+    let frame = PlotFrame {
+        left: LEFT,
+        top,
+        width: PLOT_WIDTH,
+        height: h,
+    };
+    grid_and_ticks(out, &frame, ((t0, t1), (lo, hi)), &PANEL_TICKS);
     let _ = writeln!(
         out,
         r#"<text x="{}" y="{}" font-size="14" text-anchor="middle">{}</text><text x="{4}" y="{5}" font-size="14" text-anchor="middle" transform="rotate(-90 {4} {5})">{3}</text>"#,

@@ -1,7 +1,9 @@
 //! Serde types of every input and output file, and the CSV / JSON / SVG writers.
 
+pub mod canvas;
 pub mod chart;
 pub mod draw;
+pub mod leg_lines;
 pub mod report;
 pub mod rpr;
 pub mod rrr;

@@ -11,11 +11,10 @@
 //! last pose on load and writes what changed (and any script error) as JSON into
 //! `<pre id="test-result">`, for headless browser tests.
 
+use super::chart::{PlotFrame, TickStyle, grid_and_ticks};
 use super::draw::{Extent, Scene, scene_extent, scene_svg};
 use super::rrr_draw::{RrrScene, rrr_scene_extent, rrr_scene_svg, rrr_style};
-use super::svg::{
-    SeriesStyle, escape, metric_style, px, short, stroke_attributes, tick_label, ticks,
-};
+use super::svg::{SeriesStyle, escape, metric_style, px, short, stroke_attributes};
 use crate::mechanism::rpr::Design;
 use crate::mechanism::rrr::RrrConfiguration;
 use crate::pipeline::curve::CurveResult;
@@ -56,6 +55,14 @@ pub struct Report {
     /// One SVG drawing per pose.
     pub frames: Vec<String>,
 }
+
+/// How the report chart's ticks look.
+const REPORT_TICKS: TickStyle = TickStyle {
+    font_size: 12.0,
+    counts: (8, 7),
+    tau_label_drop: 16.0,
+    zero_line: "#999",
+};
 
 /// Chart geometry in pixels.
 const CHART: (f64, f64, f64, f64, f64, f64) = (640.0, 400.0, 72.0, 16.0, 548.0, 320.0);
@@ -199,31 +206,13 @@ fn chart_svg(report: &Report) -> String {
         px(w),
         px(h)
     );
-    let (xs, dx) = ticks(t0, t1, 8);
-    for t in xs {
-        let _ = writeln!(
-            out,
-            r##"<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#eee"/><text x="{0}" y="{3}" font-size="12" text-anchor="middle">{4}</text>"##,
-            px(x(t)),
-            px(top),
-            px(top + h),
-            px(top + h + 16.0),
-            tick_label(t, dx)
-        );
-    }
-    let (ys, dy) = ticks(lo, hi, 7);
-    for v in ys {
-        let _ = writeln!(
-            out,
-            r##"<line x1="{1}" y1="{0}" x2="{2}" y2="{0}" stroke="{3}"/><text x="{4}" y="{0}" font-size="12" text-anchor="end" dominant-baseline="central">{5}</text>"##,
-            px(y(v)),
-            px(left),
-            px(left + w),
-            if v == 0.0 { "#999" } else { "#eee" },
-            px(left - 6.0),
-            tick_label(v, dy)
-        );
-    }
+    let frame = PlotFrame {
+        left,
+        top,
+        width: w,
+        height: h,
+    };
+    grid_and_ticks(&mut out, &frame, ((t0, t1), (lo, hi)), &REPORT_TICKS);
     for (tau, _) in &report.singular {
         let _ = writeln!(
             out,

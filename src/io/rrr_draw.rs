@@ -15,11 +15,12 @@
 //! `leg3`), `polygon.base`, `polygon.platform`, `line.leg.proximal`, `line.leg.distal`,
 //! `circle.meet`, `path.meet-direction`, `line.degenerate-line`, `g#legend`.
 
-use super::draw::{
-    Canvas, Extent, LegMeeting, NEAR_MEETING, arrow, axes, centroid, collinear_line, leg_meeting,
-    line, norm, sub,
+use super::canvas::{
+    Canvas, Extent, Legend, PointLabels, centroid, collinear_line, guide_attributes, joint_circle,
+    leg_line, norm, open_drawing, polygon, sub, svg_document,
 };
-use super::svg::{SeriesStyle, escape, number, px, series_style, short, stroke_attributes};
+use super::leg_lines::{LegMeeting, NEAR_MEETING, leg_meeting, mark_meeting};
+use super::svg::{SeriesStyle, escape, px, series_style, short, stroke_attributes};
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrConfiguration};
 use crate::pipeline::rrr_curve::RrrPoseResult;
 use std::fmt::Write;
@@ -122,11 +123,7 @@ fn distal_links(k: &[f64; CONFIGURATION_LEN]) -> [f64; 12] {
 }
 
 fn configuration_extent(k: &[f64; CONFIGURATION_LEN]) -> Extent {
-    let mut e = Extent::empty();
-    for j in 0..9 {
-        e.include(joint(k, j));
-    }
-    e
+    Extent::of_points((0..9).map(|j| joint(k, j)))
 }
 
 fn joints_extent(scene: &RrrScene) -> Extent {
@@ -154,7 +151,9 @@ pub fn rrr_scene_extent(scene: &RrrScene) -> Extent {
     e
 }
 
-fn polygon(
+/// Triangle `first..first + 3` of the joints of `k` (0: base joints, 6: platform
+/// joints).
+fn triangle(
     out: &mut String,
     canvas: &Canvas,
     k: &[f64; CONFIGURATION_LEN],
@@ -162,46 +161,27 @@ fn polygon(
     class: &str,
     attributes: &str,
 ) {
-    let points: Vec<String> = (first..first + 3)
-        .map(|j| canvas.point(joint(k, j)))
-        .collect();
-    let _ = writeln!(
+    polygon(
         out,
-        r#"<polygon class="{class}" points="{}"{attributes}/>"#,
-        points.join(" ")
+        canvas,
+        (first..first + 3).map(|j| joint(k, j)),
+        class,
+        attributes,
     );
 }
 
 fn links(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN], attributes: &str) {
     for i in 0..3 {
         for (kind, from, to) in [("proximal", i, 3 + i), ("distal", 3 + i, 6 + i)] {
-            let (p, q) = (joint(k, from), joint(k, to));
-            let _ = writeln!(
-                out,
-                r#"<line class="leg {kind}" data-leg="{}" x1="{}" y1="{}" x2="{}" y2="{}"{attributes}/>"#,
-                i + 1,
-                px(canvas.x(p[0])),
-                px(canvas.y(p[1])),
-                px(canvas.x(q[0])),
-                px(canvas.y(q[1]))
-            );
+            let ends = (joint(k, from), joint(k, to));
+            leg_line(out, canvas, &format!("leg {kind}"), i + 1, ends, attributes);
         }
     }
 }
 
-fn label(out: &mut String, at: [f64; 2], away: [f64; 2], text: &str) {
-    let n = norm(away).max(1e-9);
-    let _ = writeln!(
-        out,
-        r##"<text class="joint-label" x="{}" y="{}" font-size="15" font-style="italic" text-anchor="middle" dominant-baseline="central" stroke="#fff" stroke-width="4" paint-order="stroke">{text}</text>"##,
-        px(at[0] + 18.0 * away[0] / n),
-        px(at[1] + 18.0 * away[1] / n),
-    );
-}
-
 fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN]) {
     out.push_str("<g id=\"K\" class=\"configuration\">\n");
-    polygon(
+    triangle(
         out,
         canvas,
         k,
@@ -209,7 +189,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
         "base",
         r##" fill="#eeeeee" stroke="#999" stroke-width="1.5" stroke-dasharray="6 4""##,
     );
-    polygon(
+    triangle(
         out,
         canvas,
         k,
@@ -223,12 +203,13 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
         k,
         r##" stroke="#222" stroke-width="4" stroke-linecap="round""##,
     );
-    let pixel = |p: [f64; 2]| [canvas.x(p[0]), canvas.y(p[1])];
+    let pixel = |p: [f64; 2]| canvas.pixel(p);
     let centre = |first: usize| {
         pixel(centroid(
             &(first..first + 3).map(|j| joint(k, j)).collect::<Vec<_>>(),
         ))
     };
+    let mut labels = PointLabels::default();
     for i in 0..3 {
         let (o, b, c) = (
             pixel(joint(k, i)),
@@ -242,17 +223,13 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
             px(o[1] - 5.0)
         );
         for p in [b, c] {
-            let _ = writeln!(
-                out,
-                r##"<circle class="joint" cx="{}" cy="{}" r="4" fill="#fff" stroke="#222" stroke-width="1.5"/>"##,
-                px(p[0]),
-                px(p[1])
-            );
+            joint_circle(out, "joint", p);
         }
         // O_i and C_i labels outside their triangles, B_i's beside its elbow, away
         // from the midpoint of O_i and C_i.
-        label(out, o, sub(o, centre(0)), &format!("O{}", i + 1));
-        label(out, c, sub(c, centre(6)), &format!("C{}", i + 1));
+        let class = "joint-label";
+        labels.place(out, class, (o, sub(o, centre(0))), &format!("O{}", i + 1));
+        labels.place(out, class, (c, sub(c, centre(6))), &format!("C{}", i + 1));
         let mid = [0.5 * (o[0] + c[0]), 0.5 * (o[1] + c[1])];
         let away = sub(b, mid);
         let away = if norm(away) > 1.0 {
@@ -260,7 +237,7 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
         } else {
             [-(c[1] - o[1]), c[0] - o[0]]
         };
-        label(out, b, away, &format!("B{}", i + 1));
+        labels.place(out, class, (b, away), &format!("B{}", i + 1));
     }
     out.push_str("</g>\n");
 }
@@ -268,19 +245,9 @@ fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION
 /// The note on a `K′` that the legend prints under its distance.
 fn overlay_note(overlay: &RrrOverlay) -> String {
     match overlay.subproblem.as_str() {
-        "parallel" => match leg_meeting(&distal_links(&overlay.closest)) {
-            LegMeeting::Point(p) => format!(
-                "distal-link lines B′C′ meet at ({}, {})",
-                number(p[0], 3),
-                number(p[1], 3)
-            ),
-            LegMeeting::Direction(d) => format!(
-                "distal-link lines B′C′ parallel, along ({}, {})",
-                number(d[0], 3),
-                number(d[1], 3)
-            ),
-            LegMeeting::Undefined => "distal-link lines undefined".into(),
-        },
+        "parallel" => leg_meeting(&distal_links(&overlay.closest))
+            .describe("distal-link lines B′C′")
+            .unwrap_or_else(|| "distal-link lines undefined".into()),
         leg => {
             let i = leg.trim_start_matches("leg");
             format!("O{i}′, B{i}′, C{i}′ collinear (leg {i} stretched or folded)")
@@ -297,37 +264,14 @@ fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &RrrOverlay, near: &
         escape(&overlay.subproblem)
     );
     let stroke = stroke_attributes(style, 1.8);
-    polygon(out, canvas, k, 0, "base", &stroke);
-    polygon(out, canvas, k, 6, "platform", &stroke);
+    triangle(out, canvas, k, 0, "base", &stroke);
+    triangle(out, canvas, k, 6, "platform", &stroke);
     links(out, canvas, k, &stroke);
-    let thin = format!(
-        r#" stroke="{}" stroke-width="1.5" stroke-dasharray="2 3" fill="none""#,
-        style.colour
-    );
-    let platform: Vec<[f64; 2]> = (6..9).map(|j| joint(k, j)).collect();
+    let thin = guide_attributes(style);
     if overlay.subproblem == "parallel" {
-        match leg_meeting(&distal_links(k)) {
-            LegMeeting::Point(p) if norm(sub(p, near.centre())) <= NEAR_MEETING * near.size() => {
-                for i in 0..3 {
-                    line(out, canvas, "leg-line", joint(k, 6 + i), p, &thin);
-                }
-                let _ = writeln!(
-                    out,
-                    r##"<circle class="meet" cx="{}" cy="{}" r="5" fill="{}" stroke="#fff" stroke-width="1"/>"##,
-                    px(canvas.x(p[0])),
-                    px(canvas.y(p[1])),
-                    style.colour
-                );
-            }
-            LegMeeting::Point(p) => {
-                let c = centroid(&platform);
-                let d = sub(p, c);
-                let n = norm(d).max(1e-300);
-                arrow(out, canvas, c, [d[0] / n, d[1] / n], style);
-            }
-            LegMeeting::Direction(d) => arrow(out, canvas, centroid(&platform), d, style),
-            LegMeeting::Undefined => {}
-        }
+        let platform: Vec<[f64; 2]> = (6..9).map(|j| joint(k, j)).collect();
+        let meeting = leg_meeting(&distal_links(k));
+        mark_meeting(out, canvas, meeting, &platform, near, (style, &thin));
     } else if let Some(i) = overlay
         .subproblem
         .trim_start_matches("leg")
@@ -343,40 +287,18 @@ fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &RrrOverlay, near: &
 
 /// Writes the legend right of the drawing.
 fn legend(out: &mut String, canvas: &Canvas, scene: &RrrScene) {
-    let x = canvas.left + canvas.plot_width + 24.0;
-    let mut y = canvas.top + 8.0;
-    out.push_str("<g id=\"legend\" font-size=\"13\">\n");
-    let _ = writeln!(
-        out,
-        r##"<g class="legend-entry"><line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#222" stroke-width="4"/><text x="{3}" y="{1}" dominant-baseline="central">K: the manipulator at the pose</text></g>"##,
-        px(x),
-        px(y),
-        px(x + 34.0),
-        px(x + 42.0)
+    let mut legend = Legend::open(out, canvas);
+    legend.configuration(20.0);
+    legend.note(
+        "□ base joints O, ○ elbows B and platform joints C",
+        r#" font-size="12""#,
+        22.0,
     );
-    y += 20.0;
-    let _ = writeln!(
-        out,
-        r##"<text x="{}" y="{}" dominant-baseline="central" fill="#444" font-size="12">□ base joints O, ○ elbows B and platform joints C</text>"##,
-        px(x),
-        px(y)
-    );
-    y += 22.0;
     if !scene.overlays.is_empty() {
-        for line in [
-            "closest singular K′ of each kind (every joint",
-            &format!("may move); D(K, K′) in {},", escape(&scene.length_unit)),
-            "D² = mean squared distance of the 8 bodies:",
-        ] {
-            let _ = writeln!(
-                out,
-                r##"<text x="{}" y="{}" dominant-baseline="central" fill="#444">{line}</text>"##,
-                px(x),
-                px(y)
-            );
-            y += 17.0;
-        }
-        y += 7.0;
+        let unit = &scene.length_unit;
+        legend.note("closest singular K′ of each kind (every joint", "", 17.0);
+        legend.note(&format!("may move); D(K, K′) in {unit},"), "", 17.0);
+        legend.note("D² = mean squared distance of the 8 bodies:", "", 24.0);
     }
     for overlay in &scene.overlays {
         let style = rrr_style(&overlay.subproblem);
@@ -389,44 +311,23 @@ fn legend(out: &mut String, canvas: &Canvas, scene: &RrrScene) {
         } else {
             ""
         };
-        let _ = writeln!(
-            out,
-            r##"<g class="legend-entry" data-metric="{m}"><line x1="{0}" y1="{1}" x2="{2}" y2="{1}"{3}/><text x="{4}" y="{1}" dominant-baseline="central"><tspan font-weight="bold">{name}</tspan>   D = {5}{nearest}</text><text x="{4}" y="{6}" dominant-baseline="central" fill="#444" font-size="12">{7}</text></g>"##,
-            px(x),
-            px(y),
-            px(x + 34.0),
-            stroke_attributes(style, 2.5),
-            px(x + 42.0),
-            number(overlay.distance, 4),
-            px(y + 16.0),
-            escape(&overlay_note(overlay)),
-            m = escape(&overlay.subproblem),
+        let note = overlay_note(overlay);
+        legend.closest(
+            &overlay.subproblem,
+            name,
+            style,
+            (overlay.distance, nearest),
+            &note,
         );
-        y += 40.0;
     }
-    out.push_str("</g>\n");
+    legend.close();
 }
 
 /// The scene as a standalone SVG document showing `extent` (pass [`rrr_scene_extent`]
 /// for one drawing, or the union over several scenes for frames that share a view).
 pub fn rrr_scene_svg(scene: &RrrScene, extent: &Extent) -> String {
     let canvas = Canvas::new(extent);
-    let mut body = String::new();
-    let _ = writeln!(
-        body,
-        r##"<rect width="100%" height="100%" fill="#fff"/><text class="title" x="{}" y="26" font-size="17">{}</text>"##,
-        px(canvas.left),
-        escape(&scene.title)
-    );
-    axes(&mut body, &canvas, &scene.length_unit);
-    let _ = writeln!(
-        body,
-        r#"<clipPath id="plot-area"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath><g clip-path="url(#plot-area)">"#,
-        px(canvas.left),
-        px(canvas.top),
-        px(canvas.plot_width),
-        px(canvas.plot_height)
-    );
+    let mut body = open_drawing(&canvas, &scene.title, &scene.length_unit);
     draw_configuration(&mut body, &canvas, &scene.configuration);
     let near = joints_extent(scene);
     for overlay in &scene.overlays {
@@ -434,16 +335,7 @@ pub fn rrr_scene_svg(scene: &RrrScene, extent: &Extent) -> String {
     }
     body.push_str("</g>\n");
     legend(&mut body, &canvas, scene);
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" class="rrr-drawing" width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif">"#,
-        px(canvas.width),
-        px(canvas.height)
-    );
-    out.push_str(&body);
-    out.push_str("</svg>\n");
-    out
+    svg_document("rrr-drawing", canvas.width, canvas.height, &body)
 }
 
 #[cfg(test)]
