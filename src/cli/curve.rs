@@ -77,6 +77,12 @@ pub struct CurveArgs {
     /// twice the rest of a 90-pose run of the example; skipping it is not recommended.
     #[arg(long)]
     no_self_check: bool,
+    /// Certify every pose's critical points in interval arithmetic (Krawczyk's test)
+    /// and report per metric whether the distance is a proved global minimum (table
+    /// mark `G`), a proved critical value whose completeness is not proved (`m`), or
+    /// unproved (`?`); in JSON / JSON Lines a `certificate` per metric and sub-problem.
+    #[arg(long)]
+    certify: bool,
     /// Continue the interrupted run of `--out FILE` from `FILE.partial`: its complete
     /// windows are kept, the rest is computed again; the output is byte for byte that of
     /// an uninterrupted run (without `FILE.partial`, the run starts afresh). Refused (naming the difference) if the arguments that
@@ -186,6 +192,7 @@ fn run_arguments(
         json("chain", serde_json::json!(options.chain_length)),
         json("window", serde_json::json!(options.window_poses)),
         json("self-check", serde_json::json!(options.self_check)),
+        json("certify", serde_json::json!(options.certify)),
     ])
 }
 
@@ -239,6 +246,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         chain_length: args.chain,
         self_check: !args.no_self_check,
         window_poses: args.window,
+        certify: args.certify,
         ..CurveOptions::default()
     };
     let arguments = run_arguments((&design, &motion, &metrics), samples.len(), &options)?;
@@ -350,6 +358,11 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     }
     if kind == OutputKind::Table {
         print_table_footer(&singular);
+        if options.certify {
+            println!(
+                "certified (interval arithmetic): G = global minimum proved, m = critical value proved but not that it is the smallest, ? = not proved"
+            );
+        }
     }
     if let (Some(path), Some(result)) = (&args.plot, &streamed.curve) {
         plot(path, result, &metrics, &singular)?;
@@ -394,14 +407,27 @@ fn print_table_rows(poses: &[PoseResult], metrics: &[Metric]) {
         for metric in metrics {
             match pose.metrics.get(&metric.name()) {
                 Some(m) => print!(
-                    " {:>11.6}{}",
+                    " {:>11.6}{}{}",
                     m.signed_distance,
-                    if m.cut_locus { "*" } else { " " }
+                    if m.cut_locus { "*" } else { " " },
+                    certified_mark(m)
                 ),
                 None => print!(" {:>12}", "-"),
             }
         }
         println!();
+    }
+}
+
+/// `G` (certified global minimum), `m` (minimiser only), `?` (not proved), or nothing
+/// when the run does not certify.
+fn certified_mark(m: &singdist::pipeline::postprocess::MetricDistance) -> &'static str {
+    use singdist::certify::distance::CertifiedStatus;
+    match m.certificate.as_ref().map(|c| c.status) {
+        None => "",
+        Some(CertifiedStatus::GlobalMinimum) => "G",
+        Some(CertifiedStatus::MinimiserOnly) => "m",
+        Some(CertifiedStatus::None) => "?",
     }
 }
 
