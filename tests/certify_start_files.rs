@@ -9,6 +9,22 @@ use singdist::pipeline::curve::default_start_solutions;
 use singdist::problem::ProblemId;
 use singdist::problem::{Coordinates, LagrangeProblem};
 
+/// The start file of `problem` and its parameter point, in the problem's order.
+fn start_point(
+    problem: &LagrangeProblem,
+) -> (
+    std::sync::Arc<singdist::pipeline::start_file::StartSolutions>,
+    Vec<C64>,
+) {
+    let start = default_start_solutions(problem.id()).expect("start file");
+    let parameters = problem
+        .parameter_names()
+        .iter()
+        .map(|name| start.parameters[name])
+        .collect();
+    (start, parameters)
+}
+
 #[test]
 fn every_start_solution_is_certified_and_distinct() {
     let mut report = Vec::new();
@@ -17,12 +33,7 @@ fn every_start_solution_is_certified_and_distinct() {
         let Ok(problem) = LagrangeProblem::new(id) else {
             continue;
         };
-        let start = default_start_solutions(id).expect("start file");
-        let parameters: Vec<C64> = problem
-            .parameter_names()
-            .iter()
-            .map(|name| start.parameters[name])
-            .collect();
+        let (start, parameters) = start_point(&problem);
         assert_eq!(start.variables, problem.variable_names(), "{}", id.name());
         let result = certify_solutions(problem.evaluator(), &parameters, &start.solutions)
             .expect("square system");
@@ -74,12 +85,7 @@ fn configuration_enclosure_contains_the_configuration() {
             let Ok(problem) = LagrangeProblem::new_in(id, coordinates) else {
                 continue;
             };
-            let start = default_start_solutions(id).expect("start file");
-            let parameters: Vec<C64> = problem
-                .parameter_names()
-                .iter()
-                .map(|name| start.parameters[name])
-                .collect();
+            let (start, parameters) = start_point(&problem);
             let x = &problem.from_cartesian(&start.solutions[0]);
             let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
             let k_prime = problem.configuration(x, &parameters, &mut work);
