@@ -73,7 +73,7 @@ pub struct IndicesArgs {
     /// singularity-free cylinder.
     #[arg(long, value_name = "RAD", default_value_t = DEFAULT_CYLINDER_HALF_WIDTH)]
     cylinder_half_width: f64,
-    /// Add the singularity distances of these metrics (SPEC A.9) at the same poses:
+    /// Add the singularity distances of these metrics at the same poses:
     /// `all` (the default when the option has no value) or names like `plate/plate
     /// bars/rigid`. CSV: columns `NAME` (distance) and `NAME_signed`; JSON: a `metrics`
     /// object per pose; the plot shows them next to the indices.

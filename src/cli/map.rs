@@ -1,4 +1,6 @@
-//! `singdist map`: conditioning maps of the 3RRR and 3-PRRR (SPEC D.4, seed 001).
+//! `singdist map`: conditioning maps of the 3RRR and 3-PRRR (Fontes, Vieira, da Silva,
+//! "The impact of kinematic redundancies on the conditioning of a planar parallel
+//! manipulator").
 
 use super::output::check_output_file;
 use anyhow::{Context, bail};
@@ -15,7 +17,8 @@ pub struct MapArgs {
     /// Robot: 3rrr (one configuration per node) or 3prrr (best over a k³ δ grid).
     #[arg(long, default_value = "3prrr")]
     robot: String,
-    /// Design preset: fontes2017 (seed 001) or farias2021 (seed 000).
+    /// Design preset: fontes2017 (Fontes, Vieira, da Silva) or farias2021 (Farias Filho,
+    /// da Silva, Fontes, COBEM 2021).
     #[arg(long, default_value = "fontes2017")]
     preset: String,
     /// Fixed orientation α (rad).
@@ -36,7 +39,8 @@ pub struct MapArgs {
     /// Working modes `+,+,+`, or `all` to search them per node.
     #[arg(long, default_value = "+,+,+", allow_hyphen_values = true)]
     modes: String,
-    /// Index: lci_a (1/κ(Ā), seed 001) or lci_inv_a_b (1/κ(Ā⁻¹B̄), seed 000).
+    /// Index: lci_a (1/κ(Ā), as Fontes, Vieira, da Silva) or lci_inv_a_b (1/κ(Ā⁻¹B̄), as
+    /// Farias Filho, da Silva, Fontes).
     #[arg(long, default_value = "lci_a")]
     variant: String,
     /// SVG heat map (3prrr: index and the three arg-max δ maps).

@@ -1,8 +1,8 @@
-//! `singdist schemes`: the eight actuation schemes of the 3-RRR (SPEC D.5, seed 003): GCI table
+//! `singdist schemes`: the eight actuation schemes of the 3-RRR (SPEC D.5, Ramana Babu et al.): GCI table
 //! per scheme and orientation, singularity-loci plot, and with `--optimize` the GA-optimal
 //! design vector `(a, b, c)` per scheme.
 //!
-//! The example geometry (seed 003 gives none) is documented in
+//! The example geometry (Ramana Babu et al. gives none) is documented in
 //! [`singdist::index::actuation::ExampleGeometry`]: base radius 5, `(a, b, c) = (1.5, 3.0, 3.5)`,
 //! grid `[−5, 5]²`, positive working modes, no joint limits.
 
@@ -28,7 +28,7 @@ pub struct SchemesArgs {
 /// The options of `singdist schemes`.
 #[derive(Args, Debug)]
 struct SchemesOptions {
-    /// Constant platform orientation in degrees (default: both 0 and 20, as in seed 003).
+    /// Constant platform orientation in degrees (default: both 0 and 20, as in Ramana Babu, Ramachandra Raju, Ramji).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     orientation: Option<f64>,
     /// Also optimise (a, b, c) per scheme with the GA (a + b + c <= lambda).
@@ -344,7 +344,7 @@ fn print_orientation_verdict(
             .windows(2)
             .any(|w| w[0].iter().all(|s| !w[1].contains(s)));
         println!(
-            "seed 003 claim 'the best scheme depends on the orientation' ({label}): {} for this geometry",
+            "Ramana Babu et al.'s claim 'the best scheme depends on the orientation' ({label}): {} for this geometry",
             if depends { "TRUE" } else { "FALSE" }
         );
     }

@@ -1,7 +1,7 @@
 //! Actuation schemes of the planar 3-RRR: Jacobians, singularity types, singularity loci and the
-//! global conditioning index GCI (SPEC D.5; seed 003 §III–V).
+//! global conditioning index GCI (SPEC D.5; Ramana Babu et al. §III–V).
 //!
-//! # Jacobians (seed 003 Eqs. 16–18)
+//! # Jacobians (Ramana Babu et al. Eqs. 16–18)
 //!
 //! With the vectors of the configuration ([`RrrConfiguration`])
 //! `b_i = B_i − O_i`, `c_i = C_i − B_i`, `a_i = P − C_i` and the twist `ẋ = (ẋ_P, ẏ_P, φ̇)`,
@@ -26,7 +26,7 @@
 //! `J_q6` give θ_1 ψ_2 ψ_3; the denominator of Eq. 15 reads `e_2i − e_2i` for `e_3i − e_2i`; Eq. 12
 //! has `2a y_oi sin ψ_i` for `2c y_oi sin ψ_i`.
 //!
-//! # Singularities (seed 003 §III.B)
+//! # Singularities (Ramana Babu et al. §III.B)
 //! Type I: `det J_q = 0` (some leg has `O_i, B_i, C_i` aligned; identical for all schemes).
 //! Type II: `det J_x = 0`. Type III: both.
 //!
@@ -43,7 +43,7 @@
 //! mirrored elbow swaps the directions of `b_i` and `c_i`); at φ = 0 the mirror symmetry of
 //! the design then gives equal GCIs for θθθ and ψψψ in the same mode.
 //!
-//! # GCI (seed 003 Eq. 20)
+//! # GCI (Ramana Babu et al. Eq. 20)
 //! `GCI = ∫_W (1/κ) dw / ∫_W dw`, discretised as the mean of `1/κ(J)`, `J = J_q⁻¹ J_x`, over
 //! the nodes of an (x, y) grid at constant orientation. **Choice** ([`GciDomain`]): by default
 //! the mean runs over the *reachable* nodes only (the seed's `∫_W dw` is the workspace area);
@@ -168,7 +168,7 @@ impl FromStr for PsiModel {
     }
 }
 
-/// One of the eight non-redundant actuation schemes of seed 003 Table I.
+/// One of the eight non-redundant actuation schemes of Ramana Babu et al. Table I.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Scheme {
     number: u8,
@@ -189,7 +189,7 @@ const SCHEME_TABLE: [[Actuator; 3]; 8] = {
 };
 
 impl Scheme {
-    /// Scheme by its number 1..=8 (seed 003 Table I: θθθ, ψψψ, θθψ, θψθ, ψθθ, θψψ, ψψθ, ψθψ).
+    /// Scheme by its number 1..=8 (Ramana Babu et al. Table I: θθθ, ψψψ, θθψ, θψθ, ψθθ, θψψ, ψψθ, ψθψ).
     pub fn from_number(number: i64) -> Result<Self, ActuationError> {
         if (1..=8).contains(&number) {
             Ok(Self {
@@ -279,7 +279,7 @@ fn line_row(u: Point, a: Point) -> [f64; 3] {
     [u.x, u.y, a.y * u.x - a.x * u.y]
 }
 
-/// `J_x` and `J_q` of `scheme` at `config` (seed 003 Eqs. 16–18, module table).
+/// `J_x` and `J_q` of `scheme` at `config` (Ramana Babu et al. Eqs. 16–18, module table).
 pub fn jacobians(config: &RrrConfiguration, scheme: Scheme, model: PsiModel) -> ActuationJacobians {
     let mut jx = Matrix3::zeros();
     let mut jq = Vector3::zeros();
@@ -318,7 +318,7 @@ pub fn active_joints(config: &RrrConfiguration, scheme: Scheme, model: PsiModel)
     q
 }
 
-/// Matrix norm used in the condition number `κ = ‖J‖ ‖J⁻¹‖` (seed 003 Eq. 19).
+/// Matrix norm used in the condition number `κ = ‖J‖ ‖J⁻¹‖` (Ramana Babu et al. Eq. 19).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ConditionNorm {
     /// 2-norm: `κ = σ_max/σ_min` (default).
@@ -412,7 +412,7 @@ impl ActuationJacobians {
     }
 }
 
-/// Singularity type at a configuration (seed 003 §III.B).
+/// Singularity type at a configuration (Ramana Babu et al. §III.B).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SingularityType {
     /// Neither Jacobian singular.
@@ -662,7 +662,7 @@ pub fn local_inverse_condition(
     Some(jac.inverse_condition(options.norm, options.length_scale))
 }
 
-/// GCI of `scheme` at orientation `phi` over `grid` (seed 003 Eq. 20, module documentation).
+/// GCI of `scheme` at orientation `phi` over `grid` (Ramana Babu et al. Eq. 20, module documentation).
 /// Rows are evaluated in parallel and summed in row order: deterministic for any thread count.
 pub fn gci(
     design: &RrrDesign,
@@ -730,7 +730,7 @@ pub fn gci(
 }
 
 /// Singularity loci of one scheme at constant orientation, detected as sign changes between
-/// neighbouring grid nodes (seed 003 §IV, Figs. 6–21).
+/// neighbouring grid nodes (Ramana Babu et al. §IV, Figs. 6–21).
 ///
 /// Type I loci: sign changes of `Π_i (|d_i|² − (b_i+c_i)²)(|d_i|² − (b_i−c_i)²)`,
 /// `d_i = C_i − O_i`, which vanishes exactly where some leg is stretched or folded, i.e. where
@@ -935,7 +935,7 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
     Ok(())
 }
 
-/// Example geometry of this crate for seed 003 (the seed does not give its base geometry, joint
+/// Example geometry of this crate for Ramana Babu et al. (the paper does not give its base geometry, joint
 /// limits or grid): symmetric family of [`RrrDesign::symmetric`] with base radius 5, default
 /// design `(a, b, c) = (1.5, 3.0, 3.5)` (platform circumradius, proximal, distal), size limit
 /// `a + b + c ≤ λ = 9.3` (seed Table IV), bounds `a ∈ [1, 3]`, `b, c ∈ [1, 4]` (the seed's
@@ -975,7 +975,7 @@ impl ExampleGeometry {
         )?)
     }
 
-    /// The design vector `(a, b, c)` of seed 003.
+    /// The design vector `(a, b, c)` of Ramana Babu et al.
     pub fn design_vector(&self) -> [f64; 3] {
         [self.platform_radius, self.proximal, self.distal]
     }

@@ -1,10 +1,10 @@
-//! Conditioning maps of the 3RRR and the 3-PRRR over the workspace (SPEC D.4; seed 001 §3–4).
+//! Conditioning maps of the 3RRR and the 3-PRRR over the workspace (SPEC D.4; Fontes et al. §3–4).
 //!
 //! The (x, y) workspace is gridded at a fixed orientation α. For the 3RRR (δ = 0) each node
 //! has one configuration (fixed working modes) and the map shows its LCI (default
-//! `1/κ(Ā)`, seed 001 Eq. 15). For the 3-PRRR each δ_i takes `k` equally spaced levels in
+//! `1/κ(Ā)`, Fontes et al. Eq. 15). For the 3-PRRR each δ_i takes `k` equally spaced levels in
 //! `[δ_min, δ_max]`; all `k³` combinations are evaluated and the node shows the best index,
-//! with the arg-max δ stored (seed 001 Figs. 4–5; ties keep the first combination in
+//! with the arg-max δ stored (Fontes et al. Figs. 4–5; ties keep the first combination in
 //! lexicographic order). Unreachable nodes are `None` (blank in the images). Working modes
 //! are fixed (default σ = (+,+,+)) or searched per node with δ ([`ModeSelection::Best`]).
 //!
@@ -70,7 +70,7 @@ pub struct MapOptions {
     pub delta_levels: usize,
     /// Working modes: fixed (the same at every node) or the best per node.
     pub modes: ModeSelection,
-    /// Index mapped: `1/κ(Ā)` (seed 001, default) or `1/κ(Ā⁻¹B̄)`.
+    /// Index mapped: `1/κ(Ā)` (Fontes et al., default) or `1/κ(Ā⁻¹B̄)`.
     pub variant: LciVariant,
 }
 
@@ -95,7 +95,7 @@ impl Default for MapOptions {
 /// Working modes used by a map.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ModeSelection {
-    /// The same σ at every node (SPEC D.4 default; seed 001 does not state its modes).
+    /// The same σ at every node (SPEC D.4 default; Fontes et al. does not state its modes).
     Fixed([WorkingMode; 3]),
     /// Each leg's σ is searched with its δ levels: the node shows the best of `(2k)³`
     /// configurations (for the 3RRR: the best of the 8 assembly modes).
@@ -167,7 +167,7 @@ impl ConditioningMap {
     }
 
     /// Number of unreachable holes: 4-connected components of unreachable nodes that do not
-    /// touch the border of the grid (seed 001: the 3RRR's three unreachable circles).
+    /// touch the border of the grid (Fontes et al.: the 3RRR's three unreachable circles).
     pub fn unreachable_holes(&self) -> usize {
         let (nx, ny) = (self.xs.len(), self.ys.len());
         let mut label = vec![false; nx * ny];
@@ -255,7 +255,7 @@ impl ConditioningMap {
     }
 
     /// Draw the map as an SVG heat map (plotters): the index in [0, 1]; for the 3-PRRR also
-    /// the three arg-max δ maps (seed 001 Fig. 5). Unreachable nodes stay blank (white).
+    /// the three arg-max δ maps (Fontes et al. Fig. 5). Unreachable nodes stay blank (white).
     pub fn write_svg(&self, path: &std::path::Path, stroke: (f64, f64)) -> Result<(), MapError> {
         draw_svg(self, path, stroke).map_err(|reason| MapError::Output {
             what: "SVG",

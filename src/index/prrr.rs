@@ -1,11 +1,11 @@
 //! Singularity-avoidance indices of the 3-PRRR and 3RRR (SPEC D.2): LCI in two named
-//! variants and the normalised scaled incircle radius NSIR (seed 000 Eqs. 11–26).
+//! variants and the normalised scaled incircle radius NSIR (Farias Filho et al. (2021) Eqs. 11–26).
 //!
-//! * `1/κ(Ā⁻¹B̄)` ([`LciVariant::InverseAB`], seed 000 Eqs. 10–12): the reciprocal condition
+//! * `1/κ(Ā⁻¹B̄)` ([`LciVariant::InverseAB`], Farias Filho et al. (2021) Eqs. 10–12): the reciprocal condition
 //!   number of the homogenised Jacobian `J̄ = Ā⁻¹ B̄` (3×6 for the 3-PRRR, 3×3 for the 3RRR),
 //!   κ = σ_max/σ_min. 0 when Ā is singular.
-//! * `1/κ(Ā)` ([`LciVariant::DirectA`], seed 001 Eqs. 14–15): the same for `Ā` alone.
-//! * NSIR (seed 000 Eqs. 13–26): `r_norm = r/h` with r the incircle radius of the triangle
+//! * `1/κ(Ā)` ([`LciVariant::DirectA`], Fontes et al. Eqs. 14–15): the same for `Ā` alone.
+//! * NSIR (Farias Filho et al. (2021) Eqs. 13–26): `r_norm = r/h` with r the incircle radius of the triangle
 //!   formed by the three lines `B_iC_i`; `ξ = √(Π_k(b̄_kk² + b̄_k,k+3²)) / √((l_1²l_2² + l_2²(p/2π)²)³)`
 //!   (3RRR: `Π_k |sin(β_k − θ_k)|`, i.e. p = 0); `NSIR = ξ · r_norm`.
 //!
@@ -18,10 +18,10 @@ use nalgebra::Matrix3;
 /// The two LCI variants of SPEC D.2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LciVariant {
-    /// `1/κ(Ā⁻¹B̄)`, seed 000 (default for redundancy resolution).
+    /// `1/κ(Ā⁻¹B̄)`, Farias Filho et al. (2021) (default for redundancy resolution).
     #[serde(rename = "lci_inv_a_b")]
     InverseAB,
-    /// `1/κ(Ā)`, seed 001 (conditioning maps).
+    /// `1/κ(Ā)`, Fontes et al. (conditioning maps).
     #[serde(rename = "lci_a")]
     DirectA,
 }
@@ -186,7 +186,7 @@ pub fn lci_reference(
     }
 }
 
-/// The three factors of NSIR (seed 000 Eqs. 21–26).
+/// The three factors of NSIR (Farias Filho et al. (2021) Eqs. 21–26).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Nsir {
     /// Incircle radius r of the lines `B_iC_i` (m).
@@ -213,7 +213,7 @@ pub fn nsir(design: &PrrrDesign, configuration: &PrrrConfiguration, robot: Robot
 }
 
 /// Incircle radius of the triangle formed by the three lines through `p[i]` and `q[i]`
-/// (SPEC Part B, IR; seed 000 Eqs. 16–21): lines in homogeneous form `L_i = (p_i,1) × (q_i,1)`,
+/// (SPEC Part B, IR; Farias Filho et al. (2021) Eqs. 16–21): lines in homogeneous form `L_i = (p_i,1) × (q_i,1)`,
 /// vertices `T_1 = L_1×L_2`, `T_2 = L_2×L_3`, `T_3 = L_3×L_1`, `r = |det[T_k,1]| / (t_1+t_2+t_3)`.
 /// Concurrent lines give 0. **Choice** (SPEC B): two parallel lines at separation d (third
 /// not parallel) give the continuous limit d/2; three parallel lines give 0; a degenerate
@@ -272,9 +272,9 @@ pub fn incircle_radius_of_lines(p: &[[f64; 2]; 3], q: &[[f64; 2]; 3]) -> f64 {
 /// Every index of one configuration (for tables and the `prrr index` command).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PrrrIndices {
-    /// `1/κ(Ā⁻¹B̄)` (seed 000).
+    /// `1/κ(Ā⁻¹B̄)` (Farias Filho et al. (2021)).
     pub lci_inv_a_b: f64,
-    /// `1/κ(Ā)` (seed 001).
+    /// `1/κ(Ā)` (Fontes et al.).
     pub lci_a: f64,
     /// Incircle radius r (m).
     pub incircle_radius: f64,

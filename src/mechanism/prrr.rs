@@ -1,11 +1,11 @@
 //! The 3-PRRR kinematically redundant planar parallel manipulator, and the 3RRR as its
-//! special case δ = 0 (SPEC D.1; seed 000 §2, seed 001 §2).
+//! special case δ = 0 (SPEC D.1; Farias Filho et al. (2021) §2, Fontes et al. §2).
 //!
 //! Leg i (i = 1, 2, 3): an active prismatic joint moves the base joint along a guide,
 //! `A_i = a e(λ_i) + δ_i e(γ_i)`; the active revolute joint at `A_i` turns the link
 //! `A_iB_i` (length `l_1`, angle θ_i); the passive link `B_iC_i` (length `l_2`, angle β_i)
 //! reaches the platform joint `C_i = D + h e(α + φ_i)`, with `D = (x, y)` and orientation α
-//! the pose. Seed 001 uses `φ_i = λ_i` (our default); seed 000 writes
+//! the pose. Seed 001 uses `φ_i = λ_i` (our default); Farias Filho et al. (2021) writes
 //! `C_i = D − h e(α + η_i)`, i.e. `φ_i = η_i + π` ([`PrrrDesign::with_seed000_platform`]).
 //!
 //! Velocity equation (SPEC D.1): `A Ẋ = B Θ̇`, `Ẋ = (ẋ, ẏ, α̇)`, `Θ̇ = (θ̇_1..3, δ̇_1..3)`,
@@ -173,7 +173,7 @@ pub struct PrrrDesign {
 impl PrrrDesign {
     /// Seed 000 (Farias Filho, da Silva, Fontes 2021), Table 1: a = 0.260, h = 0.0597,
     /// l_1 = 0.191, l_2 = 0.232, λ = (π/2, 11π/6, 7π/6), γ = (π, π/3, 5π/3),
-    /// δ ∈ [−0.230, 0.230], p = 0.010 m/turn, L_c = √2 h; platform in seed 001's
+    /// δ ∈ [−0.230, 0.230], p = 0.010 m/turn, L_c = √2 h; platform in Fontes et al.'s
     /// convention `C_i = D + h e(α + λ_i)` (SPEC D.1 **Choice**).
     pub fn farias2021() -> Self {
         let h = 0.0597;
@@ -193,8 +193,8 @@ impl PrrrDesign {
     }
 
     /// Seed 001 (Fontes, Vieira, da Silva 2017), §4: a = 0.260, h = 0.060, l_1 = 0.191,
-    /// l_2 = 0.232, δ ∈ [−0.3, 0.3], L_c = √2 h; angles and pitch (not given in seed 001)
-    /// as in seed 000.
+    /// l_2 = 0.232, δ ∈ [−0.3, 0.3], L_c = √2 h; angles and pitch (not given in Fontes et al.)
+    /// as in Farias Filho et al. (2021).
     pub fn fontes2017() -> Self {
         let h = 0.060;
         Self {
@@ -205,7 +205,7 @@ impl PrrrDesign {
         }
     }
 
-    /// Preset by name: `farias2021` (seed 000) or `fontes2017` (seed 001).
+    /// Preset by name: `farias2021` (Farias Filho et al. (2021)) or `fontes2017` (Fontes et al.).
     pub fn preset(name: &str) -> Result<Self, PrrrError> {
         match name.trim().to_ascii_lowercase().as_str() {
             "farias2021" => Ok(Self::farias2021()),
@@ -433,7 +433,7 @@ impl PrrrConfiguration {
         b_prismatic(&self.elbow[k], &self.platform[k], design.gamma[k])
     }
 
-    /// Direct-kinematics matrix A (SPEC D.1; seed 001 Eq. 12):
+    /// Direct-kinematics matrix A (SPEC D.1; Fontes et al. Eq. 12):
     /// row i `[l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`, evaluated from the joint
     /// points as `[C_i − B_i, (C_i − D) × (C_i − B_i)]`.
     pub fn matrix_a(&self, _design: &PrrrDesign) -> Matrix3<f64> {
@@ -447,7 +447,7 @@ impl PrrrConfiguration {
         a
     }
 
-    /// Homogenised `Ā`: A with its third column divided by `L_c` (seed 001 Eq. 14).
+    /// Homogenised `Ā`: A with its third column divided by `L_c` (Fontes et al. Eq. 14).
     pub fn matrix_a_bar(&self, design: &PrrrDesign) -> Matrix3<f64> {
         let mut a = self.matrix_a(design);
         for i in 0..3 {
@@ -456,7 +456,7 @@ impl PrrrConfiguration {
         a
     }
 
-    /// Inverse-kinematics matrix B (3×6; SPEC D.1; seed 000 Eq. 9):
+    /// Inverse-kinematics matrix B (3×6; SPEC D.1; Farias Filho et al. (2021) Eq. 9):
     /// `b_kk = l_1 l_2 sin(β_k − θ_k)`, `b_k,k+3 = l_2 cos(β_k − γ_k)`.
     pub fn matrix_b(&self, design: &PrrrDesign) -> Matrix3x6 {
         let mut b = Matrix3x6::zeros();
@@ -467,7 +467,7 @@ impl PrrrConfiguration {
         b
     }
 
-    /// Homogenised `B̄`: prismatic columns of B multiplied by `p/(2π)` (seed 000 §3.1).
+    /// Homogenised `B̄`: prismatic columns of B multiplied by `p/(2π)` (Farias Filho et al. (2021) §3.1).
     pub fn matrix_b_bar(&self, design: &PrrrDesign) -> Matrix3x6 {
         let mut b = self.matrix_b(design);
         let scale = design.pitch / (2.0 * PI);

@@ -1,6 +1,6 @@
 //! The planar 3-RRR parallel manipulator: design, pose, inverse kinematics with an explicit
 //! working mode per leg, and the configuration of its nine joint points (SPEC Part C, D.1, D.5;
-//! seed 003 §II).
+//! Ramana Babu et al. §II).
 //!
 //! # Model
 //!
@@ -13,7 +13,7 @@
 //! The platform joints are given in the moving frame, whose origin is the operation point
 //! `P`; at pose `(x, y, φ)` they are `C_i = P + R(φ)·c_i^moving`, `P = (x, y)`.
 //!
-//! Joint angles (seed 003 Eqs. 2–3): `θ_i = atan2(B_i − O_i)` (absolute direction of the
+//! Joint angles (Ramana Babu et al. Eqs. 2–3): `θ_i = atan2(B_i − O_i)` (absolute direction of the
 //! proximal link) and `ψ_i = atan2(C_i − B_i)` (absolute direction of the distal link), both
 //! measured from the x-axis.
 //!
@@ -25,7 +25,7 @@
 //! link), [`ElbowMode::Negative`] (σ_i = −1) the other one. The seed's "positive working
 //! modes" are taken to be σ = (+1, +1, +1).
 //!
-//! # Symmetric family of seed 003
+//! # Symmetric family of Ramana Babu et al.
 //!
 //! Seed 003 writes the loop closure (its Eqs. 2–3) as
 //! `x_p = b cos θ_i + c cos ψ_i + a cos(φ + γ_i) + x_oi`, so in its notation
@@ -434,17 +434,17 @@ impl RrrConfiguration {
         out
     }
 
-    /// Proximal vector `b_i = B_i − O_i` (seed 003 notation).
+    /// Proximal vector `b_i = B_i − O_i` (Ramana Babu et al. notation).
     pub fn proximal_vector(&self, leg: usize) -> Point {
         self.elbow[leg] - self.base[leg]
     }
 
-    /// Distal vector `c_i = C_i − B_i` (seed 003 notation).
+    /// Distal vector `c_i = C_i − B_i` (Ramana Babu et al. notation).
     pub fn distal_vector(&self, leg: usize) -> Point {
         self.platform[leg] - self.elbow[leg]
     }
 
-    /// Platform vector `a_i = P − C_i` (seed 003 notation).
+    /// Platform vector `a_i = P − C_i` (Ramana Babu et al. notation).
     pub fn platform_vector(&self, leg: usize) -> Point {
         self.operation_point - self.platform[leg]
     }
@@ -462,7 +462,7 @@ impl RrrConfiguration {
     }
 
     /// Leg-singularity determinant `det[[O_i,1],[B_i,1],[C_i,1]] = b_i × c_i` (SPEC Part C):
-    /// zero iff `O_i, B_i, C_i` are collinear (Type I of seed 003), sign = working mode.
+    /// zero iff `O_i, B_i, C_i` are collinear (Type I of Ramana Babu et al.), sign = working mode.
     pub fn leg_determinant(&self, leg: usize) -> f64 {
         cross(self.proximal_vector(leg), self.distal_vector(leg))
     }

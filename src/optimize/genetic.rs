@@ -1,4 +1,4 @@
-//! Real-coded genetic algorithm over a box (seed 000 §4, seed 003 §V).
+//! Real-coded genetic algorithm over a box (Farias Filho et al. (2021) §4, Ramana Babu et al. §V).
 //!
 //! One generation: the `elite` best individuals survive unchanged; every other slot gets a
 //! child of two parents chosen by tournament (size `tournament`). With probability

@@ -12,7 +12,7 @@
 //!   gradients and box bounds, a compact SQP-like method for bound constraints (the
 //!   quadratic model is maximised over the free variables, the step projected on the box).
 //! * [`redundancy`]: redundancy resolution of the 3-PRRR along a task (SPEC D.3).
-//! * [`maximize`]: the hybrid of seed 000 §4: the GA's best individual seeds the local solver.
+//! * [`maximize`]: the hybrid of Farias Filho et al. (2021) §4: the GA's best individual seeds the local solver.
 //!
 //! Objective values that are NaN are treated as `−∞` (never selected, never accepted).
 

@@ -1,10 +1,10 @@
-//! Redundancy resolution of the 3-PRRR along a task (SPEC D.3; seed 000 §4).
+//! Redundancy resolution of the 3-PRRR along a task (SPEC D.3; Farias Filho et al. (2021) §4).
 //!
 //! The end effector follows one of four trajectories sampled at `s_k = k/(N−1)`; the
 //! redundant prismatic inputs δ are chosen to maximise an objective
 //! `F = aggregate_k index(IK(pose(s_k), δ(s_k)))`:
 //!
-//! * **prepositioning** (seed 000 Eq. 27): three variables, δ fixed during the task;
+//! * **prepositioning** (Farias Filho et al. (2021) Eq. 27): three variables, δ fixed during the task;
 //! * **continuous positioning** (Eq. 28): six variables `(δ_o, δ_f)`,
 //!   `δ_i(s) = δ_o,i + (δ_f,i − δ_o,i)(10s³ − 15s⁴ + 6s⁵)` (quintic with zero end velocity and
 //!   acceleration);
@@ -40,7 +40,7 @@ pub enum RedundancyError {
     },
 }
 
-/// The four tasks of seed 000 §4 (SPEC D.3), parametrised by `s ∈ [0, 1]`.
+/// The four tasks of Farias Filho et al. (2021) §4 (SPEC D.3), parametrised by `s ∈ [0, 1]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Trajectory {
@@ -127,7 +127,7 @@ impl std::str::FromStr for Trajectory {
     }
 }
 
-/// Redundancy-resolution scheme (seed 000 Eqs. 27–28).
+/// Redundancy-resolution scheme (Farias Filho et al. (2021) Eqs. 27–28).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Scheme {
@@ -175,7 +175,7 @@ impl std::str::FromStr for Scheme {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TaskIndex {
-    /// LCI `1/κ(Ā⁻¹B̄)` (seed 000).
+    /// LCI `1/κ(Ā⁻¹B̄)` (Farias Filho et al. (2021)).
     Lci,
     /// NSIR.
     Nsir,
