@@ -163,7 +163,15 @@ fn too_many_poses_are_refused_before_any_work() {
     for args in [
         vec!["indices", "--poses", "100000000"],
         vec!["curve", "--quiet", "--poses", "100000000"],
-        vec!["compare", "--quiet", "--poses", "20000"],
+        // Streamed (CSV, JSON Lines) it runs; a JSON document holds every row.
+        vec![
+            "compare",
+            "--quiet",
+            "--poses",
+            "20000",
+            "--out",
+            "compare.json",
+        ],
         vec!["rrr", "curve", "--poses", "100000000"],
     ] {
         let r = run(&args);

@@ -1,19 +1,24 @@
 //! `singdist indices`: kinematic performance indices of a 3-RPR (SPEC Part B) along a
-//! motion (CSV / JSON table, SVG plot) or at one pose (`--pose x,y,phi --json`).
+//! motion (CSV / JSON Lines / JSON table, SVG plot) or at one pose (`--pose x,y,phi
+//! --json`).
 //!
 //! With `--with-metrics [all|NAME…]` (or the `compare` command) the table also holds the
-//! singularity distances of the selected extrinsic metrics (SPEC A.9, computed by
-//! [`compute_curve`] at the very same τ samples, [`sample_motion`]), so metric and index
-//! can be compared pose by pose (paper Figs. 14–16). Lost homotopy paths of the metric
-//! computation are reported on stderr, in the output, and by exit code 3 (as `curve`).
+//! singularity distances of the selected extrinsic metrics (SPEC A.9, computed window
+//! by window by [`CurveRun`] at the very same τ samples, [`sample_motion`]), so metric
+//! and index can be compared pose by pose (paper Figs. 14–16). The table is streamed:
+//! each window's rows are written as soon as they are final and dropped. Lost homotopy
+//! paths of the metric computation are reported on stderr, in the output, and by exit
+//! code 3 (as `curve`).
 
 use super::curve::{check_samples, parse_metrics, pose_count};
 use super::distance::parse_pose;
 use super::failures::warn_failures;
+use super::indices_plot::{plot, scaled_curves, write_plot_data};
+use super::indices_stream::{RowSink, TableFormat};
 use super::outcome::Outcome;
-use super::output::{check_output_file, extension, write_file};
+use super::output::{check_output_file, write_file};
 use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -21,15 +26,14 @@ use singdist::index::rpr::{
     CnVariant, DEFAULT_CYLINDER_HALF_WIDTH, DsAggregate, INDEX_COLUMN_NAMES, IndexOptions,
     RprIndices, compute_indices, index_columns,
 };
-use singdist::io::chart::{Chart, Panel};
 use singdist::io::{load_design, load_motion};
 use singdist::mechanism::rpr::{
     Design, Motion, PoseList, SampledPose, example_design, example_motion,
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, PathFailure, PoseResult, compute_curve, default_start_solutions,
-    sample_motion, singular_parameters,
+    CurveOptions, CurveResult, CurveRun, PathFailure, PoseResult, compute_curve,
+    default_start_solutions, sample_motion, singular_parameters, window_ranges,
 };
 use singdist::pipeline::postprocess::MetricDistance;
 use std::collections::BTreeMap;
@@ -46,10 +50,15 @@ pub struct IndicesArgs {
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
     /// Number of poses evenly spaced in τ (analytic motions; pose lists are used as given);
-    /// at most 1,000,000, and poses × metrics at most 100,000 with metric distances.
+    /// at most 1,000,000. Streamed outputs (CSV on stdout, `.csv`, `.jsonl`) hold one
+    /// window of 1000 poses at a time; a `.json` document, `--plot` and `--plot-data`
+    /// hold every row, poses × metrics at most 100,000 with metric distances.
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
-    /// Table of every index along the motion: `.csv` or `.json` (default: CSV on stdout).
+    /// Table of every index along the motion: `.csv`, `.jsonl` (JSON Lines: a header
+    /// record, one object per pose, a closing summary with every lost path) or `.json`
+    /// (one document); default: CSV on stdout. Streamed outputs are written window by
+    /// window (files to `FILE.partial`, renamed to `FILE` at the end).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// SVG plot of the indices along the motion, each scaled to [0, 1] by its maximum.
@@ -144,7 +153,9 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
         } else {
             print_single_pose(&indices, &options, &metrics, at);
         }
-        return finish(curve.as_ref());
+        return Ok(Outcome::paths_lost_if(
+            curve.is_some_and(|curve| warn_failures(&curve.failures)),
+        ));
     }
     if args.json {
         bail!("--json applies to a single pose (--pose x,y,phi); use --out FILE.json for a motion");
@@ -157,12 +168,20 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
         bail!("--poses: expected at least 1");
     }
     let count = pose_count(&motion, args.poses);
-    check_pose_count(count, MAX_POSES, "every row stays in memory until the end")?;
-    check_metric_pose_count(count, metrics.len())?;
+    let format = TableFormat::of(args.out.as_deref());
+    // Only a `.json` document or a plot holds every row until the end.
+    let keep = format == TableFormat::Json || args.plot.is_some() || args.plot_data.is_some();
+    if keep {
+        let why = "a .json document, --plot and --plot-data hold every row: stream long runs with --out FILE.csv or FILE.jsonl";
+        check_pose_count(count, MAX_POSES, why)?;
+        check_metric_pose_count(count, metrics.len()).map_err(|e| anyhow!("{e}; {why}"))?;
+    } else {
+        check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
+    }
     let samples = sample_motion(&motion, args.poses).context("--poses")?;
     check_samples(args.motion.as_deref(), &samples)?;
     if let Some(path) = &args.out {
-        check_output_file("--out", path, &["csv", "json"])?;
+        check_output_file("--out", path, &["csv", "jsonl", "json"])?;
     }
     if let Some(path) = &args.plot {
         check_output_file("--plot", path, &["svg"])?;
@@ -173,34 +192,49 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     if let Some(path) = &args.plot_data {
         check_output_file("--plot-data", path, &["csv"])?;
     }
-    let curve = metric_curve(&design, &motion, args.poses, &metrics, &args)?;
-    let table = motion_table(&design, &samples, &options, curve.as_ref(), &metrics)?;
-    match &args.out {
-        Some(path) => write_table(path, &table, &options)?,
-        None => print!("{}", csv_text(&table, &options)?),
-    }
-    if args.plot.is_some() || args.plot_data.is_some() {
-        let curves = scaled_curves(&table);
-        if let Some(path) = &args.plot {
-            let singular = singular_parameters(&design, &motion, &samples);
-            plot(path, &table, &curves, &singular)?;
+    let metric_names: Vec<String> = metrics.iter().map(Metric::name).collect();
+    let sink = RowSink::new(
+        (format, args.out.as_deref()),
+        (&options, &metric_names),
+        keep,
+    );
+    let (summary, kept) = stream_table(
+        (&design, &motion, &metrics),
+        &samples,
+        &options,
+        &args,
+        sink,
+    )?;
+    if let Some(rows) = kept {
+        let table = Table {
+            rows,
+            metric_names,
+            curve: summary.as_ref().map(|s| CurveSummary {
+                seed: s.seed,
+                not_applicable: s.not_applicable.clone(),
+                failures: s.failures.clone(),
+            }),
+        };
+        if let (Some(path), TableFormat::Json) = (&args.out, format) {
+            write_json_document(path, &table, &options)?;
         }
-        if let Some(path) = &args.plot_data {
-            write_plot_data(path, &table, &curves)?;
+        if args.plot.is_some() || args.plot_data.is_some() {
+            let curves = scaled_curves(&table);
+            if let Some(path) = &args.plot {
+                let singular = singular_parameters(&design, &motion, &samples);
+                plot(path, &table, &curves, &singular)?;
+            }
+            if let Some(path) = &args.plot_data {
+                write_plot_data(path, &table, &curves)?;
+            }
         }
     }
-    finish(curve.as_ref())
-}
-
-/// Warns about lost paths of the metric computation (after every output was written);
-/// [`Outcome::PathsLost`] if there were any.
-fn finish(curve: Option<&CurveResult>) -> Result<Outcome> {
     Ok(Outcome::paths_lost_if(
-        curve.is_some_and(|curve| warn_failures(&curve.failures)),
+        summary.is_some_and(|s| warn_failures(&s.failures)),
     ))
 }
 
-/// The metric distances along the motion ([`compute_curve`] with the `curve` command's
+/// The metric distances at one pose ([`compute_curve`] with the `curve` command's
 /// default start provider and options), or `None` when no metric was asked for.
 fn metric_curve(
     design: &Design,
@@ -216,27 +250,6 @@ fn metric_curve(
         seed: args.seed,
         ..CurveOptions::default()
     };
-    let count = match motion {
-        Motion::Poses(list) => list.poses.len(),
-        Motion::Analytic(_) => poses,
-    };
-    let progress = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::new(count as u64);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        bar.set_message("metric distances: start solutions + seed");
-        bar
-    };
-    let on_pose = |_: &PoseResult| {
-        progress.set_message("metric distances");
-        progress.inc(1);
-    };
     let result = with_threads(args.threads, || {
         compute_curve(
             design,
@@ -245,99 +258,171 @@ fn metric_curve(
             metrics,
             &options,
             &default_start_solutions,
-            &on_pose,
+            &|_: &PoseResult| {},
         )
     })?
     .context("--with-metrics")?;
-    progress.finish_and_clear();
     Ok(Some(result))
 }
 
+/// The progress bar of the metric computation (hidden with `--quiet`).
+fn progress_bar(quiet: bool, poses: usize) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(poses as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} poses ({elapsed}, eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message("metric distances: start solutions + seed");
+    bar
+}
+
+/// Computes the motion table window by window and hands each window's rows to `sink`
+/// as soon as they are final: the indices of the window's poses and, with metrics,
+/// the window of the metric curve ([`CurveRun`] with the `curve` command's default
+/// start provider and options, at the very same τ samples). Memory is bounded by one
+/// window. Returns the run-level facts of the metric computation and the rows the
+/// sink kept.
+fn stream_table(
+    (design, motion, metrics): (&Design, &Motion, &[Metric]),
+    samples: &[SampledPose],
+    options: &IndexOptions,
+    args: &IndicesArgs,
+    mut sink: RowSink,
+) -> Result<(Option<CurveSummary>, Option<Vec<Row>>)> {
+    let index_rows = |range: std::ops::Range<usize>| -> Vec<Row> {
+        samples[range]
+            .par_iter()
+            .map(|s| Row {
+                tau: s.tau,
+                indices: compute_indices(design, s.pose, options),
+                metrics: BTreeMap::new(),
+                metric_failures: Vec::new(),
+            })
+            .collect()
+    };
+    let curve_options = CurveOptions {
+        seed: args.seed,
+        ..CurveOptions::default()
+    };
+    if metrics.is_empty() {
+        let result = with_threads(args.threads, || -> Result<()> {
+            sink.start(None)?;
+            for range in window_ranges(samples.len(), curve_options.window_poses) {
+                sink.write(index_rows(range))?;
+            }
+            Ok(())
+        })
+        .and_then(|r| r);
+        return match result {
+            Ok(()) => Ok((None, sink.finish(None)?)),
+            Err(error) => Err(sink.fail(error)),
+        };
+    }
+    let progress = progress_bar(args.quiet, samples.len());
+    let on_pose = |_: &PoseResult| {
+        progress.set_message("metric distances");
+        progress.inc(1);
+    };
+    let mut summary: Option<CurveSummary> = None;
+    let result = with_threads(args.threads, || -> Result<()> {
+        let run = CurveRun::new(
+            (design, motion, metrics),
+            args.poses,
+            &curve_options,
+            &default_start_solutions,
+        )
+        .context("--with-metrics")?;
+        let header = run.header();
+        if run.samples().len() != samples.len() {
+            bail!(
+                "--with-metrics: {} metric poses for {} index poses",
+                run.samples().len(),
+                samples.len()
+            );
+        }
+        // Losses of the seed stage affect every pose: listed with each.
+        let seed_failures: Vec<PathFailure> = header
+            .seed_failures
+            .iter()
+            .filter(|f| f.pose_index.is_none())
+            .cloned()
+            .collect();
+        let facts = summary.insert(CurveSummary {
+            seed: header.seed,
+            not_applicable: header.not_applicable.clone(),
+            failures: header.seed_failures.clone(),
+        });
+        sink.start(Some(facts))?;
+        for w in 0..header.windows {
+            let window = run.solve_window(w, &on_pose);
+            let mut rows = index_rows(run.window_range(w));
+            for (row, pose) in rows.iter_mut().zip(window.poses) {
+                // Both come from `sample_motion`: the same τ and pose, bit for bit.
+                if pose.tau != row.tau {
+                    bail!(
+                        "--with-metrics: pose {} has tau {} for the metrics but {} for the indices",
+                        pose.index,
+                        pose.tau,
+                        row.tau
+                    );
+                }
+                facts.failures.extend(pose.failures.iter().cloned());
+                row.metric_failures = seed_failures.iter().cloned().chain(pose.failures).collect();
+                row.metrics = pose.metrics;
+            }
+            sink.write(rows)?;
+        }
+        Ok(())
+    })
+    .and_then(|r| r);
+    progress.finish_and_clear();
+    match result {
+        Ok(()) => {
+            let kept = sink.finish(summary.as_ref())?;
+            Ok((summary, kept))
+        }
+        Err(error) => Err(sink.fail(error)),
+    }
+}
+
 /// One row of the motion table.
-struct Row {
-    tau: f64,
-    indices: RprIndices,
+pub struct Row {
+    /// Motion parameter of the pose.
+    pub tau: f64,
+    /// The indices at the pose.
+    pub indices: RprIndices,
     /// Per metric name: its distance at this pose (absent: no real critical point).
-    metrics: BTreeMap<String, MetricDistance>,
+    pub metrics: BTreeMap<String, MetricDistance>,
     /// Lost paths of the metric computation at this pose.
-    metric_failures: Vec<PathFailure>,
+    pub metric_failures: Vec<PathFailure>,
 }
 
 /// The motion table: indices (and metric distances) per pose.
-struct Table {
-    rows: Vec<Row>,
+pub struct Table {
+    /// Its rows, in pose order.
+    pub rows: Vec<Row>,
     /// Names of the metrics in the table (empty without `--with-metrics`).
-    metric_names: Vec<String>,
+    pub metric_names: Vec<String>,
     /// The metric computation, if any (seed, failures, not-applicable sub-problems).
-    curve: Option<CurveSummary>,
+    pub curve: Option<CurveSummary>,
 }
 
 /// Run-level facts of the metric computation written into the JSON table.
-struct CurveSummary {
-    seed: u64,
-    not_applicable: Vec<String>,
-    failures: Vec<PathFailure>,
-}
-
-fn motion_table(
-    design: &Design,
-    samples: &[SampledPose],
-    options: &IndexOptions,
-    curve: Option<&CurveResult>,
-    metrics: &[Metric],
-) -> Result<Table> {
-    let mut rows: Vec<Row> = samples
-        .par_iter()
-        .map(|s| Row {
-            tau: s.tau,
-            indices: compute_indices(design, s.pose, options),
-            metrics: BTreeMap::new(),
-            metric_failures: Vec::new(),
-        })
-        .collect();
-    if let Some(curve) = curve {
-        if curve.poses.len() != rows.len() {
-            bail!(
-                "--with-metrics: {} metric poses for {} index poses",
-                curve.poses.len(),
-                rows.len()
-            );
-        }
-        for (row, pose) in rows.iter_mut().zip(&curve.poses) {
-            // Both come from `sample_motion`: the same τ and pose, bit for bit.
-            if pose.tau != row.tau {
-                bail!(
-                    "--with-metrics: pose {} has tau {} for the metrics but {} for the indices",
-                    pose.index,
-                    pose.tau,
-                    row.tau
-                );
-            }
-            row.metrics = pose.metrics.clone();
-            // Losses of the seed stage affect every pose: listed with each.
-            row.metric_failures = curve
-                .failures
-                .iter()
-                .filter(|f| f.pose_index.is_none())
-                .chain(&pose.failures)
-                .cloned()
-                .collect();
-        }
-    }
-    Ok(Table {
-        rows,
-        metric_names: metrics.iter().map(Metric::name).collect(),
-        curve: curve.map(|c| CurveSummary {
-            seed: c.seed,
-            not_applicable: c.not_applicable.clone(),
-            failures: c.failures.clone(),
-        }),
-    })
+pub struct CurveSummary {
+    /// Seed of the metric computation.
+    pub seed: u64,
+    /// Sub-problems not applicable to the design.
+    pub not_applicable: Vec<String>,
+    /// Every lost path: the seed stage's, then the poses' in order.
+    pub failures: Vec<PathFailure>,
 }
 
 /// Column headers with the variant named where a Choice was made; then per metric
 /// `NAME` (distance) and `NAME_signed` (signed distance), and `metric_failures`.
-fn headers(options: &IndexOptions, metric_names: &[String]) -> Vec<String> {
+pub fn headers(options: &IndexOptions, metric_names: &[String]) -> Vec<String> {
     let mut out: Vec<String> = ["tau", "x", "y", "phi"]
         .iter()
         .map(|s| s.to_string())
@@ -362,7 +447,7 @@ fn headers(options: &IndexOptions, metric_names: &[String]) -> Vec<String> {
     out
 }
 
-fn cell(value: Option<f64>) -> String {
+pub fn cell(value: Option<f64>) -> String {
     match value {
         Some(v) if v.is_finite() => format!("{v:.12e}"),
         _ => "undefined".into(),
@@ -387,10 +472,10 @@ fn failure_cell(failures: &[PathFailure]) -> String {
         .join("; ")
 }
 
-fn csv_text(table: &Table, options: &IndexOptions) -> Result<String> {
+/// The CSV records of `rows` (no header), in the columns of [`headers`].
+pub fn csv_rows(rows: &[Row], metric_names: &[String]) -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record(headers(options, &table.metric_names))?;
-    for row in &table.rows {
+    for row in rows {
         let p = row.indices.pose;
         let mut record = vec![
             format!("{}", row.tau),
@@ -399,12 +484,12 @@ fn csv_text(table: &Table, options: &IndexOptions) -> Result<String> {
             format!("{}", p.phi),
         ];
         record.extend(index_columns(&row.indices).iter().map(|(_, v)| cell(*v)));
-        for name in &table.metric_names {
+        for name in metric_names {
             let m = row.metrics.get(name);
             record.push(cell(m.map(|m| m.distance)));
             record.push(cell(m.map(|m| m.signed_distance)));
         }
-        if !table.metric_names.is_empty() {
+        if !metric_names.is_empty() {
             record.push(failure_cell(&row.metric_failures));
         }
         writer.write_record(record)?;
@@ -436,42 +521,62 @@ fn metrics_json(
         .collect()
 }
 
-fn write_table(path: &Path, table: &Table, options: &IndexOptions) -> Result<()> {
-    let text = match extension(path).as_deref() {
-        Some("csv") => csv_text(table, options)?,
-        Some("json") => {
-            let rows: Vec<serde_json::Value> = table
-                .rows
-                .iter()
-                .map(|r| {
-                    let mut v = serde_json::to_value(&r.indices)?;
-                    v["tau"] = serde_json::json!(r.tau);
-                    if table.curve.is_some() {
-                        v["metrics"] = metrics_json(&table.metric_names, &r.metrics).into();
-                        v["metric_failures"] = serde_json::to_value(&r.metric_failures)?;
-                    }
-                    Ok(v)
-                })
-                .collect::<Result<_, serde_json::Error>>()?;
-            let mut document = serde_json::json!({
-                "variants": options.variants(),
-                "undefined": "null marks an index (or metric distance) that is undefined at that pose",
-                "poses": rows,
-            });
-            if let Some(curve) = &table.curve {
-                document["metric_names"] = serde_json::to_value(&table.metric_names)?;
-                document["metric_seed"] = serde_json::json!(curve.seed);
-                document["not_applicable"] = serde_json::to_value(&curve.not_applicable)?;
-                document["metric_failures"] = serde_json::to_value(&curve.failures)?;
-            }
-            serde_json::to_string_pretty(&document)?
-        }
-        _ => bail!(
-            "--out {}: expected a .csv or .json file name",
-            path.display()
-        ),
-    };
-    write_file("--out", path, text)
+/// The JSON object of one row: its indices, `tau` and (with metrics) `metrics` and
+/// `metric_failures`.
+pub fn row_json(row: &Row, metric_names: &[String]) -> Result<serde_json::Value> {
+    let mut v = serde_json::to_value(&row.indices)?;
+    v["tau"] = serde_json::json!(row.tau);
+    if !metric_names.is_empty() {
+        v["metrics"] = metrics_json(metric_names, &row.metrics).into();
+        v["metric_failures"] = serde_json::to_value(&row.metric_failures)?;
+    }
+    Ok(v)
+}
+
+/// What `null` means in the JSON outputs.
+const UNDEFINED_NOTE: &str =
+    "null marks an index (or metric distance) that is undefined at that pose";
+
+/// The JSON Lines header record: `variants`, `undefined` and, with metrics,
+/// `metric_names`, `metric_seed`, `not_applicable` and the seed stage's lost paths.
+pub fn jsonl_header(
+    options: &IndexOptions,
+    metric_names: &[String],
+    curve: Option<&CurveSummary>,
+) -> Result<serde_json::Value> {
+    let mut header = serde_json::json!({
+        "record": "header",
+        "variants": options.variants(),
+        "undefined": UNDEFINED_NOTE,
+    });
+    if let Some(curve) = curve {
+        header["metric_names"] = serde_json::to_value(metric_names)?;
+        header["metric_seed"] = serde_json::json!(curve.seed);
+        header["not_applicable"] = serde_json::to_value(&curve.not_applicable)?;
+        header["seed_failures"] = serde_json::to_value(&curve.failures)?;
+    }
+    Ok(header)
+}
+
+/// Writes the table as one JSON document (every row in memory).
+fn write_json_document(path: &Path, table: &Table, options: &IndexOptions) -> Result<()> {
+    let rows: Vec<serde_json::Value> = table
+        .rows
+        .iter()
+        .map(|r| row_json(r, &table.metric_names))
+        .collect::<Result<_>>()?;
+    let mut document = serde_json::json!({
+        "variants": options.variants(),
+        "undefined": UNDEFINED_NOTE,
+        "poses": rows,
+    });
+    if let Some(curve) = &table.curve {
+        document["metric_names"] = serde_json::to_value(&table.metric_names)?;
+        document["metric_seed"] = serde_json::json!(curve.seed);
+        document["not_applicable"] = serde_json::to_value(&curve.not_applicable)?;
+        document["metric_failures"] = serde_json::to_value(&curve.failures)?;
+    }
+    write_file("--out", path, serde_json::to_string_pretty(&document)?)
 }
 
 fn single_pose_json(
@@ -515,158 +620,4 @@ fn print_single_pose(
     }
     let v = options.variants();
     println!("variants: DS = {}; CN = {}; IR = {}", v.ds, v.cn, v.ir);
-}
-
-/// Curves of the plot, unscaled: name and values (absolute value for S; distances for
-/// the metrics).
-fn plot_curves(table: &Table) -> Vec<(String, Vec<Option<f64>>)> {
-    // Every index column except the signed duplicates of the two distances.
-    let names = INDEX_COLUMN_NAMES
-        .iter()
-        .copied()
-        .filter(|name| !name.ends_with("_signed"));
-    let mut curves: Vec<(String, Vec<Option<f64>>)> = names
-        .map(|name| {
-            let values = table
-                .rows
-                .iter()
-                .map(|r| {
-                    index_columns(&r.indices)
-                        .iter()
-                        .find(|(n, _)| *n == name)
-                        .and_then(|(_, v)| *v)
-                        .map(f64::abs)
-                })
-                .collect();
-            let label = if name == "S" {
-                "|S|".to_string()
-            } else {
-                name.to_string()
-            };
-            (label, values)
-        })
-        .collect();
-    for name in &table.metric_names {
-        let values = table
-            .rows
-            .iter()
-            .map(|r| r.metrics.get(name).map(|m| m.distance))
-            .collect();
-        curves.push((format!("D {name}"), values));
-    }
-    curves
-}
-
-/// A plotted curve: label, the divisor (its maximum along the motion) and the values
-/// divided by it (`None` where undefined).
-struct ScaledCurve {
-    label: String,
-    max: f64,
-    values: Vec<Option<f64>>,
-}
-
-/// Every plotted curve divided by its maximum along the motion, so each lies in
-/// [0, 1] (a curve that is identically 0 is left as is).
-fn scaled_curves(table: &Table) -> Vec<ScaledCurve> {
-    plot_curves(table)
-        .into_iter()
-        .map(|(label, values)| {
-            let values: Vec<Option<f64>> = values
-                .into_iter()
-                .map(|v| v.filter(|v| v.is_finite()))
-                .collect();
-            let max = values.iter().flatten().fold(0.0_f64, |m, v| m.max(*v));
-            let scale = if max > 0.0 { max } else { 1.0 };
-            ScaledCurve {
-                label,
-                max,
-                values: values.into_iter().map(|v| v.map(|v| v / scale)).collect(),
-            }
-        })
-        .collect()
-}
-
-fn write_plot_data(path: &Path, table: &Table, curves: &[ScaledCurve]) -> Result<()> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
-    let mut header = vec!["tau".to_string()];
-    header.extend(curves.iter().map(|c| format!("{} / {:e}", c.label, c.max)));
-    writer.write_record(&header)?;
-    for (j, row) in table.rows.iter().enumerate() {
-        let mut record = vec![format!("{}", row.tau)];
-        record.extend(curves.iter().map(|c| cell(c.values[j])));
-        writer.write_record(&record)?;
-    }
-    let text = String::from_utf8(writer.into_inner()?)?;
-    write_file("--plot-data", path, text)
-}
-
-/// The panel of an index (small multiples, each curve divided by its maximum):
-/// transmission and pressure-angle indices, manipulability / conditioning, the
-/// index-based singularity distances, and the metric distances D.
-fn panel_of(label: &str) -> usize {
-    match label {
-        "TI" | "MTI" | "DS" | "MDS" | "IR" => 0,
-        "M" | "|S|" | "CN" | "MCN" => 1,
-        "orientation_distance" | "position_distance" | "cylinder_radius" => 2,
-        _ => 3,
-    }
-}
-
-const PANEL_TITLES: [&str; 4] = [
-    "transmission: TI = min |cos α_i| (pressure angles α_i), DS, their minima MTI, MDS; IR = incircle radius",
-    "manipulability M = |det J|, singularity polynomial |S|, control number CN, MCN = 1/√λ_max",
-    "index-based singularity distances: orientation (rad), position, singularity-free cylinder radius",
-    "metric distances D(K, K′) to the closest singular configuration (platform/base metric)",
-];
-
-fn plot(path: &Path, table: &Table, curves: &[ScaledCurve], singular: &[f64]) -> Result<()> {
-    let rows = &table.rows;
-    if rows.len() < 2 {
-        bail!("--plot: need at least 2 poses");
-    }
-    let mut groups: Vec<Vec<super::plot::Curve>> =
-        (0..PANEL_TITLES.len()).map(|_| Vec::new()).collect();
-    for curve in curves {
-        // Split at undefined values so gaps stay gaps.
-        let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-        for (row, value) in rows.iter().zip(&curve.values) {
-            match value {
-                Some(v) => {
-                    if let Some(segment) = segments.last_mut() {
-                        segment.push((row.tau, *v));
-                    }
-                }
-                None => segments.push(Vec::new()),
-            }
-        }
-        let label = curve.label.strip_prefix("D ").unwrap_or(&curve.label);
-        groups[panel_of(&curve.label)].push(super::plot::Curve {
-            label: format!("{label} (max {})", singdist::io::svg::short(curve.max)),
-            segments,
-        });
-    }
-    let panels = groups
-        .into_iter()
-        .zip(PANEL_TITLES)
-        .filter(|(group, _)| !group.is_empty())
-        .map(|(group, title)| Panel {
-            title: title.to_string(),
-            y_title: "value / its maximum (1)".into(),
-            series: super::plot::series_of(group),
-            y_range: Some((0.0, 1.05)),
-        })
-        .collect();
-    let title = if table.metric_names.is_empty() {
-        "3-RPR kinematic indices along the motion (each curve divided by its maximum)"
-    } else {
-        "3-RPR indices and metric distances D along the motion (each curve divided by its maximum)"
-    };
-    let chart = Chart {
-        title: title.into(),
-        x_title: super::plot::TAU_AXIS.into(),
-        tau_range: (rows[0].tau, rows[rows.len() - 1].tau),
-        panels,
-        markers: super::plot::singular_markers(singular),
-    };
-    super::plot::write_chart(path, &chart)
 }

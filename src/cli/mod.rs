@@ -10,6 +10,8 @@ pub mod distance;
 pub mod draw;
 pub mod failures;
 pub mod indices;
+pub mod indices_plot;
+pub mod indices_stream;
 pub mod map;
 pub mod outcome;
 pub mod output;

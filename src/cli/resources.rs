@@ -3,20 +3,21 @@
 
 use anyhow::{Context, Result, bail};
 
-/// Most poses of one motion table (`indices`, `curve`, `rrr curve`, …): every row is
-/// kept in memory until the run ends (≈ 1 KB per pose with its text for the indices
-/// table), so 1,000,000 poses need about 1 GB.
+/// Most poses of one motion: streamed runs (`curve`, `indices`, `compare`, `rrr
+/// curve` to CSV, JSON Lines or stdout) still sample the whole motion in memory (tens
+/// of bytes per pose); a table kept whole (a `.json` document, a plot) holds every row
+/// until the run ends (≈ 1 KB per pose for the indices table), about 1 GB here.
 pub const MAX_POSES: usize = 1_000_000;
 
-/// Most pose × metric pairs of one metric-distance run (`curve`, `compare`,
-/// `indices --with-metrics`): every pose keeps the critical points of each metric until
-/// the run ends (≈ 30 KB per pair measured: 250 MB for 9,000 poses of one metric), so
+/// Most pose × metric pairs of one metric-distance run kept whole (`curve`, `compare`,
+/// `indices --with-metrics` to a `.json` document or a plot; streamed runs hold one
+/// window): every pose keeps the critical points of each metric until the run ends (≈ 30 KB per pair measured: 250 MB for 9,000 poses of one metric), so
 /// 100,000 pairs need about 3 GB (e.g. 100,000 poses of one metric or 11,111 of all
 /// nine).
 pub const MAX_METRIC_POSES: usize = 100_000;
 
-/// Most poses of a 3-RRR curve: each pose keeps its four sub-problems' critical points
-/// until the run ends (≈ 7 KB per pose measured: 9 MB peak for 300 poses, 16 MB for
+/// Most poses of a 3-RRR curve kept whole (`.json`, `--plot`, `--html`; streamed runs
+/// hold one window): each pose keeps its four sub-problems' results until the run ends (≈ 7 KB per pose measured: 9 MB peak for 300 poses, 16 MB for
 /// 1,200), so 100,000 poses need about 0.7 GB.
 pub const MAX_RRR_POSES: usize = 100_000;
 

@@ -10,9 +10,9 @@
 use super::curve::{check_samples, pose_count};
 use super::failures::{lost_paths, warn_failures};
 use super::outcome::Outcome;
-use super::output::{check_output_file, check_output_folder, is_csv, write_file};
-use super::resources::{MAX_RRR_POSES, check_pose_count, with_threads};
-use anyhow::{Context, Result, bail};
+use super::output::{PartialFile, check_output_file, check_output_folder, is_csv, write_file};
+use super::resources::{MAX_POSES, MAX_RRR_POSES, check_pose_count, with_threads};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
 use singdist::io::load_motion;
@@ -22,15 +22,17 @@ use singdist::mechanism::rrr::{
     EXAMPLE_MODES, ElbowMode, RrrMotion, RrrTrajectory, WorkingModes, example_design,
     example_motion,
 };
+use singdist::pipeline::curve::window_ranges;
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
     trace_certificate, verify_rrr_start_solutions,
 };
 use singdist::pipeline::rrr_curve::{
-    RrrCurveOptions, RrrCurveResult, compute_rrr_curve, configurations_at,
-    default_rrr_start_solutions,
+    RrrCurveOptions, RrrCurveResult, RrrCurveRun, RrrPathFailure, RrrPoseResult, compute_rrr_curve,
+    configurations_at, default_rrr_start_solutions, parallel_singular_parameters,
 };
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// `singdist rrr` subcommands.
@@ -56,7 +58,10 @@ pub struct RrrCurveArgs {
     /// circular translation (`systems/rrr_example_motion.json`).
     #[arg(long, value_name = "FILE")]
     motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given); at most 100,000.
+    /// Number of poses evenly spaced in τ (pose lists are used as given). Streamed
+    /// outputs (`.csv`, the table on stdout) hold one window of 1000 poses at a time, up
+    /// to 1,000,000 poses; a `.json` document, `--plot` and `--html` hold every pose, at
+    /// most 100,000.
     #[arg(long, value_name = "N", default_value_t = 90)]
     poses: usize,
     /// Output table: `.json` (full detail) or `.csv` (the curves).
@@ -186,15 +191,21 @@ pub(super) fn trajectory_of(
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let trajectory = load_trajectory(&args)?;
     let count = pose_count(trajectory.motion(), args.poses);
-    check_pose_count(
-        count,
-        MAX_RRR_POSES,
-        "every pose's critical points stay in memory until the end",
-    )?;
-    check_samples(
-        args.motion.as_deref(),
-        &trajectory.motion().sample(args.poses),
-    )?;
+    // Only a `.json` document, a plot or a report holds every pose until the end.
+    let in_memory = args.plot.is_some()
+        || args.html.is_some()
+        || args.out.as_deref().is_some_and(|p| !is_csv(p));
+    if in_memory {
+        check_pose_count(
+            count,
+            MAX_RRR_POSES,
+            "a .json document, --plot and --html keep every pose's critical points: stream long runs with --out FILE.csv or the table on stdout",
+        )?;
+    } else {
+        check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
+    }
+    let samples = trajectory.motion().sample(args.poses);
+    check_samples(args.motion.as_deref(), &samples)?;
     if let Some(out) = &args.out {
         check_output_file("--out", out, &["json", "csv"])?;
     }
@@ -211,7 +222,18 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
         seed: args.seed,
         ..RrrCurveOptions::default()
     };
+    let taus: Vec<f64> = samples.iter().map(|s| s.tau).collect();
+    drop(samples);
     let started = std::time::Instant::now();
+    if !in_memory {
+        let (poses, paths_tracked, failures) = stream_curve(&trajectory, &taus, &options, &args)?;
+        if args.out.is_none() {
+            let parallel = parallel_singular_parameters(&trajectory, &taus);
+            print_table_footer(&parallel, trajectory.leg_crossings());
+        }
+        report_speed(&args, poses, paths_tracked, started);
+        return Ok(Outcome::paths_lost_if(warn_failures(&failures)));
+    }
     let result = with_threads(args.threads, || {
         compute_rrr_curve(
             &trajectory,
@@ -220,18 +242,21 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
             &default_rrr_start_solutions,
         )
     })??;
-    let elapsed = started.elapsed().as_secs_f64();
     match &args.out {
         Some(path) => {
-            let text = if is_csv(path) {
-                csv_text(&result)?
-            } else {
-                serde_json::to_string_pretty(&result).context("serialising the curve")?
-            };
+            let text = serde_json::to_string_pretty(&result).context("serialising the curve")?;
             write_file("--out", path, text)?;
         }
-        None => print_table(&result),
+        None => {
+            print!("{}", table_header());
+            print!("{}", table_rows(&result.poses));
+            print_table_footer(
+                &result.parallel_singular_parameters,
+                &result.leg_singular_parameters,
+            );
+        }
     }
+    report_speed(&args, result.poses.len(), result.paths_tracked, started);
     if let Some(path) = &args.plot {
         plot(path, &result)?;
     }
@@ -247,27 +272,97 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
             report_html(&rrr_report(&configurations, &result)),
         )?;
     }
-    if !args.quiet {
-        eprintln!(
-            "singdist: {} poses, 4 sub-problems, {} paths in {:.3} s ({:.0} paths/s)",
-            result.poses.len(),
-            result.paths_tracked,
-            elapsed,
-            result.paths_tracked as f64 / elapsed.max(1e-9)
-        );
-    }
     Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
 }
+
+/// The closing line on stderr: poses, paths, time.
+fn report_speed(args: &RrrCurveArgs, poses: usize, paths: usize, started: std::time::Instant) {
+    if !args.quiet {
+        let elapsed = started.elapsed().as_secs_f64();
+        eprintln!(
+            "singdist: {poses} poses, 4 sub-problems, {paths} paths in {elapsed:.3} s ({:.0} paths/s)",
+            paths as f64 / elapsed.max(1e-9)
+        );
+    }
+}
+
+/// Solves the curve window by window ([`RrrCurveRun`], windows of 1000 poses) and
+/// writes each window as soon as it is solved: CSV rows to `FILE.partial` (renamed to
+/// `FILE` at the end, removed on an error) or table rows to stdout. Returns the poses,
+/// paths tracked and every failure (seed stage first).
+fn stream_curve(
+    trajectory: &RrrTrajectory,
+    taus: &[f64],
+    options: &RrrCurveOptions,
+    args: &RrrCurveArgs,
+) -> Result<(usize, usize, Vec<RrrPathFailure>)> {
+    let mut partial: Option<PartialFile> = None;
+    let result = with_threads(
+        args.threads,
+        || -> Result<(usize, usize, Vec<RrrPathFailure>)> {
+            let run = RrrCurveRun::new(trajectory, taus, options, &default_rrr_start_solutions)?;
+            let write = |partial: &Option<PartialFile>, text: &str| -> Result<()> {
+                match partial {
+                    Some(file) => file.append(text),
+                    None => {
+                        let mut out = std::io::stdout().lock();
+                        out.write_all(text.as_bytes())
+                            .and_then(|()| out.flush())
+                            .map_err(|e| anyhow!("stdout: cannot write: {e}"))
+                    }
+                }
+            };
+            match &args.out {
+                Some(out) => {
+                    let file = partial.insert(PartialFile::create("--out", out)?);
+                    file.append(&csv_header()?)?;
+                }
+                None => write(&partial, &table_header())?,
+            }
+            let mut failures = run.seed_failures().to_vec();
+            let mut paths_tracked = run.seed_paths_tracked();
+            for range in window_ranges(taus.len(), WINDOW_POSES) {
+                let poses = run.solve_poses(range)?;
+                let text = match &args.out {
+                    Some(_) => csv_rows(&poses, run.seed_failures())?,
+                    None => table_rows(&poses),
+                };
+                write(&partial, &text)?;
+                paths_tracked += poses.iter().map(|p| p.paths_tracked).sum::<usize>();
+                failures.extend(poses.iter().flat_map(|p| p.failures.iter().cloned()));
+            }
+            Ok((taus.len(), paths_tracked, failures))
+        },
+    )
+    .and_then(|r| r);
+    match (result, partial, &args.out) {
+        (Ok(done), Some(file), Some(out)) => match std::fs::rename(file.path(), out) {
+            Ok(()) => Ok(done),
+            Err(e) => {
+                file.finish();
+                bail!("--out: {}: cannot write: {e}", out.display())
+            }
+        },
+        (Ok(done), _, _) => Ok(done),
+        (Err(error), file, _) => {
+            if let Some(file) = file {
+                file.finish();
+            }
+            Err(error)
+        }
+    }
+}
+
+/// Poses per window of a streamed run.
+const WINDOW_POSES: usize = 1000;
 
 fn cell(v: Option<f64>) -> String {
     v.map(|v| v.to_string()).unwrap_or_default()
 }
 
-/// CSV: `tau, x, y, phi, parallel, leg1, leg2, leg3, distance, nearest,
-/// parallel_determinant_abs_scaled, working_modes, lost_paths` (`working_modes`: the
-/// three legs' modes at that pose, e.g. `+,-,+`; `lost_paths`: paths lost at that pose
-/// plus those lost at the seed, which affect every pose).
-pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
+/// The CSV header: `tau, x, y, phi, parallel, leg1, leg2, leg3, distance, nearest,
+/// parallel_determinant_abs_scaled, working_modes, lost_paths`.
+fn csv_header() -> Result<String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
         "tau",
@@ -284,7 +379,16 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
         "working_modes",
         "lost_paths",
     ])?;
-    for p in &result.poses {
+    let bytes = writer.into_inner().context("writing CSV")?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// CSV rows of `poses` under [`csv_header`] (`working_modes`: the three legs' modes at
+/// that pose, e.g. `+,-,+`; `lost_paths`: paths lost at that pose plus those lost at
+/// the seed, `seed_failures`, which affect every pose).
+fn csv_rows(poses: &[RrrPoseResult], seed_failures: &[RrrPathFailure]) -> Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    for p in poses {
         writer.write_record([
             p.tau.to_string(),
             p.pose[0].to_string(),
@@ -300,22 +404,26 @@ pub fn csv_text(result: &RrrCurveResult) -> Result<String> {
             p.working_modes
                 .map(|m| if m < 0 { "-" } else { "+" })
                 .join(","),
-            lost_paths(&p.failures, &result.failures).to_string(),
+            lost_paths(&p.failures, seed_failures).to_string(),
         ])?;
     }
     let bytes = writer.into_inner().context("writing CSV")?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
-fn print_table(result: &RrrCurveResult) {
-    let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
-    println!(
-        "{:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8} {:>6}",
+fn table_header() -> String {
+    format!(
+        "{:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8} {:>6}\n",
         "tau", "parallel", "leg1", "leg2", "leg3", "distance", "nearest", "|detJ|~", "modes"
-    );
-    for p in &result.poses {
-        println!(
-            "{:>9.4} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8.4} {:>6}",
+    )
+}
+
+fn table_rows(poses: &[RrrPoseResult]) -> String {
+    let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.6}"));
+    let mut text = String::new();
+    for p in poses {
+        text.push_str(&format!(
+            "{:>9.4} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8.4} {:>6}\n",
             p.tau,
             show(p.parallel),
             show(p.leg1),
@@ -327,8 +435,12 @@ fn print_table(result: &RrrCurveResult) {
             p.working_modes
                 .map(|m| if m < 0 { "-" } else { "+" })
                 .join(",")
-        );
+        ));
     }
+    text
+}
+
+fn print_table_footer(parallel: &[f64], legs: &[Vec<f64>; 3]) {
     let list = |v: &[f64]| {
         if v.is_empty() {
             return "none".to_string();
@@ -340,10 +452,8 @@ fn print_table(result: &RrrCurveResult) {
     };
     println!(
         "signed distances (sign of the respective determinant); |detJ|~ = |parallel determinant| / its max over the poses; parallel singular at tau = {}; leg singular at tau = {}",
-        list(&result.parallel_singular_parameters),
-        result
-            .leg_singular_parameters
-            .iter()
+        list(parallel),
+        legs.iter()
             .enumerate()
             .filter(|(_, v)| !v.is_empty())
             .map(|(i, v)| format!("leg{}: {}", i + 1, list(v)))

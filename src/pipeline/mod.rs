@@ -6,6 +6,7 @@ pub mod postprocess;
 pub mod rrr_ab_initio;
 pub mod rrr_curve;
 pub mod rrr_seed;
+pub mod rrr_window;
 pub mod start_file;
 pub mod start_pair;
 

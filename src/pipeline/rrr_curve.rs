@@ -32,6 +32,7 @@ use super::curve::{Retried, TrackingPlan, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::rrr_seed::route;
 pub use super::rrr_seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
+pub use super::rrr_window::RrrCurveRun;
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::homotopy::TrackerOptions;
@@ -39,7 +40,6 @@ use crate::mechanism::rrr::{
     CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
 };
 use crate::problem::rrr::{RrrProblem, RrrProblemError};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -200,12 +200,12 @@ pub struct RrrCurveResult {
 }
 
 /// Per (pose, sub-problem): sub-problem result, failure, paths tracked.
-type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
+pub(crate) type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
 
 /// Stages 2–4 for one sub-problem at the real configuration `k`: tracked in `frame`
 /// (the seed's), the closest configuration mapped back and `D(K, K′)` recomputed in the
 /// caller's frame.
-fn solve_subproblem(
+pub(crate) fn solve_subproblem(
     seeded: &RrrSeededProblem,
     frame: &RrrFrame,
     k: &[f64; CONFIGURATION_LEN],
@@ -274,7 +274,7 @@ fn solve_subproblem(
     )
 }
 
-fn signed(result: &RrrSubproblemResult) -> Option<f64> {
+pub(crate) fn signed(result: &RrrSubproblemResult) -> Option<f64> {
     let sign = if result.determinant < 0.0 { -1.0 } else { 1.0 };
     result.distance.map(|d| sign * d)
 }
@@ -374,103 +374,16 @@ pub fn compute_rrr_curve(
 }
 
 /// The curve at the given parameter values: seed stage, then every (pose, sub-problem)
-/// in parallel.
+/// in parallel ([`RrrCurveRun`] with one window of every pose).
 pub fn compute_rrr_curve_at(
     trajectory: &RrrTrajectory,
     taus: &[f64],
     options: &RrrCurveOptions,
     provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
 ) -> Result<RrrCurveResult, RrrCurveError> {
-    let samples = configurations_at(trajectory, taus)?;
-    let stage = rrr_seed_stage(trajectory, options, provider)?;
-    let arrays: Vec<[f64; CONFIGURATION_LEN]> =
-        samples.iter().map(|(_, _, c)| c.to_array()).collect();
-    let jobs: Vec<(usize, usize)> = (0..samples.len())
-        .flat_map(|j| (0..stage.problems.len()).map(move |p| (j, p)))
-        .collect();
-    let entries: Vec<Entry> = jobs
-        .par_iter()
-        .map(|&(j, p)| {
-            solve_subproblem(
-                &stage.problems[p],
-                &stage.frame,
-                &arrays[j],
-                j,
-                samples[j].0,
-                p,
-                options,
-            )
-        })
-        .collect();
-    let max_parallel = arrays
-        .iter()
-        .map(|k| parallel_polynomial(k).abs())
-        .fold(0.0f64, f64::max);
-    let mut entries = entries.into_iter();
-    let mut results = Vec::with_capacity(samples.len());
-    for (j, (tau, pose, _)) in samples.iter().enumerate() {
-        let mut subproblems = BTreeMap::new();
-        let mut failures = Vec::new();
-        let mut paths_tracked = 0;
-        for seeded in &stage.problems {
-            let Some((result, failure, tracked)) = entries.next() else {
-                break;
-            };
-            failures.extend(failure);
-            paths_tracked += tracked;
-            subproblems.insert(seeded.problem.kind().short_name(), result);
-        }
-        let get = |name: &str| subproblems.get(name).and_then(signed);
-        let (parallel, leg1, leg2, leg3) = (get("parallel"), get("leg1"), get("leg2"), get("leg3"));
-        let nearest = [
-            ("parallel", parallel),
-            ("leg1", leg1),
-            ("leg2", leg2),
-            ("leg3", leg3),
-        ]
-        .into_iter()
-        .filter_map(|(name, v)| v.map(|v| (name, v.abs())))
-        .min_by(|a, b| a.1.total_cmp(&b.1));
-        let modes = trajectory.modes_at(*tau);
-        results.push(RrrPoseResult {
-            index: j,
-            tau: *tau,
-            pose: *pose,
-            working_modes: modes.map(|m| m.sign() as i8),
-            parallel,
-            leg1,
-            leg2,
-            leg3,
-            distance: nearest.map(|(_, d)| d),
-            nearest: nearest.map(|(name, _)| name.to_string()),
-            parallel_determinant_abs_scaled: if max_parallel > 0.0 {
-                parallel_polynomial(&arrays[j]).abs() / max_parallel
-            } else {
-                0.0
-            },
-            subproblems,
-            failures,
-            paths_tracked,
-        });
-    }
-    let mut failures = stage.failures.clone();
-    failures.extend(results.iter().flat_map(|r| r.failures.iter().cloned()));
-    let paths_tracked =
-        stage.paths_tracked + results.iter().map(|r| r.paths_tracked).sum::<usize>();
-    Ok(RrrCurveResult {
-        seed: options.seed,
-        tau_star: stage.tau_star.map(|t| [t.re, t.im]),
-        start_counts: stage
-            .problems
-            .iter()
-            .map(|p| (p.problem.kind().short_name(), p.start_count))
-            .collect(),
-        parallel_singular_parameters: parallel_singular_parameters(trajectory, taus),
-        leg_singular_parameters: trajectory.leg_crossings().clone(),
-        poses: results,
-        failures,
-        paths_tracked,
-    })
+    let run = RrrCurveRun::new(trajectory, taus, options, provider)?;
+    let poses = run.solve_poses(0..taus.len())?;
+    Ok(run.collect(poses))
 }
 
 /// The default start provider: embedded `supplementary/start/rrr-*.json`, else computed.
