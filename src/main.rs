@@ -93,8 +93,28 @@ enum Command {
     Rrr(cli::rrr::RrrCommand),
 }
 
+/// Restores the default action of `SIGPIPE` (terminate quietly), as Unix command-line
+/// tools have it: `singdist curve | head` then ends when `head` stops reading, instead
+/// of failing on a write to the closed pipe. (The Rust runtime ignores the signal.)
+#[cfg(unix)]
+fn restore_default_sigpipe() {
+    // SIGPIPE is signal 13 and SIG_DFL is 0 on Linux and the BSDs/macOS.
+    const SIGPIPE: i32 = 13;
+    const SIG_DFL: usize = 0;
+    unsafe extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    // SAFETY: `signal` is the C library's; setting the default disposition of SIGPIPE
+    // before any thread starts has no other effect on this program.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
 fn main() {
     use cli::outcome::{EXIT_ERROR, Outcome, one_line_message};
+    #[cfg(unix)]
+    restore_default_sigpipe();
     let cli = Cli::parse();
     let complete = |result: anyhow::Result<()>| result.map(|()| Outcome::Complete);
     let result = match cli.command {
