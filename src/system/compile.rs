@@ -821,19 +821,34 @@ impl CompiledSystem {
         assert_eq!(f.len(), k, "interval evaluation: equation count");
         assert_eq!(jac.len(), k * n, "interval evaluation: Jacobian size");
         let tape = &parts.values_and_jacobian;
-        let mut registers = vec![ComplexInterval::default(); tape.workspace_len()];
-        registers[..n].copy_from_slice(x);
-        registers[n..n + m].copy_from_slice(p);
-        let constants_start = tape.num_inputs;
-        for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
-            *r = ComplexInterval::point(*c);
+        // The registers are reused per thread (no allocation per evaluation); every
+        // one read is written first: inputs (those of other tapes zeroed) and
+        // constants here, temporaries by the tape.
+        thread_local! {
+            static REGISTERS: std::cell::RefCell<Vec<ComplexInterval>> =
+                const { std::cell::RefCell::new(Vec::new()) };
         }
-        tape.execute(&mut registers);
-        let outputs = f.iter_mut().chain(jac.iter_mut());
-        for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
-            let value = registers[register as usize];
-            *target = if sign < 0.0 { -value } else { value };
-        }
+        REGISTERS.with(|cell| {
+            let mut registers = cell.borrow_mut();
+            let len = tape.workspace_len();
+            if registers.len() < len {
+                registers.resize(len, ComplexInterval::default());
+            }
+            let registers = &mut registers[..len];
+            registers[..n].copy_from_slice(x);
+            registers[n..n + m].copy_from_slice(p);
+            let constants_start = tape.num_inputs;
+            registers[n + m..constants_start].fill(ComplexInterval::default());
+            for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
+                *r = ComplexInterval::point(*c);
+            }
+            tape.execute(registers);
+            let outputs = f.iter_mut().chain(jac.iter_mut());
+            for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
+                let value = registers[register as usize];
+                *target = if sign < 0.0 { -value } else { value };
+            }
+        });
     }
 
     #[inline]
