@@ -275,12 +275,8 @@ impl<'a> Krawczyk<'a> {
         for (x, &c) in b.bounds.iter_mut().zip(center) {
             *x = ComplexInterval::point(c);
         }
-        self.system.evaluate_interval_with_jacobian(
-            &b.bounds,
-            &self.parameter_boxes,
-            &mut b.f_box,
-            &mut b.jac_box,
-        );
+        self.system
+            .evaluate_interval(&b.bounds, &self.parameter_boxes, &mut b.f_box);
         // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
         // ("Verification methods", §13.1) grows a box E around it until
         // z + (I − Y·J(c + E))·E lies inside E.
