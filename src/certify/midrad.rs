@@ -12,9 +12,10 @@
 //! product of length `2n`, computed in round-to-nearest with error at most
 //! `γ₂ₙ·(|Yᵣ|·|Cᵣ| + |Yᵢ|·|Cᵢ|)` (resp. `γ₂ₙ·(|Yᵣ|·|Cᵢ| + |Yᵢ|·|Cᵣ|)`),
 //! `γₖ = k·u/(1 − k·u)`, `u = 2⁻⁵³` (Higham, "Accuracy and Stability of Numerical
-//! Algorithms", 2002, §3.1), plus at most `2⁻¹⁰⁷⁵` per product from underflow. The
-//! radius sums, themselves of `4n + 2` non-negative rounded terms, are enlarged by the
-//! factor `1 + 2γ₄ₙ₊₄` and by `(8n + 8)` times the smallest normal number, which
+//! Algorithms", 2002, §3.1), plus at most `2⁻¹⁰⁷⁵` per product from underflow. Both
+//! bounds together are `|Yᵣ|·Wᵣ + |Yᵢ|·Wᵢ` (resp. `|Yᵣ|·Wᵢ + |Yᵢ|·Wᵣ`) with the
+//! weights `W = γ₂ₙ·|C| + R`. These sums, of at most `2n + 3` roundings per term, are
+//! enlarged by the factor `1 + 2γ₄ₙ₊₄` and by `(8n + 8)` times the smallest normal number, which
 //! covers their own rounding and every underflow; the subtraction from `I` adds
 //! `2u·|m|` for its rounded result `m`. The interval `m ± r` is then rounded outwards.
 
@@ -24,12 +25,11 @@ use crate::system::interval::{ComplexInterval, Interval};
 /// Scratch space for `n × n` products.
 pub struct MidpointRadius {
     n: usize,
-    /// Midpoints and radii of `B`, real and imaginary parts.
+    /// Midpoints `C` of `B` and the weights `γ₂ₙ·|C| + R`, real and imaginary parts.
     mid: [Vec<f64>; 2],
     rad: [Vec<f64>; 2],
-    /// Per row: midpoint sums, absolute sums and radius sums (re, im).
+    /// Per row: midpoint sums and radius sums (re, im).
     center: [Vec<f64>; 2],
-    absolute: [Vec<f64>; 2],
     spread: [Vec<f64>; 2],
 }
 
@@ -50,7 +50,6 @@ impl MidpointRadius {
             mid: square(),
             rad: square(),
             center: row(),
-            absolute: row(),
             spread: row(),
         }
     }
@@ -65,6 +64,7 @@ impl MidpointRadius {
     ) -> bool {
         let n = self.n;
         assert!(y.len() == n * n && b.len() == n * n && out.len() == n * n);
+        let gamma_dot = gamma(2 * n);
         for (k, e) in b.iter().enumerate() {
             if !e.is_bounded() {
                 return false;
@@ -72,16 +72,16 @@ impl MidpointRadius {
             for (part, v) in [e.re, e.im].into_iter().enumerate() {
                 let m = 0.5 * v.lo + 0.5 * v.hi;
                 self.mid[part][k] = m;
-                self.rad[part][k] = (v.hi - m).max(m - v.lo).next_up();
+                // The weight γ₂ₙ·|m| + radius of |Y| in both bounds.
+                let radius = (v.hi - m).max(m - v.lo).next_up();
+                self.rad[part][k] = gamma_dot * m.abs() + radius;
             }
         }
-        let gamma_dot = gamma(2 * n);
         let enlarge = 1.0 + 2.0 * gamma(4 * n + 4);
         let floor = (8 * n + 8) as f64 * f64::MIN_POSITIVE;
         for i in 0..n {
             for part in 0..2 {
                 self.center[part].fill(0.0);
-                self.absolute[part].fill(0.0);
                 self.spread[part].fill(0.0);
             }
             for l in 0..n {
@@ -89,27 +89,21 @@ impl MidpointRadius {
                 let (ar, ai) = (yr.abs(), yi.abs());
                 let row = l * n..(l + 1) * n;
                 let (cr, ci) = (&self.mid[0][row.clone()], &self.mid[1][row.clone()]);
-                let (rr, ri) = (&self.rad[0][row.clone()], &self.rad[1][row]);
+                let (wr, wi) = (&self.rad[0][row.clone()], &self.rad[1][row]);
                 let [center_re, center_im] = &mut self.center;
-                let [absolute_re, absolute_im] = &mut self.absolute;
                 let [spread_re, spread_im] = &mut self.spread;
                 for j in 0..n {
                     center_re[j] += yr * cr[j] - yi * ci[j];
                     center_im[j] += yr * ci[j] + yi * cr[j];
-                    absolute_re[j] += ar * cr[j].abs() + ai * ci[j].abs();
-                    absolute_im[j] += ar * ci[j].abs() + ai * cr[j].abs();
-                    spread_re[j] += ar * rr[j] + ai * ri[j];
-                    spread_im[j] += ar * ri[j] + ai * rr[j];
+                    spread_re[j] += ar * wr[j] + ai * wi[j];
+                    spread_im[j] += ar * wi[j] + ai * wr[j];
                 }
             }
             for j in 0..n {
                 let identity = if i == j { 1.0 } else { 0.0 };
                 let part = |p: usize| {
                     let m = if p == 0 { identity } else { 0.0 } - self.center[p][j];
-                    let r =
-                        (gamma_dot * self.absolute[p][j] + self.spread[p][j] + 2.0 * U * m.abs())
-                            * enlarge
-                            + floor;
+                    let r = (self.spread[p][j] + 2.0 * U * m.abs()) * enlarge + floor;
                     Interval::centered(m, r)
                 };
                 out[i * n + j] = ComplexInterval {
