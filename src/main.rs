@@ -38,6 +38,9 @@ enum Command {
     /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
     /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
     Distance(cli::distance::DistanceArgs),
+    /// Re-checks a saved `curve` result: re-solves its poses with another seed,
+    /// certifies them, and compares the file's distances (exit 3 if one is contradicted).
+    Certify(cli::certify::CertifyArgs),
     /// Drawing (SVG) of a 3-RPR at one pose with each metric's closest singular configuration.
     ///
     /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
@@ -120,6 +123,7 @@ fn main() {
     let result = match cli.command {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
+        Command::Certify(args) => cli::certify::run(args),
         Command::Draw(args) => cli::draw::run(args),
         Command::Indices(args) => cli::indices::run(args),
         Command::Compare(args) => cli::indices::run_compare(args),

@@ -128,3 +128,65 @@ fn interval_metric_encloses_the_metric() {
         );
     }
 }
+
+#[test]
+fn interval_values_enclose_sampled_values_and_agree_with_the_jacobian_tape() {
+    use singdist::system::Evaluator;
+    use singdist::system::interval::ComplexInterval;
+    for id in ProblemId::all() {
+        let Ok(problem) = LagrangeProblem::new(id) else {
+            continue;
+        };
+        let start = default_start_solutions(id).expect("start file");
+        let parameters: Vec<C64> = problem
+            .parameter_names()
+            .iter()
+            .map(|name| start.parameters[name])
+            .collect();
+        let system = problem.evaluator();
+        let (n, m) = (system.num_variables(), system.num_equations());
+        let center = &start.solutions[0];
+        let radius = 1e-3;
+        let x: Vec<ComplexInterval> = center
+            .iter()
+            .map(|&c| ComplexInterval::centered(c, radius))
+            .collect();
+        let p: Vec<ComplexInterval> = parameters
+            .iter()
+            .map(|&v| ComplexInterval::point(v))
+            .collect();
+        let mut values = vec![ComplexInterval::default(); m];
+        system.evaluate_interval(&x, &p, &mut values);
+        let mut both = vec![ComplexInterval::default(); m];
+        let mut jac = vec![ComplexInterval::default(); m * n];
+        system.evaluate_interval_with_jacobian(&x, &p, &mut both, &mut jac);
+        let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+        let mut f = vec![C64::new(0.0, 0.0); m];
+        for sample in 0..8 {
+            // Corners and inner points of the box.
+            let t = [-1.0, 1.0, 0.5, -0.25, 0.9, -0.9, 0.0, 0.3][sample];
+            let point: Vec<C64> = center
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| {
+                    c + C64::new(t, if i % 2 == 0 { -t } else { t * 0.5 }) * radius * 0.999
+                })
+                .collect();
+            system.evaluate(&point, &parameters, &mut work, &mut f);
+            for i in 0..m {
+                for (b, what) in [(&values[i], "values"), (&both[i], "values+jacobian")] {
+                    let tol = 1e-9 * (1.0 + f[i].norm());
+                    assert!(
+                        b.re.lo - tol <= f[i].re
+                            && f[i].re <= b.re.hi + tol
+                            && b.im.lo - tol <= f[i].im
+                            && f[i].im <= b.im.hi + tol,
+                        "{}: {what} F_{i} = {} not in {b:?}",
+                        id.name(),
+                        f[i]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -23,6 +23,7 @@
 //! two different solutions; a pair of overlapping boxes is reported, since both may hold
 //! the same solution.
 
+use super::midrad::MidpointRadius;
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
 use crate::system::Evaluator;
@@ -91,6 +92,48 @@ pub struct Krawczyk<'a> {
     n: usize,
     work: Vec<C64>,
     lu: LuWorkspace,
+    buffers: Buffers,
+}
+
+/// Scratch space of one test, sized once for the system (no allocation per point).
+struct Buffers {
+    f: Vec<C64>,
+    jac: Vec<C64>,
+    column: Vec<C64>,
+    /// `Y = J(c)⁻¹` (row-major).
+    inverse: Vec<C64>,
+    f_box: Vec<ComplexInterval>,
+    jac_box: Vec<ComplexInterval>,
+    /// `M = I − Y·J(c + E)`.
+    m: Vec<ComplexInterval>,
+    step: Vec<ComplexInterval>,
+    offsets: Vec<ComplexInterval>,
+    trial: Vec<ComplexInterval>,
+    bounds: Vec<ComplexInterval>,
+    image: Vec<ComplexInterval>,
+    product: MidpointRadius,
+}
+
+impl Buffers {
+    fn new(n: usize) -> Self {
+        let zero = C64::new(0.0, 0.0);
+        let boxes = |len: usize| vec![ComplexInterval::default(); len];
+        Buffers {
+            f: vec![zero; n],
+            jac: vec![zero; n * n],
+            column: vec![zero; n],
+            inverse: vec![zero; n * n],
+            f_box: boxes(n),
+            jac_box: boxes(n * n),
+            m: boxes(n * n),
+            step: boxes(n),
+            offsets: boxes(n),
+            trial: boxes(n),
+            bounds: boxes(n),
+            image: boxes(n),
+            product: MidpointRadius::new(n),
+        }
+    }
 }
 
 impl<'a> Krawczyk<'a> {
@@ -126,6 +169,7 @@ impl<'a> Krawczyk<'a> {
             n,
             work: system.new_workspace(),
             lu: LuWorkspace::new(n),
+            buffers: Buffers::new(n),
         })
     }
 
@@ -141,22 +185,11 @@ impl<'a> Krawczyk<'a> {
         self
     }
 
-    /// Partner of unknown `i` under σ (itself for a non-isotropic unknown).
-    fn partner(&self, i: usize) -> usize {
-        for &p in &self.pairs {
-            if i == p {
-                return p + 1;
-            }
-            if i == p + 1 {
-                return p;
-            }
-        }
-        i
-    }
-
     /// `σ(x)`: conjugated, isotropic pairs swapped.
     fn involution(&self, x: &[C64]) -> Vec<C64> {
-        (0..self.n).map(|i| x[self.partner(i)].conj()).collect()
+        (0..self.n)
+            .map(|i| x[partner(&self.pairs, i)].conj())
+            .collect()
     }
 
     /// Whether the system at these parameters has real coefficients (realness can
@@ -196,25 +229,18 @@ impl<'a> Krawczyk<'a> {
     /// Newton's method from `x` (residual in double-double); `None` if the Jacobian is
     /// singular.
     fn polish(&mut self, x: &[C64]) -> Option<Vec<C64>> {
-        let n = self.n;
         let mut x = x.to_vec();
-        let mut f = vec![C64::new(0.0, 0.0); n];
-        let mut jac = vec![C64::new(0.0, 0.0); n * n];
+        let Buffers { f, jac, .. } = &mut self.buffers;
         for _ in 0..POLISH_STEPS {
-            self.system.evaluate_with_jacobian(
-                &x,
-                &self.parameters,
-                &mut self.work,
-                &mut f,
-                &mut jac,
-            );
             self.system
-                .evaluate_extended(&x, &self.parameters, &mut self.work, &mut f);
-            if !self.lu.factor(&jac) {
+                .evaluate_with_jacobian(&x, &self.parameters, &mut self.work, f, jac);
+            self.system
+                .evaluate_extended(&x, &self.parameters, &mut self.work, f);
+            if !self.lu.factor(jac) {
                 return None;
             }
-            self.lu.solve_in_place(&mut f);
-            for (xi, dxi) in x.iter_mut().zip(&f) {
+            self.lu.solve_in_place(f);
+            for (xi, dxi) in x.iter_mut().zip(f.iter()) {
                 *xi -= dxi;
             }
         }
@@ -225,102 +251,92 @@ impl<'a> Krawczyk<'a> {
     /// (a real centre of a real system) a success proves the solution real.
     fn certify_at(&mut self, center: &[C64], symmetric: bool) -> Option<RootBox> {
         let n = self.n;
-        let mut f = vec![C64::new(0.0, 0.0); n];
-        let mut jac = vec![C64::new(0.0, 0.0); n * n];
+        let b = &mut self.buffers;
         self.system.evaluate_with_jacobian(
             center,
             &self.parameters,
             &mut self.work,
-            &mut f,
-            &mut jac,
+            &mut b.f,
+            &mut b.jac,
         );
-        if !self.lu.factor(&jac) {
+        if !self.lu.factor(&b.jac) {
             return None;
         }
         // Y = J(c)⁻¹, column by column (row-major storage).
-        let mut inverse = vec![C64::new(0.0, 0.0); n * n];
-        let mut column = vec![C64::new(0.0, 0.0); n];
         for j in 0..n {
-            column.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-            column[j] = C64::new(1.0, 0.0);
-            self.lu.solve_in_place(&mut column);
+            b.column.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+            b.column[j] = C64::new(1.0, 0.0);
+            self.lu.solve_in_place(&mut b.column);
             for i in 0..n {
-                inverse[i * n + j] = column[i];
+                b.inverse[i * n + j] = b.column[i];
             }
         }
-        let inverse: Vec<ComplexInterval> =
-            inverse.into_iter().map(ComplexInterval::point).collect();
-        let center_box: Vec<ComplexInterval> =
-            center.iter().map(|&v| ComplexInterval::point(v)).collect();
         // Y·F(c), with F(c) enclosed by evaluating on the point box.
-        let mut f_box = vec![ComplexInterval::default(); n];
-        let mut jac_box = vec![ComplexInterval::default(); n * n];
-        self.system.evaluate_interval_with_jacobian(
-            &center_box,
-            &self.parameter_boxes,
-            &mut f_box,
-            &mut jac_box,
-        );
+        for (x, &c) in b.bounds.iter_mut().zip(center) {
+            *x = ComplexInterval::point(c);
+        }
+        self.system
+            .evaluate_interval(&b.bounds, &self.parameter_boxes, &mut b.f_box);
         // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
         // ("Verification methods", §13.1) grows a box E around it until
         // z + (I − Y·J(c + E))·E lies inside E.
-        let step: Vec<ComplexInterval> = multiply(&inverse, &f_box, n)
-            .into_iter()
-            .map(|v| -v)
-            .collect();
-        if step.iter().any(|v| !v.is_bounded()) {
+        for (i, z) in b.step.iter_mut().enumerate() {
+            let row = &b.inverse[i * n..(i + 1) * n];
+            *z = -row
+                .iter()
+                .zip(&b.f_box)
+                .fold(ComplexInterval::default(), |sum, (&y, f)| {
+                    sum + ComplexInterval::point(y) * *f
+                });
+        }
+        if b.step.iter().any(|v| !v.is_bounded()) {
             return None;
         }
-        let mut offsets = step.clone();
-        let mut m = vec![ComplexInterval::default(); n * n];
+        b.offsets.copy_from_slice(&b.step);
         for _ in 0..INFLATION_STEPS {
-            let mut trial: Vec<ComplexInterval> = offsets
-                .iter()
-                .zip(center)
-                .map(|(e, c)| inflate(e, c.norm()))
-                .collect();
-            if symmetric {
-                self.close_under_involution(&mut trial);
+            for ((t, e), c) in b.trial.iter_mut().zip(&b.offsets).zip(center) {
+                *t = inflate(e, c.norm());
             }
-            let bounds: Vec<ComplexInterval> = center
-                .iter()
-                .zip(&trial)
-                .map(|(&c, e)| ComplexInterval::point(c) + *e)
-                .collect();
+            if symmetric {
+                close_under_involution(&self.pairs, &mut b.trial);
+            }
+            for ((x, &c), e) in b.bounds.iter_mut().zip(center).zip(&b.trial) {
+                *x = ComplexInterval::point(c) + *e;
+            }
             self.system.evaluate_interval_with_jacobian(
-                &bounds,
+                &b.bounds,
                 &self.parameter_boxes,
-                &mut f_box,
-                &mut jac_box,
+                &mut b.f_box,
+                &mut b.jac_box,
             );
             // M = I − Y·J(c + E).
-            for i in 0..n {
-                for j in 0..n {
-                    let mut sum = ComplexInterval::default();
-                    for l in 0..n {
-                        sum = sum + inverse[i * n + l] * jac_box[l * n + j];
-                    }
-                    let identity = if i == j { 1.0 } else { 0.0 };
-                    m[i * n + j] = ComplexInterval::point(C64::new(identity, 0.0)) - sum;
-                }
-            }
-            let image: Vec<ComplexInterval> = multiply(&m, &trial, n)
-                .into_iter()
-                .zip(&step)
-                .map(|(spread, z)| *z + spread)
-                .collect();
-            if image.iter().any(|v| !v.is_bounded()) {
+            if !b.product.identity_minus(&b.inverse, &b.jac_box, &mut b.m) {
                 return None;
             }
-            if image.iter().zip(&trial).all(|(k, e)| k.strictly_inside(e)) {
+            for (i, k) in b.image.iter_mut().enumerate() {
+                let row = &b.m[i * n..(i + 1) * n];
+                let spread = row
+                    .iter()
+                    .zip(&b.trial)
+                    .fold(ComplexInterval::default(), |sum, (a, e)| sum + *a * *e);
+                *k = b.step[i] + spread;
+            }
+            if b.image.iter().any(|v| !v.is_bounded()) {
+                return None;
+            }
+            if b.image
+                .iter()
+                .zip(&b.trial)
+                .all(|(k, e)| k.strictly_inside(e))
+            {
                 let enclosure: Vec<ComplexInterval> = center
                     .iter()
-                    .zip(&image)
+                    .zip(&b.image)
                     .map(|(&c, k)| ComplexInterval::point(c) + *k)
                     .collect();
                 let realness = if symmetric {
                     Realness::Real
-                } else if self.real_system && self.misses_real_points(&enclosure) {
+                } else if self.real_system && misses_real_points(&self.pairs, &enclosure) {
                     Realness::NonReal
                 } else {
                     Realness::Undecided
@@ -330,52 +346,64 @@ impl<'a> Krawczyk<'a> {
                     .fold(0.0f64, |r, b| r.max(b.re.width()).max(b.im.width()))
                     * 0.5;
                 return Some(RootBox {
-                    bounds,
+                    bounds: b.bounds.clone(),
                     enclosure,
                     center: center.to_vec(),
                     radius,
                     realness,
                 });
             }
-            offsets = image;
+            b.offsets.copy_from_slice(&b.image);
         }
         None
     }
 }
 
-impl Krawczyk<'_> {
-    /// Enlarges offsets `e` around a σ-fixed centre so that the box is closed under σ:
-    /// `E_u ← E_u ∪ conj(E_v)`, `E_v ← conj(E_u)` per isotropic pair, and a symmetric
-    /// imaginary part for the other unknowns.
-    fn close_under_involution(&self, e: &mut [ComplexInterval]) {
-        for i in 0..self.n {
-            let j = self.partner(i);
-            if j == i {
-                let m = e[i].im.magnitude();
-                e[i].im = Interval { lo: -m, hi: m };
-            } else if i < j {
-                let mirrored = conjugate(&e[j]);
-                let hull = ComplexInterval {
-                    re: hull(e[i].re, mirrored.re),
-                    im: hull(e[i].im, mirrored.im),
-                };
-                e[i] = hull;
-                e[j] = conjugate(&hull);
-            }
+/// Partner of unknown `i` under σ (itself for a non-isotropic unknown), for the first
+/// indices `pairs` of the isotropic pairs.
+fn partner(pairs: &[usize], i: usize) -> usize {
+    for &p in pairs {
+        if i == p {
+            return p + 1;
+        }
+        if i == p + 1 {
+            return p;
         }
     }
+    i
+}
 
-    /// Whether the box contains no fixed point of σ (no real solution can lie in it).
-    fn misses_real_points(&self, b: &[ComplexInterval]) -> bool {
-        (0..self.n).any(|i| {
-            let j = self.partner(i);
-            if j == i {
-                !b[i].im.contains_zero()
-            } else {
-                !b[i].meets(&conjugate(&b[j]))
-            }
-        })
+/// Enlarges offsets `e` around a σ-fixed centre so that the box is closed under σ:
+/// `E_u ← E_u ∪ conj(E_v)`, `E_v ← conj(E_u)` per isotropic pair, and a symmetric
+/// imaginary part for the other unknowns.
+fn close_under_involution(pairs: &[usize], e: &mut [ComplexInterval]) {
+    for i in 0..e.len() {
+        let j = partner(pairs, i);
+        if j == i {
+            let m = e[i].im.magnitude();
+            e[i].im = Interval { lo: -m, hi: m };
+        } else if i < j {
+            let mirrored = conjugate(&e[j]);
+            let hull = ComplexInterval {
+                re: hull(e[i].re, mirrored.re),
+                im: hull(e[i].im, mirrored.im),
+            };
+            e[i] = hull;
+            e[j] = conjugate(&hull);
+        }
     }
+}
+
+/// Whether the box contains no fixed point of σ (no real solution can lie in it).
+fn misses_real_points(pairs: &[usize], b: &[ComplexInterval]) -> bool {
+    (0..b.len()).any(|i| {
+        let j = partner(pairs, i);
+        if j == i {
+            !b[i].im.contains_zero()
+        } else {
+            !b[i].meets(&conjugate(&b[j]))
+        }
+    })
 }
 
 fn conjugate(z: &ComplexInterval) -> ComplexInterval {
@@ -408,17 +436,6 @@ fn inflate(e: &ComplexInterval, scale: f64) -> ComplexInterval {
         re: grow(e.re),
         im: grow(e.im),
     }
-}
-
-/// `A·v` for a row-major n × n interval matrix.
-fn multiply(a: &[ComplexInterval], v: &[ComplexInterval], n: usize) -> Vec<ComplexInterval> {
-    (0..n)
-        .map(|i| {
-            (0..n).fold(ComplexInterval::default(), |sum, j| {
-                sum + a[i * n + j] * v[j]
-            })
-        })
-        .collect()
 }
 
 /// The certificates of a list of approximate solutions.

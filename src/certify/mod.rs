@@ -13,3 +13,4 @@
 
 pub mod distance;
 pub mod krawczyk;
+pub mod midrad;

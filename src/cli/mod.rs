@@ -4,6 +4,7 @@
 //! become a one-line message on stderr naming the file and field at fault.
 
 pub mod ab_initio;
+pub mod certify;
 pub mod curve;
 pub mod curve_log;
 pub mod distance;

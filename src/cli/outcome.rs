@@ -3,7 +3,8 @@
 //! Exit codes: 0 = complete; 1 = error (bad input, unwritable output, …; nothing
 //! computed is claimed); 2 = invalid command line (from the argument parser);
 //! 3 = the run finished but some homotopy paths were lost (warning on stderr, the
-//! failures listed in the output).
+//! failures listed in the output), or `certify` found a distance of the file
+//! contradicted by a certified critical point.
 
 /// Exit code of an error.
 pub const EXIT_ERROR: i32 = 1;
@@ -18,6 +19,8 @@ pub enum Outcome {
     Complete,
     /// The results were written, but some paths were lost (already warned about).
     PathsLost,
+    /// `certify`: a distance of the re-checked file is contradicted (already listed).
+    Contradicted,
 }
 
 impl Outcome {
@@ -34,7 +37,7 @@ impl Outcome {
     pub fn exit_code(self) -> i32 {
         match self {
             Outcome::Complete => 0,
-            Outcome::PathsLost => EXIT_PATH_FAILURES,
+            Outcome::PathsLost | Outcome::Contradicted => EXIT_PATH_FAILURES,
         }
     }
 }

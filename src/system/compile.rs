@@ -820,20 +820,36 @@ impl CompiledSystem {
         assert_eq!(p.len(), m, "interval evaluation: parameter count");
         assert_eq!(f.len(), k, "interval evaluation: equation count");
         assert_eq!(jac.len(), k * n, "interval evaluation: Jacobian size");
-        let tape = &parts.values_and_jacobian;
-        let mut registers = vec![ComplexInterval::default(); tape.workspace_len()];
-        registers[..n].copy_from_slice(x);
-        registers[n..n + m].copy_from_slice(p);
-        let constants_start = tape.num_inputs;
-        for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
-            *r = ComplexInterval::point(*c);
-        }
-        tape.execute(&mut registers);
         let outputs = f.iter_mut().chain(jac.iter_mut());
-        for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
-            let value = registers[register as usize];
-            *target = if sign < 0.0 { -value } else { value };
-        }
+        run_interval(&parts.values_and_jacobian, (x, p), outputs);
+    }
+
+    /// `F` over the complex box `x` at the parameter box `p` (as
+    /// [`CompiledSystem::evaluate_interval_with_jacobian`], without the Jacobian: the
+    /// tape of [`Evaluator::evaluate`] run on intervals).
+    pub fn evaluate_interval(
+        &self,
+        x: &[ComplexInterval],
+        p: &[ComplexInterval],
+        f: &mut [ComplexInterval],
+    ) {
+        let parts = &self.parts;
+        assert_eq!(
+            x.len(),
+            parts.variables.len(),
+            "interval evaluation: variable count"
+        );
+        assert_eq!(
+            p.len(),
+            parts.parameters.len(),
+            "interval evaluation: parameter count"
+        );
+        assert_eq!(
+            f.len(),
+            parts.num_equations,
+            "interval evaluation: equation count"
+        );
+        run_interval(&parts.values, (x, p), f.iter_mut());
     }
 
     #[inline]
@@ -846,6 +862,43 @@ impl CompiledSystem {
         work[..n].copy_from_slice(x);
         work[n..n + m].copy_from_slice(p);
     }
+}
+
+/// Runs `tape` in interval arithmetic on the variables `x` and parameters `p` and
+/// writes its outputs, in order, to `outputs`.
+fn run_interval<'a>(
+    tape: &Tape,
+    (x, p): (&[ComplexInterval], &[ComplexInterval]),
+    outputs: impl Iterator<Item = &'a mut ComplexInterval>,
+) {
+    let (n, m) = (x.len(), p.len());
+    // The registers are reused per thread (no allocation per evaluation); every one
+    // read is written first: inputs (those of other tapes zeroed) and constants here,
+    // temporaries by the tape.
+    thread_local! {
+        static REGISTERS: std::cell::RefCell<Vec<ComplexInterval>> =
+            const { std::cell::RefCell::new(Vec::new()) };
+    }
+    REGISTERS.with(|cell| {
+        let mut registers = cell.borrow_mut();
+        let len = tape.workspace_len();
+        if registers.len() < len {
+            registers.resize(len, ComplexInterval::default());
+        }
+        let registers = &mut registers[..len];
+        registers[..n].copy_from_slice(x);
+        registers[n..n + m].copy_from_slice(p);
+        let constants_start = tape.num_inputs;
+        registers[n + m..constants_start].fill(ComplexInterval::default());
+        for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
+            *r = ComplexInterval::point(*c);
+        }
+        tape.execute(registers);
+        for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
+            let value = registers[register as usize];
+            *target = if sign < 0.0 { -value } else { value };
+        }
+    });
 }
 
 impl Evaluator for CompiledSystem {

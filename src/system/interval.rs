@@ -33,6 +33,7 @@ impl Interval {
     };
 
     /// `[lo, hi]` from already-rounded ends (a NaN end gives [`Interval::ENTIRE`]).
+    #[inline]
     fn from_rounded(lo: f64, hi: f64) -> Interval {
         if lo.is_nan() || hi.is_nan() {
             Interval::ENTIRE
@@ -45,6 +46,7 @@ impl Interval {
     }
 
     /// The degenerate interval `[v, v]` (exact: no rounding happened).
+    #[inline]
     pub fn point(v: f64) -> Interval {
         if v.is_nan() {
             Interval::ENTIRE
@@ -116,6 +118,7 @@ impl Interval {
 
 impl Add for Interval {
     type Output = Interval;
+    #[inline]
     fn add(self, o: Interval) -> Interval {
         Interval::from_rounded(self.lo + o.lo, self.hi + o.hi)
     }
@@ -123,6 +126,7 @@ impl Add for Interval {
 
 impl Sub for Interval {
     type Output = Interval;
+    #[inline]
     fn sub(self, o: Interval) -> Interval {
         Interval::from_rounded(self.lo - o.hi, self.hi - o.lo)
     }
@@ -130,6 +134,7 @@ impl Sub for Interval {
 
 impl Mul for Interval {
     type Output = Interval;
+    #[inline]
     fn mul(self, o: Interval) -> Interval {
         let products = [
             self.lo * o.lo,
@@ -153,6 +158,7 @@ impl Mul for Interval {
 
 impl Neg for Interval {
     type Output = Interval;
+    #[inline]
     fn neg(self) -> Interval {
         Interval {
             lo: -self.hi,
@@ -178,6 +184,7 @@ impl Default for ComplexInterval {
 
 impl ComplexInterval {
     /// The degenerate rectangle `{z}`.
+    #[inline]
     pub fn point(z: C64) -> ComplexInterval {
         ComplexInterval {
             re: Interval::point(z.re),
@@ -233,6 +240,7 @@ impl ComplexInterval {
 
 impl Add for ComplexInterval {
     type Output = ComplexInterval;
+    #[inline]
     fn add(self, o: ComplexInterval) -> ComplexInterval {
         ComplexInterval {
             re: self.re + o.re,
@@ -243,6 +251,7 @@ impl Add for ComplexInterval {
 
 impl Sub for ComplexInterval {
     type Output = ComplexInterval;
+    #[inline]
     fn sub(self, o: ComplexInterval) -> ComplexInterval {
         ComplexInterval {
             re: self.re - o.re,
@@ -253,6 +262,7 @@ impl Sub for ComplexInterval {
 
 impl Mul for ComplexInterval {
     type Output = ComplexInterval;
+    #[inline]
     fn mul(self, o: ComplexInterval) -> ComplexInterval {
         ComplexInterval {
             re: self.re * o.re - self.im * o.im,
@@ -263,6 +273,7 @@ impl Mul for ComplexInterval {
 
 impl Neg for ComplexInterval {
     type Output = ComplexInterval;
+    #[inline]
     fn neg(self) -> ComplexInterval {
         ComplexInterval {
             re: -self.re,

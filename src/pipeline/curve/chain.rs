@@ -17,6 +17,19 @@ pub fn solve_pose(
     sample: SampledPose,
     options: &CurveOptions,
 ) -> PoseResult {
+    let (entries, k) = track_pose(stage, design, motion, (index, sample), options);
+    assemble_pose(stage, metrics, index, sample, &k, entries, options)
+}
+
+/// Stages 2–3 of [`solve_pose`]: every sub-problem's entry at the pose, and the
+/// pose's configuration.
+pub(super) fn track_pose(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    (index, sample): (usize, SampledPose),
+    options: &CurveOptions,
+) -> (Vec<PoseEntry>, [f64; 12]) {
     let entries = (0..stage.problems.len())
         .into_par_iter()
         .map(|problem_index| {
@@ -24,8 +37,7 @@ pub fn solve_pose(
             track_problem(stage, motion, at, problem_index, Route::Seed, options).entry
         })
         .collect();
-    let k = design.configuration(sample.pose).to_array();
-    assemble_pose(stage, metrics, index, sample, &k, entries, options)
+    (entries, design.configuration(sample.pose).to_array())
 }
 
 /// Poses a block of [`solve_chain`] runs through per sub-problem before they are

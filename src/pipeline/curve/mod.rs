@@ -70,7 +70,7 @@ type PoseEntry = (
     usize,
     Option<PathFailure>,
     usize,
-    Option<SubproblemCertificate>,
+    Option<PendingCertificate>,
 );
 use super::start_file::StartSolutions;
 use crate::C64;
@@ -90,6 +90,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
+mod certificates;
 mod chain;
 mod jump;
 mod options;
@@ -97,6 +98,7 @@ mod retry;
 mod seed;
 mod self_check;
 mod window;
+use certificates::*;
 pub use chain::solve_pose;
 use chain::*;
 use jump::*;
@@ -677,30 +679,12 @@ fn problem_at_pose(
     );
     let certificate = options
         .certify
-        .then(|| certify_endpoints(stage, seeded, &endpoints, k));
+        .then(|| PendingCertificate::new(endpoints.clone(), *k));
     let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
     ProblemAtPose {
         entry: (list, best, failure, tracked, certificate),
         complete,
     }
-}
-
-/// The certificate of a sub-problem's finite endpoints (normalised frame, tracking
-/// coordinates) at configuration `k` of its design, against the generic count.
-fn certify_endpoints(
-    stage: &SeedStage,
-    seeded: &SeededProblem,
-    endpoints: &[Vec<C64>],
-    k: &[f64; 12],
-) -> SubproblemCertificate {
-    certification::certify_subproblem(
-        &seeded.problem,
-        seeded.id.metric,
-        (&seeded.design, k),
-        stage.normalization.frame(),
-        endpoints,
-        seeded.generic_count,
-    )
 }
 
 fn assemble_pose(
@@ -722,7 +706,10 @@ fn assemble_pose(
     {
         failures.extend(failure);
         paths_tracked += tracked;
-        if let Some(certificate) = certificate {
+        if let Some(certificate) = certificate
+            && options.certify
+        {
+            let certificate = certificate.get(stage, seeded);
             let key = (
                 seeded.id.metric.name(),
                 seeded.id.subproblem.name().to_string(),
@@ -776,28 +763,6 @@ fn assemble_pose(
         failures,
         paths_tracked,
     }
-}
-
-/// Moves the sub-problems' certificates of metric `name` into `result` and combines
-/// them into the metric's ([`certification::combine`]).
-fn attach_certificates(
-    name: &str,
-    result: &mut MetricDistance,
-    certificates: &mut BTreeMap<(String, String), SubproblemCertificate>,
-) {
-    for (subproblem, distance) in result.subproblems.iter_mut() {
-        distance.certificate = certificates.remove(&(name.to_string(), subproblem.clone()));
-    }
-    let parts: Vec<(String, Option<&SubproblemCertificate>)> = result
-        .subproblems
-        .iter()
-        .map(|(sub, d)| (sub.clone(), d.certificate.as_ref()))
-        .collect();
-    result.certificate = Some(certification::combine(
-        &parts,
-        result.distance,
-        &result.subproblem,
-    ));
 }
 
 /// Samples the motion: `n` poses evenly spaced in τ (explicit pose lists as given).
