@@ -33,7 +33,7 @@ fn table_json_csv_and_plot_are_written() {
         String::from_utf8_lossy(&out.stderr)
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("seed 003 claim"), "{stdout}");
+    assert!(stdout.contains("Ramana Babu et al.'s claim"), "{stdout}");
     let rows: Vec<serde_json::Value> =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(rows.len(), 16, "8 schemes x 2 orientations");

@@ -1,4 +1,4 @@
-//! GCI of the 3-RRR actuation schemes (SPEC D.5, seed 003 Eq. 20): range, agreement with an
+//! GCI of the 3-RRR actuation schemes (Ramana Babu et al., Eq. 20): range, agreement with an
 //! independent brute-force recomputation (finite-difference Jacobians of the IK, eigenvalues
 //! of JᵀJ), symmetry of the symmetric design, determinism, loci, and the GA design optimisation.
 

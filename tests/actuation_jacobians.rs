@@ -1,4 +1,4 @@
-//! Actuation schemes (SPEC D.5, seed 003): J_x and J_q against finite differences of the
+//! Actuation schemes (Ramana Babu, Ramachandra Raju, Ramji): J_x and J_q against finite differences of the
 //! inverse kinematics for all eight schemes and both ψ models, scheme names, and singularity
 //! classification on constructed singular configurations.
 

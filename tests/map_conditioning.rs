@@ -1,4 +1,4 @@
-//! SPEC D.4 conditioning maps: brute-force agreement and seed 001's claims on a moderate grid.
+//! Conditioning maps: brute-force agreement and Fontes et al.'s claims on a moderate grid.
 
 use singdist::index::map::{MapOptions, ModeSelection, conditioning_map};
 use singdist::index::prrr::{LciVariant, lci};

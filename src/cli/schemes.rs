@@ -309,7 +309,7 @@ fn print_table(rows: &[Row], optimized: bool, optimize_domain: GciDomain) {
 /// workspace, so their GCIs differ only by the grid discretisation).
 const TIE_TOLERANCE: f64 = 0.005;
 
-/// Seed 003's qualitative claim: the best scheme depends on the orientation. At each
+/// Ramana Babu et al.'s qualitative claim: the best scheme depends on the orientation. At each
 /// orientation the "best set" is every scheme within [`TIE_TOLERANCE`] of the maximum of
 /// `value`; the claim holds when the best sets of two orientations are disjoint.
 fn print_orientation_verdict(
