@@ -2,6 +2,9 @@
 //! of poses, `--resume` after a kill equal byte for byte to an uninterrupted run, and
 //! resumes with other arguments refused.
 
+mod process_support;
+use process_support::peak_rss_kb;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -31,31 +34,6 @@ fn curve(extra: &[&str]) -> Command {
     command.args(extra);
     command.stdout(Stdio::null()).stderr(Stdio::piped());
     command
-}
-
-/// Peak resident memory (kB) of a child that ran `command` to its end: `VmHWM` read
-/// from /proc while it runs (the last value seen before it exits).
-fn peak_rss_kb(mut command: Command) -> u64 {
-    let mut child = command.spawn().expect("spawn singdist");
-    let status_path = format!("/proc/{}/status", child.id());
-    let mut peak = 0;
-    loop {
-        if let Ok(text) = std::fs::read_to_string(&status_path)
-            && let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:"))
-        {
-            let kb: u64 = line
-                .split_whitespace()
-                .nth(1)
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(0);
-            peak = peak.max(kb);
-        }
-        if let Some(status) = child.try_wait().expect("wait") {
-            assert!(status.success(), "curve failed: {status}");
-            return peak;
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
 }
 
 /// With windows of 500 poses, 10 × the poses need (almost) no more memory. Before

@@ -2,9 +2,11 @@
 //! the number of poses, the CSV unchanged (a stored table and the `curve` command's
 //! distances across a window boundary), JSON Lines and the JSON document agreeing.
 
+mod process_support;
+use process_support::peak_rss_kb;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::Duration;
 
 fn binary() -> &'static str {
     env!("CARGO_BIN_EXE_singdist")
@@ -37,31 +39,6 @@ fn run(args: &[&str]) {
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-/// Peak resident memory (kB) of a child that ran `command` to its end: `VmHWM` read
-/// from /proc while it runs (the last value seen before it exits).
-fn peak_rss_kb(mut command: Command) -> u64 {
-    let mut child = command.spawn().expect("spawn singdist");
-    let status_path = format!("/proc/{}/status", child.id());
-    let mut peak = 0;
-    loop {
-        if let Ok(text) = std::fs::read_to_string(&status_path)
-            && let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:"))
-        {
-            let kb: u64 = line
-                .split_whitespace()
-                .nth(1)
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(0);
-            peak = peak.max(kb);
-        }
-        if let Some(status) = child.try_wait().expect("wait") {
-            assert!(status.success(), "indices failed: {status}");
-            return peak;
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    }
 }
 
 /// 10 × the poses need (almost) no more memory. Before streaming, every row stayed in

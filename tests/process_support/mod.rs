@@ -1,0 +1,30 @@
+//! Measuring child processes in the CLI tests.
+
+use std::process::Command;
+use std::time::Duration;
+
+/// Peak resident memory (kB) of a child that ran `command` to its end: `VmHWM` read
+/// from /proc while it runs (the last value seen before it exits). Panics if the child
+/// fails.
+pub fn peak_rss_kb(mut command: Command) -> u64 {
+    let mut child = command.spawn().expect("spawn singdist");
+    let status_path = format!("/proc/{}/status", child.id());
+    let mut peak = 0;
+    loop {
+        if let Ok(text) = std::fs::read_to_string(&status_path)
+            && let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:"))
+        {
+            let kb: u64 = line
+                .split_whitespace()
+                .nth(1)
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(0);
+            peak = peak.max(kb);
+        }
+        if let Some(status) = child.try_wait().expect("wait") {
+            assert!(status.success(), "{command:?} failed: {status}");
+            return peak;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
