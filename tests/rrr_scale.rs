@@ -6,6 +6,9 @@ use singdist::mechanism::rrr::*;
 use singdist::pipeline::rrr_curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 
+mod rrr_support;
+use rrr_support::trajectories;
+
 fn scaled_coordinate(c: &MotionCoordinate, factor: f64) -> MotionCoordinate {
     let mut out = c.clone();
     out.polynomial.iter_mut().for_each(|v| *v *= factor);
@@ -32,49 +35,6 @@ fn scaled(trajectory: &RrrTrajectory, factor: f64) -> RrrTrajectory {
         phi: m.phi.clone(),
     });
     RrrTrajectory::new(design, trajectory.initial_modes(), motion).expect("scaled trajectory")
-}
-
-/// Three design classes: the built-in example (equal links, a leg folding through its
-/// base joint), an asymmetric design with unequal links, and a symmetric design with
-/// unequal links and an oscillating orientation.
-fn trajectories() -> Vec<RrrTrajectory> {
-    let asymmetric = RrrDesign::new(
-        [
-            Point::new(0.0, 0.0),
-            Point::new(2.0, 0.2),
-            Point::new(0.8, 1.9),
-        ],
-        [1.0, 0.9, 1.1],
-        [0.9, 1.2, 1.0],
-        [
-            Point::new(-0.2, -0.15),
-            Point::new(0.3, -0.1),
-            Point::new(0.05, 0.3),
-        ],
-    )
-    .expect("design");
-    let symmetric = RrrDesign::symmetric(1.0, 0.3, 0.6, 0.7).expect("design");
-    let mut oscillating = circular_translation(Point::new(0.05, 0.0), 0.1, 0.0, [0.0, 6.0]);
-    if let Motion::Analytic(m) = &mut oscillating {
-        m.phi = MotionCoordinate {
-            polynomial: vec![0.1],
-            cosines: vec![[0.3, 1.0, 0.0].into()],
-        };
-    }
-    vec![
-        example_trajectory(),
-        RrrTrajectory::new(
-            asymmetric,
-            [
-                ElbowMode::Positive,
-                ElbowMode::Negative,
-                ElbowMode::Positive,
-            ],
-            circular_translation(Point::new(1.0, 0.7), 0.1, 0.2, [0.0, 6.0]),
-        )
-        .expect("trajectory"),
-        RrrTrajectory::new(symmetric, POSITIVE_MODES, oscillating).expect("trajectory"),
-    ]
 }
 
 fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {

@@ -279,6 +279,26 @@ pub(crate) fn signed(result: &RrrSubproblemResult) -> Option<f64> {
     result.distance.map(|d| sign * d)
 }
 
+/// Pose `index` at `tau`: `[x, y, φ]` and the configuration (errors name the pose).
+pub(crate) fn configuration_at(
+    trajectory: &RrrTrajectory,
+    index: usize,
+    tau: f64,
+) -> Result<([f64; 3], RrrConfiguration), RrrCurveError> {
+    let pose_error = |message: String| RrrCurveError::Pose {
+        index,
+        tau,
+        message,
+    };
+    let pose = trajectory
+        .pose(tau)
+        .ok_or_else(|| pose_error("no pose at this parameter".to_string()))?;
+    trajectory
+        .configuration(tau)
+        .map(|c| ([pose.x, pose.y, pose.phi], c))
+        .map_err(|e| pose_error(e.to_string()))
+}
+
 /// The configurations at the given τ (errors name the first pose outside the workspace).
 pub fn configurations_at(
     trajectory: &RrrTrajectory,
@@ -289,20 +309,7 @@ pub fn configurations_at(
     }
     taus.iter()
         .enumerate()
-        .map(|(index, &tau)| {
-            let pose_error = |message: String| RrrCurveError::Pose {
-                index,
-                tau,
-                message,
-            };
-            let pose = trajectory
-                .pose(tau)
-                .ok_or_else(|| pose_error("no pose at this parameter".to_string()))?;
-            trajectory
-                .configuration(tau)
-                .map(|c| (tau, [pose.x, pose.y, pose.phi], c))
-                .map_err(|e| pose_error(e.to_string()))
-        })
+        .map(|(index, &tau)| configuration_at(trajectory, index, tau).map(|(p, k)| (tau, p, k)))
         .collect()
 }
 

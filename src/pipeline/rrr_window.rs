@@ -9,13 +9,11 @@
 use super::rrr_ab_initio::RrrAbInitioError;
 use super::rrr_curve::{
     Entry, RrrCurveError, RrrCurveOptions, RrrCurveResult, RrrPathFailure, RrrPoseResult,
-    parallel_singular_parameters, signed, solve_subproblem,
+    configuration_at, parallel_singular_parameters, signed, solve_subproblem,
 };
 use super::rrr_seed::{RrrSeedStage, rrr_seed_stage};
 use super::start_file::StartSolutions;
-use crate::mechanism::rrr::{
-    CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, parallel_polynomial,
-};
+use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory, parallel_polynomial};
 use crate::problem::rrr::RrrProblem;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -31,26 +29,6 @@ pub struct RrrCurveRun<'a> {
     options: &'a RrrCurveOptions,
     stage: RrrSeedStage,
     max_parallel: f64,
-}
-
-/// Pose `index` at `tau`: `[x, y, φ]` and the configuration (errors name the pose).
-fn configuration_at(
-    trajectory: &RrrTrajectory,
-    index: usize,
-    tau: f64,
-) -> Result<([f64; 3], RrrConfiguration), RrrCurveError> {
-    let pose_error = |message: String| RrrCurveError::Pose {
-        index,
-        tau,
-        message,
-    };
-    let pose = trajectory
-        .pose(tau)
-        .ok_or_else(|| pose_error("no pose at this parameter".to_string()))?;
-    trajectory
-        .configuration(tau)
-        .map(|c| ([pose.x, pose.y, pose.phi], c))
-        .map_err(|e| pose_error(e.to_string()))
 }
 
 impl<'a> RrrCurveRun<'a> {
