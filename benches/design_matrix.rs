@@ -24,7 +24,10 @@
 //!   `random-scale-1,equilateral-both-aligned,tiny-platform`);
 //! - `SINGDIST_MATRIX_COMPARE`: `all` compares the reference at every pose, not five;
 //! - `SINGDIST_MATRIX_REPORT`: defects with `|relative| ≥` this are listed (default 1e-7);
-//! - `SINGDIST_MATRIX_OUT`: file for one JSON line per compared (class, motion, pose, metric).
+//! - `SINGDIST_MATRIX_OUT`: file for one JSON line per compared (class, motion, pose, metric);
+//! - `SINGDIST_MATRIX_DUMP`: a directory that receives every class's design and motions
+//!   as singdist input files (`CLASS.design.json`, `CLASS.analytic.json`,
+//!   `CLASS.scattered.json`), to reproduce a row with the command-line tool.
 
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_design, example_motion};
 use singdist::metric::Metric;
@@ -343,6 +346,49 @@ fn example_case() -> DesignCase {
     }
 }
 
+fn points_json(points: &[singdist::algebra::Point<f64>; 3]) -> serde_json::Value {
+    serde_json::json!(points)
+}
+
+fn coordinate_json(c: &singdist::mechanism::rpr::MotionCoordinate) -> serde_json::Value {
+    serde_json::json!({
+        "polynomial": c.polynomial,
+        "cosines": c
+            .cosines
+            .iter()
+            .map(|t| [t.amplitude, t.frequency, t.phase])
+            .collect::<Vec<_>>(),
+    })
+}
+
+/// Writes the class's design and both motions as singdist input files.
+fn dump_case(dir: &std::path::Path, class: &str, case: &DesignCase) {
+    let write = |suffix: &str, value: serde_json::Value| {
+        let path = dir.join(format!("{class}.{suffix}.json"));
+        let text = serde_json::to_string_pretty(&value).expect("JSON of numbers");
+        std::fs::write(&path, text + "\n")
+            .unwrap_or_else(|e| fail(format!("SINGDIST_MATRIX_DUMP: {}: {e}", path.display())));
+    };
+    write(
+        "design",
+        serde_json::json!({"base": points_json(&case.base), "platform": points_json(&case.platform)}),
+    );
+    let m = &case.motion;
+    write(
+        "analytic",
+        serde_json::json!({
+            "tau_range": m.tau_range,
+            "x": coordinate_json(&m.x),
+            "y": coordinate_json(&m.y),
+            "phi": coordinate_json(&m.phi),
+        }),
+    );
+    write(
+        "scattered",
+        serde_json::json!({"poses": case.scattered.iter().map(|p| [p.x, p.y, p.phi]).collect::<Vec<_>>()}),
+    );
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; nothing else is accepted.
     let classes: Vec<String> = match std::env::var("SINGDIST_MATRIX_CLASSES") {
@@ -408,6 +454,9 @@ fn main() {
         } else {
             design_case(class, 1).expect("known class")
         };
+        if let Ok(dir) = std::env::var("SINGDIST_MATRIX_DUMP") {
+            dump_case(std::path::Path::new(&dir), class, &case);
+        }
         for motion_name in motions.split(',').map(str::trim) {
             let motion_name: &'static str = if motion_name == "analytic" {
                 "analytic"
