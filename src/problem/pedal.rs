@@ -56,14 +56,47 @@ const ISOTROPY_TOLERANCE: f64 = 1e-9;
 /// The closest configuration of sub-problem `id` ([`has_closed_form`]) to the real
 /// configuration `k`; `None` for any other sub-problem.
 pub fn closest_by_pedal_points(id: ProblemId, k: &[f64; 12]) -> Option<PedalSolution> {
+    let axes = scatter_axes(id, k)?;
+    Some(PedalSolution {
+        closest: on_line(id, k, axes.major)?,
+        degenerate: axes.degenerate,
+    })
+}
+
+/// Both critical points of sub-problem `id` ([`has_closed_form`]) at the real
+/// configuration `k`: the pedal points on the line through the centroid along the
+/// major axis of the scatter matrix (the minimiser, paper Thms 1–2) and along the minor
+/// axis, each with the free part's best displacement. For a generic `k` these are all
+/// the critical points of the sub-problem's Lagrangian (its generic count is 2); with
+/// an isotropic scatter ([`PedalSolution::degenerate`]) they lie on a circle of
+/// critical points. `None` for any other sub-problem.
+pub fn critical_points(id: ProblemId, k: &[f64; 12]) -> Option<[[f64; 12]; 2]> {
+    let axes = scatter_axes(id, k)?;
+    Some([on_line(id, k, axes.major)?, on_line(id, k, axes.minor)?])
+}
+
+/// Points 0..3 are the base, 3..6 the platform: the three points on the line and the
+/// three free ones.
+fn point_roles(id: ProblemId) -> ([usize; 3], [usize; 3]) {
+    match id.subproblem {
+        SubProblem::CollinearPlatform => ([3, 4, 5], [0, 1, 2]),
+        _ => ([0, 1, 2], [3, 4, 5]),
+    }
+}
+
+/// The principal axes (through the centroid) of the scatter matrix of the points that
+/// are to be collinear.
+struct ScatterAxes {
+    major: ([f64; 2], [f64; 2]),
+    minor: ([f64; 2], [f64; 2]),
+    degenerate: bool,
+}
+
+fn scatter_axes(id: ProblemId, k: &[f64; 12]) -> Option<ScatterAxes> {
     if !has_closed_form(id) {
         return None;
     }
-    // Points 0..3 are the base, 3..6 the platform.
-    let (line_points, free_points) = match id.subproblem {
-        SubProblem::CollinearPlatform => ([3, 4, 5], [0, 1, 2]),
-        _ => ([0, 1, 2], [3, 4, 5]),
-    };
+    let (line_points, _) = point_roles(id);
     let point = |i: usize| [k[2 * i], k[2 * i + 1]];
     let c = line_points.iter().fold([0.0; 2], |c, &i| {
         let p = point(i);
@@ -81,7 +114,18 @@ pub fn closest_by_pedal_points(id: ProblemId, k: &[f64; 12]) -> Option<PedalSolu
     let theta = 0.5 * (2.0 * sxy).atan2(sxx - syy);
     let w = [theta.cos(), theta.sin()];
     let gap = ((sxx - syy).powi(2) + 4.0 * sxy * sxy).sqrt();
-    let degenerate = gap <= ISOTROPY_TOLERANCE * (sxx + syy);
+    Some(ScatterAxes {
+        major: (c, w),
+        minor: (c, [-w[1], w[0]]),
+        degenerate: gap <= ISOTROPY_TOLERANCE * (sxx + syy),
+    })
+}
+
+/// The configuration whose collinear points are the pedal points of `k`'s on the line
+/// `c + t w` and whose free points minimise `D²` given those.
+fn on_line(id: ProblemId, k: &[f64; 12], (c, w): ([f64; 2], [f64; 2])) -> Option<[f64; 12]> {
+    let (line_points, free_points) = point_roles(id);
+    let point = |i: usize| [k[2 * i], k[2 * i + 1]];
     let mut closest = *k;
     for &i in &line_points {
         let p = point(i);
@@ -105,10 +149,7 @@ pub fn closest_by_pedal_points(id: ProblemId, k: &[f64; 12]) -> Option<PedalSolu
             closest[2 * i + axis] = k[2 * i + axis] + d[r];
         }
     }
-    Some(PedalSolution {
-        closest,
-        degenerate,
-    })
+    Some(closest)
 }
 
 /// The 6×6 matrix `Q` of `D²(K, K + d) = Σ_ij Q_ij (d_ix d_jx + d_iy d_jy)` over the six

@@ -9,6 +9,7 @@
 //! self-check's re-solved poses (unless they replace a result) are never certified.
 
 use super::*;
+use crate::problem::COORDINATE_NAMES;
 use std::sync::{Arc, Mutex};
 
 /// The endpoints of one (pose, sub-problem) result until certified, then the
@@ -72,4 +73,73 @@ pub(super) fn attach_certificates(
         result.distance,
         &result.subproblem,
     ));
+}
+
+/// The certificate of a sub-problem solved in closed form at the real configuration
+/// `k` (user's labels, original frame): both critical points of
+/// [`pedal::critical_points`], with the multiplier that makes them stationary
+/// ([`with_multiplier`]), put to Krawczyk's test in the normalised frame against the
+/// family's generic count. `None` where the closed form does not apply.
+pub(super) fn closed_form_certificate(
+    stage: &SeedStage,
+    id: ProblemId,
+    system: &ClosedFormSystem,
+    k: &[f64; 12],
+) -> Option<SubproblemCertificate> {
+    let k_normalized = stage.normalization.apply(&to_real(k));
+    let configurations = pedal::critical_points(id, &k_normalized.map(|v| v.re))?;
+    let parameters = normalized_parameters(
+        &system.problem,
+        &system.design,
+        &k_normalized,
+        stage.normalization,
+    );
+    let solutions: Vec<Vec<C64>> = configurations
+        .iter()
+        .filter_map(|c| with_multiplier(&system.problem, c, &parameters))
+        .collect();
+    Some(certification::certify_subproblem(
+        &system.problem,
+        id.metric,
+        (&system.design, k),
+        stage.normalization.frame(),
+        &solutions,
+        system.generic_count,
+    ))
+}
+
+/// The solution vector `(K′, λ)` of a Lagrange system with unknowns `a1x … b3y lambda`
+/// (one constraint `C`, no rigid part) at the configuration `K′`: with
+/// `F(K′, λ) = ∇D² − λ ∇C` on the coordinate rows, `∇C = F(K′, 0) − F(K′, 1)` and `λ`
+/// the least-squares solution of `∇D² = λ ∇C`. `None` for systems of another shape
+/// or where `∇C` vanishes.
+pub(super) fn with_multiplier(
+    problem: &LagrangeProblem,
+    configuration: &[f64; 12],
+    parameters: &[C64],
+) -> Option<Vec<C64>> {
+    let names = problem.variable_names();
+    if names.len() != 13 || names[..12] != COORDINATE_NAMES[..] {
+        return None;
+    }
+    let mut x: Vec<C64> = configuration.iter().map(|&v| C64::new(v, 0.0)).collect();
+    x.push(C64::new(0.0, 0.0));
+    let system = problem.evaluator();
+    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+    let mut at_zero = vec![C64::new(0.0, 0.0); 13];
+    let mut at_one = vec![C64::new(0.0, 0.0); 13];
+    system.evaluate(&x, parameters, &mut work, &mut at_zero);
+    x[12] = C64::new(1.0, 0.0);
+    system.evaluate(&x, parameters, &mut work, &mut at_one);
+    let (mut numerator, mut denominator) = (C64::new(0.0, 0.0), 0.0);
+    for i in 0..12 {
+        let gradient_c = at_zero[i] - at_one[i];
+        numerator += gradient_c.conj() * at_zero[i];
+        denominator += gradient_c.norm_sqr();
+    }
+    if !(denominator > 0.0) {
+        return None;
+    }
+    x[12] = numerator / denominator;
+    Some(x)
 }

@@ -723,18 +723,28 @@ fn assemble_pose(
             seeded.start_count,
         ));
     }
-    for &id in &stage.closed_form {
-        let closest = pedal::closest_by_pedal_points(id, k)
-            .map(|solution| solution.closest)
-            .or_else(|| equilateral::closest_on_circle(id, k));
+    for (&id, system) in stage.closed_form.iter().zip(&stage.closed_form_systems) {
+        if let Some(system) = system.as_ref().filter(|_| options.certify)
+            && let Some(certificate) = closed_form_certificate(stage, id, system, k)
+        {
+            let key = (id.metric.name(), id.subproblem.name().to_string());
+            certificates.insert(key, certificate);
+        }
+        // Pedal points: both critical points (generic count 2); the circle of an
+        // equilateral pair: its closest point.
+        let closest: Vec<[f64; 12]> = match pedal::critical_points(id, k) {
+            Some(points) => points.to_vec(),
+            None => equilateral::closest_on_circle(id, k).into_iter().collect(),
+        };
+        let count = closest.len();
         let list: Vec<Candidate> = closest
+            .into_iter()
             .map(|closest| Candidate {
                 distance: id.metric.distance(k, &closest),
                 closest,
             })
-            .into_iter()
             .collect();
-        let entry = (id.subproblem, list, 1, 1);
+        let entry = (id.subproblem, list, count, count);
         by_metric.entry(id.metric.name()).or_default().push(entry);
     }
     let mut results = BTreeMap::new();

@@ -72,6 +72,10 @@ pub struct SeedStage {
     /// ([`crate::problem::pedal`], [`crate::problem::equilateral`]: where the critical
     /// points are not isolated), in the order of [`problem_ids`].
     pub closed_form: Vec<ProblemId>,
+    /// For each of [`SeedStage::closed_form`], the sub-problem's Lagrange system when
+    /// its closed form gives every critical point ([`pedal::critical_points`]) and the
+    /// run is certified ([`CurveOptions::certify`]): what certifies them.
+    pub closed_form_systems: Vec<Option<ClosedFormSystem>>,
     /// The seed on the complexified motion.
     pub seed: SeedPoint,
     /// The normalised frame of every parameter vector of the run.
@@ -82,6 +86,17 @@ pub struct SeedStage {
     pub failures: Vec<PathFailure>,
     /// Paths tracked in this stage.
     pub paths_tracked: usize,
+}
+
+/// The Lagrange system of a sub-problem solved in closed form, to certify the closed
+/// form's critical points (Krawczyk's test) against the family's generic count.
+pub struct ClosedFormSystem {
+    /// The compiled Lagrange system (Cartesian; no rigid part, so the user's labels).
+    pub problem: LagrangeProblem,
+    /// The design (user's labels).
+    pub design: Design,
+    /// The generic number of critical points (the start file's count).
+    pub generic_count: usize,
 }
 
 /// The seed of stage 1: a point of the complexified motion and a small complex
@@ -379,10 +394,26 @@ pub fn seed_stage(
         })
         .collect();
     let (problems, failures, paths_tracked) = split_seed_results(tracked);
+    let closed_form_systems = closed_form
+        .iter()
+        .map(|&id| {
+            if !(options.certify && pedal::has_closed_form(id)) {
+                return None;
+            }
+            let problem = LagrangeProblem::new(id).ok()?;
+            let generic_count = provider(id).ok()?.solutions.len();
+            Some(ClosedFormSystem {
+                problem,
+                design: design.clone(),
+                generic_count,
+            })
+        })
+        .collect();
     Ok(SeedStage {
         problems,
         not_applicable,
         closed_form,
+        closed_form_systems,
         seed,
         normalization,
         seed_configuration: normalization.restore(&k_star),
