@@ -137,7 +137,7 @@ pub(super) fn with_multiplier(
         numerator += gradient_c.conj() * at_zero[i];
         denominator += gradient_c.norm_sqr();
     }
-    if !(denominator > 0.0) {
+    if denominator.is_nan() || denominator <= 0.0 {
         return None;
     }
     x[12] = numerator / denominator;

@@ -404,7 +404,7 @@ pub fn seed_stage(
             let generic_count = provider(id).ok()?.solutions.len();
             Some(ClosedFormSystem {
                 problem,
-                design: design.clone(),
+                design: *design,
                 generic_count,
             })
         })
