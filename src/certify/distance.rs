@@ -176,7 +176,21 @@ pub fn certify_subproblem(
     // The parameter boxes are real: the Cartesian system is real, and so is the
     // isotropic one under (u, v) ↦ (v̄, ū).
     let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
-    let boxes: Vec<Option<RootBox>> = solutions.iter().map(|x| test.certify(x)).collect();
+    // A conjugate partner of a certified non-real point is certified by the mirror
+    // image of its box ([`Krawczyk::mirror`]) instead of a second test.
+    let mut mirrors: Vec<RootBox> = Vec::new();
+    let mut boxes: Vec<Option<RootBox>> = Vec::with_capacity(solutions.len());
+    for x in solutions {
+        if let Some(at) = mirrors.iter().position(|m| approximates(x, &m.center)) {
+            boxes.push(Some(mirrors.swap_remove(at)));
+            continue;
+        }
+        let certified = test.certify(x);
+        if let Some(mirror) = certified.as_ref().and_then(|b| test.mirror(b)) {
+            mirrors.push(mirror);
+        }
+        boxes.push(certified);
+    }
     // Keep the first of every group of overlapping enclosures.
     let mut kept: Vec<&RootBox> = Vec::new();
     let mut uncertified = 0;
@@ -224,6 +238,17 @@ pub fn certify_subproblem(
         complete: kept.len() == expected && undecided == 0 && enclosed_all,
         distance: distance.map(|d| [d.lo, d.hi]),
     }
+}
+
+/// Whether the computed point `x` is the certified centre `center` to within
+/// `10⁻⁶ (1 + ‖center‖∞)` (the same solution: the certified box around `center`
+/// stands for it; a wrong match can only leave a solution uncounted, never add one).
+fn approximates(x: &[C64], center: &[C64]) -> bool {
+    let scale = 1.0 + center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    x.len() == center.len()
+        && x.iter()
+            .zip(center)
+            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale)
 }
 
 /// How much of a metric's distance at a pose is proved.

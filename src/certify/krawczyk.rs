@@ -226,6 +226,31 @@ impl<'a> Krawczyk<'a> {
         self.certify_at(&center, false)
     }
 
+    /// The certificate of the mirror image of a certified non-real root of a real
+    /// system: with real coefficients `F(σ(x)) = 0` exactly when `F(x) = 0`
+    /// (σ: complex conjugation, isotropic pairs swapped), so `σ(B)` contains exactly
+    /// one solution, `σ(s)`, when `B` contains exactly one, `s`, and `σ(B)` misses
+    /// the real points (the fixed points of σ) when `B` does. Certifies a conjugate
+    /// partner without a second test. `None` for a system with complex coefficients
+    /// and for a real root (its own mirror).
+    pub fn mirror(&self, root: &RootBox) -> Option<RootBox> {
+        if !self.real_system || root.realness == Realness::Real || root.bounds.len() != self.n {
+            return None;
+        }
+        let image = |v: &[ComplexInterval]| -> Vec<ComplexInterval> {
+            (0..self.n)
+                .map(|i| conjugate(&v[partner(&self.pairs, i)]))
+                .collect()
+        };
+        Some(RootBox {
+            bounds: image(&root.bounds),
+            enclosure: image(&root.enclosure),
+            center: self.involution(&root.center),
+            radius: root.radius,
+            realness: root.realness,
+        })
+    }
+
     /// Newton's method from `x` (residual in double-double); `None` if the Jacobian is
     /// singular.
     fn polish(&mut self, x: &[C64]) -> Option<Vec<C64>> {
@@ -547,6 +572,35 @@ mod tests {
         let near = vec![C64::new(1.0 + 1e-9, 0.0), C64::new(0.0, 0.0)];
         let result = certify_solutions(&double, &[], &[near]).unwrap();
         assert_eq!(result.uncertified(), 1);
+    }
+
+    #[test]
+    fn the_mirror_of_a_non_real_root_certifies_its_conjugate() {
+        // x² + 1 = 0, y = 2x: roots ±(i, 2i).
+        let system = compile("x^2 + 1", "y - 2*x");
+        let mut test = Krawczyk::new(&system, &[]).unwrap();
+        let i = C64::new(0.0, 1.0);
+        let root = test.certify(&[i, 2.0 * i]).expect("certified");
+        let mirror = test
+            .mirror(&root)
+            .expect("a non-real root of a real system");
+        assert_eq!(mirror.realness, Realness::NonReal);
+        assert!(!mirror.meets(&root), "distinct from the original");
+        let direct = test.certify(&[-i, -2.0 * i]).expect("certified");
+        assert!(mirror.meets(&direct), "the mirror holds the conjugate root");
+        assert!((mirror.center[1] - (-2.0 * i)).norm() < 1e-14);
+        // A real root is its own mirror; a complex system has none.
+        let real = compile("x^2 - 1", "y - x");
+        let mut real_test = Krawczyk::new(&real, &[]).unwrap();
+        let one = real_test
+            .certify(&[C64::new(1.0, 0.0); 2])
+            .expect("certified");
+        assert!(real_test.mirror(&one).is_none());
+        let complex = compile("x^2 + 1 + I*y", "y - x");
+        let mut complex_test = Krawczyk::new(&complex, &[]).unwrap();
+        if let Some(b) = complex_test.certify(&[i, i]) {
+            assert!(complex_test.mirror(&b).is_none());
+        }
     }
 
     #[test]

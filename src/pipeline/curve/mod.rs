@@ -700,22 +700,28 @@ fn assemble_pose(
     let mut failures = Vec::new();
     let mut paths_tracked = 0;
     let mut by_metric: BTreeMap<String, Vec<postprocess::SubproblemCandidates>> = BTreeMap::new();
-    let mut certificates: BTreeMap<(String, String), SubproblemCertificate> = BTreeMap::new();
-    for (seeded, (list, finite, failure, tracked, certificate)) in
-        stage.problems.iter().zip(per_problem)
-    {
+    // The sub-problems' certificates in parallel (a chain assembles its poses one
+    // after the other).
+    let mut certificates: BTreeMap<(String, String), SubproblemCertificate> = if options.certify {
+        stage
+            .problems
+            .par_iter()
+            .zip(per_problem.par_iter())
+            .filter_map(|(seeded, entry)| {
+                let certificate = entry.4.as_ref()?.get(stage, seeded);
+                let key = (
+                    seeded.id.metric.name(),
+                    seeded.id.subproblem.name().to_string(),
+                );
+                Some((key, certificate))
+            })
+            .collect()
+    } else {
+        BTreeMap::new()
+    };
+    for (seeded, (list, finite, failure, tracked, _)) in stage.problems.iter().zip(per_problem) {
         failures.extend(failure);
         paths_tracked += tracked;
-        if let Some(certificate) = certificate
-            && options.certify
-        {
-            let certificate = certificate.get(stage, seeded);
-            let key = (
-                seeded.id.metric.name(),
-                seeded.id.subproblem.name().to_string(),
-            );
-            certificates.insert(key, certificate);
-        }
         by_metric.entry(seeded.id.metric.name()).or_default().push((
             seeded.id.subproblem,
             list,
