@@ -1,4 +1,4 @@
-//! Time per evaluation of the 3-PRRR indices (seed 000's comparison of computation cost):
+//! Time per evaluation of the 3-PRRR indices (the comparison of computation cost of Farias Filho et al. (2021)):
 //! LCI `1/κ(Ā⁻¹B̄)`, LCI `1/κ(Ā)` and NSIR, each from a configuration and including the
 //! inverse kinematics.
 

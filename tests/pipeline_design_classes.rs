@@ -64,7 +64,7 @@ fn tiny_platform_distance_does_not_depend_on_the_seed() {
     }
 }
 
-/// Two coincident base anchors (paper Lemma 2: a legitimate robot, once rejected),
+/// Two coincident base anchors (Kapilavai and Nawratil, Lemma 2: a legitimate robot, once rejected),
 /// and the same robot with its legs labelled another way: the same distances, and
 /// the closest configurations relabelled accordingly.
 #[test]

@@ -1,5 +1,5 @@
 //! `singdist distance`: the singularity distances of a 3-RPR at one pose for the
-//! selected metrics, in full detail (SPEC A.6, A.9): per metric the distance, signed
+//! selected metrics, in full detail (docs/theory.md §5, §8): per metric the distance, signed
 //! distance, attaining sub-problem, closest configuration K′, cut-locus flag and every
 //! sub-problem's own minimum.
 

@@ -1,6 +1,6 @@
 //! Local constrained refinement: projected BFGS ascent with finite-difference gradients.
 //!
-//! Seed 000 refines the GA's best individual with SQP. Our constraints are bounds only, for
+//! Farias Filho et al. (2021) refine the GA's best individual with SQP. Our constraints are bounds only, for
 //! which SQP reduces to maximising a quadratic model over the box; we use the compact
 //! active-set form of that idea (as in L-BFGS-B, without the limited memory):
 //!

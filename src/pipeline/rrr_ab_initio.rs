@@ -1,4 +1,4 @@
-//! Ab-initio stage for the 3-RRR sub-problems of SPEC Part C (paper §6.3): all finite
+//! Ab-initio stage for the 3-RRR sub-problems of docs/theory.md §10 (Kapilavai and Nawratil, §6.3): all finite
 //! critical points of `∇Λ = 0` at a random complex source configuration, certified by a
 //! trace test, stored in `supplementary/start/rrr-*.json` (the JSON format of
 //! [`super::start_file`], `metric` = `rrr-all-deformable`).

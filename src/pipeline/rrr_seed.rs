@@ -1,4 +1,4 @@
-//! Stage 1 of the 3-RRR curve, the user homotopy (paper Eqs. 65–66): the normalised
+//! Stage 1 of the 3-RRR curve, the user homotopy (Kapilavai and Nawratil, Eqs. 65–66): the normalised
 //! frame of the run, the seed configuration `K*`, and the generic start solutions
 //! tracked to it, with the bookkeeping that never lets a count exceed the generic one.
 //!
