@@ -1,9 +1,10 @@
 //! The arithmetic shared by numbers and symbolic expressions.
 //!
 //! Formulas that appear both numerically and inside Lagrangians (the singularity
-//! polynomial S of docs/theory.md §1.3, the collinearity polynomials, the segment and triangle
-//! distances of docs/theory.md §2) are written once, generic over [`Ring`], and instantiated
-//! with `f64`, [`crate::C64`] or the symbolic expression type of [`crate::system`].
+//! polynomial S of docs/theory.md §1.3, the collinearity polynomials, the segment and
+//! triangle distances of docs/theory.md §2) are written once, generic over [`Ring`], and
+//! instantiated with `f64`, [`crate::C64`] or the symbolic expression type of
+//! [`crate::system`].
 
 use crate::C64;
 use std::ops::{Add, Mul, Neg, Sub};

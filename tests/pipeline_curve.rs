@@ -182,7 +182,8 @@ fn global_minimum_is_below_every_local_minimum_and_closest_is_feasible() {
         let result = curve(&design, &pose_list(vec![pose]), 0, &metrics);
         for m in metrics {
             let reported = &result.poses[0].metrics[&m.name()];
-            // Consistency (docs/theory.md §7): distance recomputed from K′, constraint satisfied.
+            // Consistency (docs/theory.md §7): distance recomputed from K′, constraint
+            // satisfied.
             let recomputed = m.distance(&k, &reported.closest);
             assert!((recomputed - reported.distance).abs() < 1e-12 * (1.0 + recomputed));
             let residual = constraint_residual(&reported.subproblem, &reported.closest);

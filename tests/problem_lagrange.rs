@@ -1,5 +1,6 @@
-//! The Lagrange sub-problems of docs/theory.md §5: every metric's list, the unknown counts of
-//! docs/theory.md §6, and start pairs whose configuration satisfies the constraint.
+//! The Lagrange sub-problems of docs/theory.md §5: every metric's list, the unknown
+//! counts of docs/theory.md §6, and start pairs whose configuration satisfies the
+//! constraint.
 
 use singdist::C64;
 use singdist::mechanism::rpr;

@@ -166,8 +166,8 @@ fn pedal_point_theorem_fails_for_bars_rigid() {
     );
 }
 
-/// docs/theory.md §7: a configuration on the singularity hypersurface has distance 0 for every
-/// metric (its own K′ = K is a real critical point with λ = 0). Failed paths are not
+/// docs/theory.md §7: a configuration on the singularity hypersurface has distance 0 for
+/// every metric (its own K′ = K is a real critical point with λ = 0). Failed paths are not
 /// checked here: the rigid-part systems lose up to ~25% of paths on the straight
 /// complex-to-real segment (the curve pipeline re-runs them with detours).
 #[test]

@@ -1,5 +1,5 @@
-//! 3-RPR model: design validation, singularity polynomial (docs/theory.md §1.3), rigid shapes
-//! (docs/theory.md §4), motions and the built-in example, design/motion files.
+//! 3-RPR model: design validation, singularity polynomial (docs/theory.md §1.3), rigid
+//! shapes (docs/theory.md §4), motions and the built-in example, design/motion files.
 
 use nalgebra::Matrix3;
 use singdist::C64;

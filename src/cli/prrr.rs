@@ -1,4 +1,5 @@
-//! `singdist prrr`: 3-PRRR indices at one pose (docs/theory.md §11.2) and redundancy resolution (docs/theory.md §11.3).
+//! `singdist prrr`: 3-PRRR indices at one pose (docs/theory.md §11.2) and redundancy
+//! resolution (docs/theory.md §11.3).
 
 use super::output::{check_writable, write_file};
 use anyhow::{Context, bail};

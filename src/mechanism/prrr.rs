@@ -1,5 +1,6 @@
 //! The 3-PRRR kinematically redundant planar parallel manipulator, and the 3RRR as its
-//! special case δ = 0 (docs/theory.md §11.1; Farias Filho et al. (2021) §2, Fontes et al. §2).
+//! special case δ = 0 (docs/theory.md §11.1; Farias Filho et al. (2021) §2, Fontes et al.
+//! §2).
 //!
 //! Leg i (i = 1, 2, 3): an active prismatic joint moves the base joint along a guide,
 //! `A_i = a e(λ_i) + δ_i e(γ_i)`; the active revolute joint at `A_i` turns the link
@@ -8,8 +9,8 @@
 //! the pose. Fontes et al. use `φ_i = λ_i` (our default); Farias Filho et al. (2021) write
 //! `C_i = D − h e(α + η_i)`, i.e. `φ_i = η_i + π` ([`PrrrDesign::with_seed000_platform`]).
 //!
-//! Velocity equation (docs/theory.md §11.1): `A Ẋ = B Θ̇`, `Ẋ = (ẋ, ẏ, α̇)`, `Θ̇ = (θ̇_1..3, δ̇_1..3)`,
-//! `A_i = [l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`,
+//! Velocity equation (docs/theory.md §11.1): `A Ẋ = B Θ̇`, `Ẋ = (ẋ, ẏ, α̇)`,
+//! `Θ̇ = (θ̇_1..3, δ̇_1..3)`, `A_i = [l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`,
 //! `B = [diag(l_1 l_2 sin(β_k − θ_k)) | diag(l_2 cos(β_k − γ_k))]` (3RRR: first three columns).
 //! Direct singularity: `det A = 0`; inverse singularity: `rank B < 3`.
 //! Homogenisation: `Ā` divides the third column of A by `L_c`, `B̄` multiplies the prismatic
@@ -166,7 +167,8 @@ pub struct PrrrDesign {
     pub delta_range: (f64, f64),
     /// Screw pitch p (m per turn): prismatic columns of B̄ are multiplied by p/(2π).
     pub pitch: f64,
-    /// Characteristic length `L_c` dividing the rotational column of Ā (m), `√2·h` in both papers.
+    /// Characteristic length `L_c` dividing the rotational column of Ā (m), `√2·h` in
+    /// both papers.
     pub characteristic_length: f64,
 }
 
@@ -457,8 +459,8 @@ impl PrrrConfiguration {
         a
     }
 
-    /// Inverse-kinematics matrix B (3×6; docs/theory.md §11.1; Farias Filho et al. (2021) Eq. 9):
-    /// `b_kk = l_1 l_2 sin(β_k − θ_k)`, `b_k,k+3 = l_2 cos(β_k − γ_k)`.
+    /// Inverse-kinematics matrix B (3×6; docs/theory.md §11.1; Farias Filho et al. (2021)
+    /// Eq. 9): `b_kk = l_1 l_2 sin(β_k − θ_k)`, `b_k,k+3 = l_2 cos(β_k − γ_k)`.
     pub fn matrix_b(&self, design: &PrrrDesign) -> Matrix3x6 {
         let mut b = Matrix3x6::zeros();
         for k in 0..3 {
@@ -490,8 +492,9 @@ impl PrrrConfiguration {
     }
 
     /// Dimensionless inverse-singularity measure in [0, 1]: for the 3-PRRR
-    /// `√(Π_k(b̄_kk² + b̄_k,k+3²)) / √((l_1²l_2² + l_2²(p/2π)²)³)` (= ξ of docs/theory.md §11.2, 0 ⇔ rank B < 3);
-    /// for the 3RRR `Π_k |sin(β_k − θ_k)|` (0 ⇔ a leg is stretched or folded).
+    /// `√(Π_k(b̄_kk² + b̄_k,k+3²)) / √((l_1²l_2² + l_2²(p/2π)²)³)` (= ξ of docs/theory.md
+    /// §11.2, 0 ⇔ rank B < 3); for the 3RRR `Π_k |sin(β_k − θ_k)|` (0 ⇔ a leg is
+    /// stretched or folded).
     pub fn inverse_singularity_measure(&self, design: &PrrrDesign, robot: Robot) -> f64 {
         match robot {
             Robot::ThreePrrr => {

@@ -10,10 +10,10 @@
 //! [`Ring`], so the same code evaluates numbers (`f64`, [`C64`]) and builds the
 //! symbolic Lagrangians of the distance problems.
 //!
-//! Motions (Kapilavai and Nawratil, §5.2, Eq. 64; docs/theory.md §1.2) are either an explicit list of poses or an
-//! analytic motion `τ ↦ (x(τ), y(τ), φ(τ))` on an interval, each coordinate a polynomial
-//! plus cosine terms, which can be evaluated at complex τ (the seed of the parameter
-//! homotopy is the motion at a random complex τ*).
+//! Motions (Kapilavai and Nawratil, §5.2, Eq. 64; docs/theory.md §1.2) are either an
+//! explicit list of poses or an analytic motion `τ ↦ (x(τ), y(τ), φ(τ))` on an interval,
+//! each coordinate a polynomial plus cosine terms, which can be evaluated at complex τ
+//! (the seed of the parameter homotopy is the motion at a random complex τ*).
 
 use crate::C64;
 use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
@@ -273,7 +273,8 @@ impl Design {
             .fold(1.0_f64, |m, v| m.max(v.abs()))
     }
 
-    /// Configuration at a pose: `a_i = A_i`, `b_i = (x, y) + R(φ) P_i` (docs/theory.md §1.1).
+    /// Configuration at a pose: `a_i = A_i`, `b_i = (x, y) + R(φ) P_i` (docs/theory.md
+    /// §1.1).
     pub fn configuration(&self, pose: Pose) -> Configuration {
         let (s, c) = pose.phi.sin_cos();
         let b = self
@@ -284,7 +285,8 @@ impl Design {
 
     /// Configuration at a complex pose, as the 12-vector
     /// `(a1x, a1y, a2x, a2y, a3x, a3y, b1x, b1y, b2x, b2y, b3x, b3y)`, with complex
-    /// `cos φ`, `sin φ` (the seed configurations of the parameter homotopy, docs/theory.md §8).
+    /// `cos φ`, `sin φ` (the seed configurations of the parameter homotopy,
+    /// docs/theory.md §8).
     pub fn configuration_complex(&self, x: C64, y: C64, phi: C64) -> [C64; 12] {
         let (c, s) = (phi.cos(), phi.sin());
         let mut k = [C64::new(0.0, 0.0); 12];
@@ -303,8 +305,8 @@ impl Design {
         rigid_shape(&self.base[0], &self.base[1], &self.base[2])
     }
 
-    /// Shape constants `(u, v, |e|²)` of the rigid platform (docs/theory.md §4); they do not
-    /// change along a motion.
+    /// Shape constants `(u, v, |e|²)` of the rigid platform (docs/theory.md §4); they do
+    /// not change along a motion.
     pub fn platform_shape(&self) -> RigidShape {
         rigid_shape(&self.platform[0], &self.platform[1], &self.platform[2])
     }
@@ -375,7 +377,8 @@ impl Configuration {
         }
     }
 
-    /// The singularity polynomial S(K) (Kapilavai and Nawratil, Eq. 6; docs/theory.md §1.3).
+    /// The singularity polynomial S(K) (Kapilavai and Nawratil, Eq. 6; docs/theory.md
+    /// §1.3).
     pub fn singularity(&self) -> f64 {
         singularity_polynomial(&self.to_array())
     }
@@ -385,7 +388,8 @@ fn point<T: Ring>(k: &[T; 12], j: usize) -> Point<T> {
     [k[j].clone(), k[j + 1].clone()]
 }
 
-/// The singularity polynomial (Kapilavai and Nawratil, Eq. 6; docs/theory.md §1.3), degree 4:
+/// The singularity polynomial (Kapilavai and Nawratil, Eq. 6; docs/theory.md §1.3),
+/// degree 4:
 ///
 /// `S(K) = det[ b_i − a_i | a_i × b_i ]_{i=1..3}` (rows: non-normalised Plücker
 /// coordinates of the leg lines). `S = 0` iff the three leg lines are concurrent or
@@ -413,8 +417,8 @@ fn collinearity<P: Plane<T>, T: Ring>(p: [Point<T>; 3]) -> T {
     P::cross(&difference(&p1, &p2), &difference(&p1, &p3))
 }
 
-/// Collinearity polynomial of the platform (Kapilavai and Nawratil, Eq. 31; docs/theory.md §1.4):
-/// `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]
+/// Collinearity polynomial of the platform (Kapilavai and Nawratil, Eq. 31;
+/// docs/theory.md §1.4): `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]
 /// = (b_2 − b_1) × (b_3 − b_1)` (twice the signed area of the platform triangle).
 pub fn collinearity_platform<T: Ring>(k: &[T; 12]) -> T {
     collinearity_platform_in::<Cartesian, T>(k)
@@ -425,8 +429,8 @@ pub fn collinearity_platform_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
     collinearity::<P, T>([point(k, 6), point(k, 8), point(k, 10)])
 }
 
-/// Collinearity polynomial of the base (Kapilavai and Nawratil, Eq. 31; docs/theory.md §1.4):
-/// `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]
+/// Collinearity polynomial of the base (Kapilavai and Nawratil, Eq. 31; docs/theory.md
+/// §1.4): `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]
 /// = (a_2 − a_1) × (a_3 − a_1)`.
 pub fn collinearity_base<T: Ring>(k: &[T; 12]) -> T {
     collinearity_base_in::<Cartesian, T>(k)
@@ -437,9 +441,9 @@ pub fn collinearity_base_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
     collinearity::<P, T>([point(k, 0), point(k, 2), point(k, 4)])
 }
 
-/// Shape constants of a rigid triangle `p_1 p_2 p_3` (Kapilavai and Nawratil, Eqs. 23–26; docs/theory.md §4):
-/// with `e = p_2 − p_1`, `u = ((p_3 − p_1)·e)/|e|²`, `v = ((p_3 − p_1)·Ee)/|e|²`,
-/// `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
+/// Shape constants of a rigid triangle `p_1 p_2 p_3` (Kapilavai and Nawratil, Eqs. 23–26;
+/// docs/theory.md §4): with `e = p_2 − p_1`, `u = ((p_3 − p_1)·e)/|e|²`,
+/// `v = ((p_3 − p_1)·Ee)/|e|²`, `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RigidShape {
     /// Dimensionless coordinate of `p_3 − p_1` along `e`.

@@ -1,6 +1,6 @@
 //! The planar 3-RRR parallel manipulator: design, pose, inverse kinematics with an explicit
-//! working mode per leg, and the configuration of its nine joint points (docs/theory.md §10, §11.1, §11.5;
-//! Ramana Babu et al. §II).
+//! working mode per leg, and the configuration of its nine joint points (docs/theory.md
+//! §10, §11.1, §11.5; Ramana Babu et al. §II).
 //!
 //! # Model
 //!
@@ -30,12 +30,13 @@
 //! Ramana Babu et al. write the loop closure (their Eqs. 2–3) as
 //! `x_p = b cos θ_i + c cos ψ_i + a cos(φ + γ_i) + x_oi`, so in their notation
 //! **`a` = distance from P to each platform joint C_i (platform circumradius), `b` = |O_iB_i|
-//! (proximal link), `c` = |B_iC_i| (distal link)**; their design vector `[a b c]` is optimised
-//! under `a + b + c ≤ λ`. [`RrrDesign::symmetric`] maps `(R, a, b, c)` to: base joints on the
-//! circle of radius `R` about the origin at angles 90°, 210°, 330°; platform joints on the circle
-//! of radius `a` about P at the same angles in the moving frame (so at φ = 0 every leg points
-//! radially); every proximal link `b`, every distal link `c`. The base radius `R` is not given
-//! by Ramana Babu et al. and is a free choice of the example geometry.
+//! (proximal link), `c` = |B_iC_i| (distal link)**; their design vector `[a b c]` is
+//! optimised under `a + b + c ≤ λ`. [`RrrDesign::symmetric`] maps `(R, a, b, c)` to: base
+//! joints on the circle of radius `R` about the origin at angles 90°, 210°, 330°;
+//! platform joints on the circle of radius `a` about P at the same angles in the moving
+//! frame (so at φ = 0 every leg points radially); every proximal link `b`, every distal
+//! link `c`. The base radius `R` is not given by Ramana Babu et al. and is a free choice
+//! of the example geometry.
 
 use crate::C64;
 use crate::algebra::{
@@ -284,10 +285,11 @@ impl RrrDesign {
         })
     }
 
-    /// Symmetric design in the style of Ramana Babu et al. (see the module documentation): base joints on the
-    /// circle of radius `base_radius` at 90°, 210°, 330°; platform joints at distance
-    /// `platform_radius` (`a` of Ramana Babu et al.) from P at the same angles in the moving frame; proximal
-    /// links `proximal` (`b`), distal links `distal` (`c`).
+    /// Symmetric design in the style of Ramana Babu et al. (see the module
+    /// documentation): base joints on the circle of radius `base_radius` at 90°, 210°,
+    /// 330°; platform joints at distance `platform_radius` (`a` of Ramana Babu et al.)
+    /// from P at the same angles in the moving frame; proximal links `proximal` (`b`),
+    /// distal links `distal` (`c`).
     pub fn symmetric(
         base_radius: f64,
         platform_radius: f64,
@@ -425,7 +427,8 @@ fn cross(u: Point, v: Point) -> f64 {
 }
 
 impl RrrConfiguration {
-    /// The nine points in the order `O_1, O_2, O_3, B_1, B_2, B_3, C_1, C_2, C_3` (docs/theory.md §10).
+    /// The nine points in the order `O_1, O_2, O_3, B_1, B_2, B_3, C_1, C_2, C_3`
+    /// (docs/theory.md §10).
     pub fn points(&self) -> [Point; 9] {
         let mut out = [Point::zeros(); 9];
         out[..3].copy_from_slice(&self.base);
@@ -461,15 +464,16 @@ impl RrrConfiguration {
         c.y.atan2(c.x)
     }
 
-    /// Leg-singularity determinant `det[[O_i,1],[B_i,1],[C_i,1]] = b_i × c_i` (docs/theory.md §10):
-    /// zero iff `O_i, B_i, C_i` are collinear (Type I of Ramana Babu et al.), sign = working mode.
+    /// Leg-singularity determinant `det[[O_i,1],[B_i,1],[C_i,1]] = b_i × c_i`
+    /// (docs/theory.md §10): zero iff `O_i, B_i, C_i` are collinear (Type I of Ramana
+    /// Babu et al.), sign = working mode.
     pub fn leg_determinant(&self, leg: usize) -> f64 {
         cross(self.proximal_vector(leg), self.distal_vector(leg))
     }
 
-    /// Parallel-singularity polynomial of docs/theory.md §10: `S` of docs/theory.md §1.3 with `(a_i, b_i) → (B_i, C_i)`,
-    /// `det [ C_i − B_i , B_i × C_i ]_{i=1..3}`; zero iff the lines `B_iC_i` are concurrent or
-    /// parallel.
+    /// Parallel-singularity polynomial of docs/theory.md §10: `S` of docs/theory.md §1.3
+    /// with `(a_i, b_i) → (B_i, C_i)`, `det [ C_i − B_i , B_i × C_i ]_{i=1..3}`; zero iff
+    /// the lines `B_iC_i` are concurrent or parallel.
     pub fn parallel_determinant(&self) -> f64 {
         let rows = [0, 1, 2].map(|i| {
             let c = self.distal_vector(i);
@@ -504,18 +508,19 @@ fn ring_point<T: Ring>(k: &[T; CONFIGURATION_LEN], index: usize) -> RingPoint<T>
     [k[2 * index].clone(), k[2 * index + 1].clone()]
 }
 
-/// Parallel-singularity polynomial of docs/theory.md §10 on the 18-vector `k`: the singularity
-/// polynomial S of docs/theory.md §1.3 (Kapilavai and Nawratil, Eq. 6) with `(a_i, b_i) → (B_i, C_i)`,
-/// `det[ C_i − B_i | B_i × C_i ]_{i=1..3}` (degree 4). Zero iff the lines `B_iC_i` are
-/// concurrent or parallel. Generic over [`Ring`] (numbers and symbolic Lagrangians).
+/// Parallel-singularity polynomial of docs/theory.md §10 on the 18-vector `k`: the
+/// singularity polynomial S of docs/theory.md §1.3 (Kapilavai and Nawratil, Eq. 6) with
+/// `(a_i, b_i) → (B_i, C_i)`, `det[ C_i − B_i | B_i × C_i ]_{i=1..3}` (degree 4). Zero
+/// iff the lines `B_iC_i` are concurrent or parallel. Generic over [`Ring`] (numbers and
+/// symbolic Lagrangians).
 pub fn parallel_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN]) -> T {
     let lines: [T; 12] = std::array::from_fn(|j| k[6 + j].clone());
     rpr::singularity_polynomial(&lines)
 }
 
-/// Leg-singularity polynomial of leg `leg` (0-based) on the 18-vector `k` (docs/theory.md §10):
-/// `det[[O_i, 1], [B_i, 1], [C_i, 1]] = (B_i − O_i) × (C_i − B_i)` (quadratic); zero iff
-/// `O_i, B_i, C_i` are collinear.
+/// Leg-singularity polynomial of leg `leg` (0-based) on the 18-vector `k` (docs/theory.md
+/// §10): `det[[O_i, 1], [B_i, 1], [C_i, 1]] = (B_i − O_i) × (C_i − B_i)` (quadratic);
+/// zero iff `O_i, B_i, C_i` are collinear.
 pub fn leg_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN], leg: usize) -> T {
     let o = ring_point(k, leg);
     let b = ring_point(k, 3 + leg);
@@ -523,8 +528,8 @@ pub fn leg_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN], leg: usize) -> T {
     algebra_cross(&algebra_difference(&o, &b), &algebra_difference(&b, &c))
 }
 
-/// The all-deformable metric of docs/theory.md §10 (Kapilavai and Nawratil, §6.3): base plate, platform plate and
-/// six deformable bars,
+/// The all-deformable metric of docs/theory.md §10 (Kapilavai and Nawratil, §6.3): base
+/// plate, platform plate and six deformable bars,
 ///
 /// `D²(K, K′) = (tri²(O) + tri²(C) + Σ_i seg²(O_iB_i) + Σ_i seg²(B_iC_i)) / 8`
 ///
@@ -570,10 +575,10 @@ impl RrrConfiguration {
 impl RrrDesign {
     /// Configuration at a complex pose `(x, y, φ)` with working modes `modes`, as the
     /// 18-vector of [`COORDINATE_NAMES`] (the seed configuration of the parameter
-    /// homotopy, docs/theory.md §8.2). With `d = C − O`, `L² = d·d`, `k = (L² + b² − c²)/(2L²)`,
-    /// `h = √(b²/L² − k²)` (principal branch), the elbow is `B = O + k d − σ h E d`, which
-    /// for a real reachable pose equals [`leg_elbow`](Self::leg_elbow) (`k = (b/L) cos α`,
-    /// `h = (b/L) sin α`).
+    /// homotopy, docs/theory.md §8.2). With `d = C − O`, `L² = d·d`,
+    /// `k = (L² + b² − c²)/(2L²)`, `h = √(b²/L² − k²)` (principal branch), the elbow is
+    /// `B = O + k d − σ h E d`, which for a real reachable pose equals
+    /// [`leg_elbow`](Self::leg_elbow) (`k = (b/L) cos α`, `h = (b/L) sin α`).
     pub fn configuration_complex(
         &self,
         x: C64,
@@ -609,9 +614,9 @@ impl RrrDesign {
 // Motions and the working modes along them
 // ---------------------------------------------------------------------------------
 
-/// Motions of the 3-RRR platform: the same type as the 3-RPR's (Kapilavai and Nawratil, §5.2,
-/// Eq. 64; docs/theory.md §1.2): an explicit list of poses `[x, y, φ]` or an analytic motion (polynomial plus
-/// cosine terms per coordinate), evaluable at complex τ.
+/// Motions of the 3-RRR platform: the same type as the 3-RPR's (Kapilavai and Nawratil,
+/// §5.2, Eq. 64; docs/theory.md §1.2): an explicit list of poses `[x, y, φ]` or an
+/// analytic motion (polynomial plus cosine terms per coordinate), evaluable at complex τ.
 pub type RrrMotion = rpr::Motion;
 
 /// Circular translation of the operation point, `x = x_c + r cos τ`, `y = y_c + r sin τ`,

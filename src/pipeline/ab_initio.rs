@@ -89,10 +89,10 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
 /// Generic count of the all-collinear sub-problem with one rigid part whose anchors
 /// are collinear (`plate/rigid`, `rigid/plate`; docs/theory.md §5.3, parameterisation of
 /// `problem::build::all_collinear_offsets`), per orientation of the platform for
-/// `rigid/rigid`. Derivation (as the total-least-squares note of docs/theory.md §5.3): with `n = E w` the line's
-/// normal, every displacement `x_k′ − x_k` splits into a normal part `h − x_k·n`
-/// (`h = q·n`) and a tangential part `q·w + c_k − x_k·w`; the cost `D²` is an
-/// isotropic PSD quadratic form in the displacements, so it is the sum of the same
+/// `rigid/rigid`. Derivation (as the total-least-squares note of docs/theory.md §5.3):
+/// with `n = E w` the line's normal, every displacement `x_k′ − x_k` splits into a normal
+/// part `h − x_k·n` (`h = q·n`) and a tangential part `q·w + c_k − x_k·w`; the cost `D²`
+/// is an isotropic PSD quadratic form in the displacements, so it is the sum of the same
 /// form on both parts. Minimising over `h` leaves `nᵀ C n` (C a weighted 2×2 scatter
 /// matrix); minimising over `q·w` and the free offsets (plate part, rigid platform's
 /// shift) leaves a quadratic in `w` with a *linear* term (the fixed offsets `s₂`, `s₃`
@@ -107,10 +107,11 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
 /// components with 4 each; the ab-initio stage's extra start pairs collect both).
 const ALL_COLLINEAR_RIGID: usize = 4;
 
-/// Generic count of the coincident-points sub-problems (docs/theory.md §6 note: measured). For a
-/// fixed coincidence point q the cost over the rigid part's rotation angle θ has the
-/// form `A cos θ + B sin θ + C`, with exactly two critical angles; monodromy finds 2
-/// for both `bars/rigid:coincident-platform` and `rigid/bars:coincident-base`.
+/// Generic count of the coincident-points sub-problems (docs/theory.md §6 note:
+/// measured). For a fixed coincidence point q the cost over the rigid part's rotation
+/// angle θ has the form `A cos θ + B sin θ + C`, with exactly two critical angles;
+/// monodromy finds 2 for both `bars/rigid:coincident-platform` and
+/// `rigid/bars:coincident-base`.
 const MEASURED_COINCIDENT: Option<usize> = Some(2);
 
 /// Options of the ab-initio stage.
@@ -191,9 +192,9 @@ fn compute_at_source(
     if monodromy.target_solution_count.is_none() {
         monodromy.target_solution_count = expected_count(id);
     }
-    // Where the generic count is known exactly (docs/theory.md §6), reaching it with distinct
-    // nonsingular solutions is the certificate; the trace test (whose witness set on
-    // the incidence curve is far larger than the fiber) is run only where it is not.
+    // Where the generic count is known exactly (docs/theory.md §6), reaching it with
+    // distinct nonsingular solutions is the certificate; the trace test (whose witness
+    // set on the incidence curve is far larger than the fiber) is run only where it is not.
     if expected_count(id).is_some() {
         monodromy.trace_test = false;
     }
@@ -275,8 +276,9 @@ fn compute_at_source(
     let kind = if certified {
         "trace-test".to_string()
     } else if count_matches(&solutions) && min_relative_singular_value > NONSINGULAR_THRESHOLD {
-        // The generic fiber has exactly `expected` points (docs/theory.md §6, exact Gröbner-basis
-        // counts), so that many distinct nonsingular solutions at a generic point are all.
+        // The generic fiber has exactly `expected` points (docs/theory.md §6, exact
+        // Gröbner-basis counts), so that many distinct nonsingular solutions at a generic
+        // point are all.
         certified = true;
         "verified-count (generic count of docs/theory.md §6 reached with distinct nonsingular solutions)"
             .to_string()
@@ -439,8 +441,8 @@ pub fn verify(
     let expected = expected_count(id);
     let nonsingular =
         smallest_relative_singular_value(system, &p, &file.solutions) > NONSINGULAR_THRESHOLD;
-    // Completeness: the known generic count (docs/theory.md §6) or, where none is known, the
-    // trace test re-run on fresh random slices.
+    // Completeness: the known generic count (docs/theory.md §6) or, where none is known,
+    // the trace test re-run on fresh random slices.
     let (complete, trace_residual) = match expected {
         Some(count) => (count == file.solutions.len(), None),
         None => {

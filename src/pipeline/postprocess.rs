@@ -1,4 +1,5 @@
-//! Post-processing of the critical points at one pose (Kapilavai and Nawratil, §5.4; docs/theory.md §8.4).
+//! Post-processing of the critical points at one pose (Kapilavai and Nawratil, §5.4;
+//! docs/theory.md §8.4).
 //!
 //! From the finite endpoints of every sub-problem's Lagrange system `∇Λ = 0` at the
 //! real configuration `K` of a pose:
@@ -8,10 +9,12 @@
 //!    `D(K, K′)` in f64 with [`Metric::distance`] (docs/theory.md §3), independently of the
 //!    homotopy's arithmetic;
 //! 3. the sub-problem distance is the smallest such `D`; the metric's singularity
-//!    distance is the minimum over its sub-problems (Kapilavai and Nawratil, Fig. 14; docs/theory.md §5);
+//!    distance is the minimum over its sub-problems (Kapilavai and Nawratil, Fig. 14;
+//!    docs/theory.md §5);
 //! 4. the signed distance carries the sign of `S(K)` (docs/theory.md §1.3, §7);
 //! 5. a pose is on a cut locus when a second minimiser with a different `K′` attains
-//!    the minimum within `cut_locus_tolerance` (Kapilavai and Nawratil, §6): both are reported.
+//!    the minimum within `cut_locus_tolerance` (Kapilavai and Nawratil, §6): both are
+//!    reported.
 
 use crate::certify::distance::{MetricCertificate, SubproblemCertificate};
 use crate::metric::Metric;

@@ -14,9 +14,9 @@ use std::collections::BTreeMap;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Certificate {
     /// `"trace-test"` (trace residual below tolerance), `"verified-count"` (the
-    /// generic count of docs/theory.md §6, known exactly from Gröbner-basis computations, reached with
-    /// distinct nonsingular solutions at a generic point: then no solution is missing),
-    /// or `"none"` (not certified: the set may be incomplete).
+    /// generic count of docs/theory.md §6, known exactly from Gröbner-basis computations,
+    /// reached with distinct nonsingular solutions at a generic point: then no solution
+    /// is missing), or `"none"` (not certified: the set may be incomplete).
     pub kind: String,
     /// Trace-test residual: relative deviation of the solutions' trace from linearity
     /// along a pencil of slices (small when no solution is missing); `None` when the

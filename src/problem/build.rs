@@ -194,7 +194,8 @@ struct LineOffsets {
 }
 
 /// Offsets `c_k` of the all-collinear parameterisation `x_k′ = q + c_k w`, `w·w = 1`
-/// (Kapilavai and Nawratil, Eq. 56; docs/theory.md §5.3), with `c_{a₁} = 0` (the gauge: `q = a₁′`):
+/// (Kapilavai and Nawratil, Eq. 56; docs/theory.md §5.3), with `c_{a₁} = 0` (the gauge:
+/// `q = a₁′`):
 ///
 /// - a `plate` part: free offsets (`t2 t3` for the base, `t4 t5 t6` for the platform);
 /// - a `rigid` part whose anchors are collinear (docs/theory.md §4 with `v = 0`:
@@ -258,8 +259,8 @@ pub fn anchors_collinear(shape: &rpr::RigidShape) -> bool {
 }
 
 impl LagrangeProblem {
-    /// Whether sub-problem `id` exists for `design` (docs/theory.md §5.3): all-collinear with a
-    /// rigid part needs that part's anchors to be collinear
+    /// Whether sub-problem `id` exists for `design` (docs/theory.md §5.3): all-collinear
+    /// with a rigid part needs that part's anchors to be collinear
     /// ([`COLLINEAR_ANCHOR_TOLERANCE`]); every other sub-problem always applies.
     pub fn check_applicable(id: ProblemId, design: &Design) -> Result<(), ProblemError> {
         if id.subproblem != SubProblem::AllCollinear {
@@ -274,8 +275,8 @@ impl LagrangeProblem {
                     problem: id.name(),
                     reason: format!(
                         "all six points on one line needs the rigid {role}'s anchors to be \
-                         collinear (Kapilavai and Nawratil, Thm 3; docs/theory.md §5.3); here \
-                         anchor 3 is off the line of anchors 1, 2 \
+                         collinear (Kapilavai and Nawratil, Thm 3; docs/theory.md §5.3); \
+                         here anchor 3 is off the line of anchors 1, 2 \
                          by v = {:.3e} |e| (tolerance {COLLINEAR_ANCHOR_TOLERANCE:e})",
                         shape.v
                     ),
@@ -539,8 +540,8 @@ impl LagrangeProblem {
 
     /// Parameter vector for the given configuration `k` (twelve coordinates, possibly
     /// complex) of `design`: `k` followed by the rigid parts' shape constants
-    /// `(u, v, r²)` of docs/theory.md §4, computed from the design's base and platform anchors
-    /// (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
+    /// `(u, v, r²)` of docs/theory.md §4, computed from the design's base and platform
+    /// anchors (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
     pub fn parameters_for(&self, design: &Design, k: &[C64; 12]) -> Vec<C64> {
         self.parameters_in_units(design, k, 1.0)
     }

@@ -1,4 +1,5 @@
-//! The Lagrangian sub-problems of every metric (Kapilavai and Nawratil, §3–§4; docs/theory.md §5).
+//! The Lagrangian sub-problems of every metric (Kapilavai and Nawratil, §3–§4;
+//! docs/theory.md §5).
 //!
 //! For a given configuration `K` (the parameters) the closest configuration `K′` on a
 //! constraint set is a critical point of a Lagrangian
@@ -7,13 +8,13 @@
 //!   Λ(K′, λ, μ; K) = D²(K, K′) − λ·C(K′) − Σ_rigid μ·g(K′)
 //! ```
 //!
-//! where `C` is the singularity polynomial S (docs/theory.md §1.3), or a collinearity polynomial
-//! `C_p`, `C_b`, and `g = |x₂′ − x₁′|² − r²` keeps a rigid part congruent (docs/theory.md §4,
-//! point-based representation of SE(2): a rigid part's third point is
+//! where `C` is the singularity polynomial S (docs/theory.md §1.3), or a collinearity
+//! polynomial `C_p`, `C_b`, and `g = |x₂′ − x₁′|² − r²` keeps a rigid part congruent
+//! (docs/theory.md §4, point-based representation of SE(2): a rigid part's third point is
 //! `x₃′ = x₁′ + u (x₂′ − x₁′) + v E(x₂′ − x₁′)`). Two further sub-problems parameterise
 //! singular points of the constraint varieties directly: all six points on one line
-//! (Kapilavai and Nawratil, Thm 3 case 1, Eqs. 56–57) and three coincident platform (base) points under a
-//! rigid base (platform) (Kapilavai and Nawratil, §4.2, Eqs. 62–63).
+//! (Kapilavai and Nawratil, Thm 3 case 1, Eqs. 56–57) and three coincident platform
+//! (base) points under a rigid base (platform) (Kapilavai and Nawratil, §4.2, Eqs. 62–63).
 //!
 //! Every sub-problem is the square system `∇Λ = 0`, built once with
 //! [`crate::system`] and compiled; its parameters are the twelve coordinates of `K`
@@ -42,12 +43,14 @@ pub enum SubProblem {
     CollinearPlatform,
     /// `C_b(K′) = 0`: base anchors collinear (base `bars`).
     CollinearBase,
-    /// All six points on one line `q + t_k w`, `w·w = 1` (Kapilavai and Nawratil, Thm 3 case 1;
-    /// platform and base `plate` or `rigid`).
+    /// All six points on one line `q + t_k w`, `w·w = 1` (Kapilavai and Nawratil, Thm 3
+    /// case 1; platform and base `plate` or `rigid`).
     AllCollinear,
-    /// `b₁′ = b₂′ = b₃′` under a rigid base (metric `bars/rigid`, Kapilavai and Nawratil, Eq. 62).
+    /// `b₁′ = b₂′ = b₃′` under a rigid base (metric `bars/rigid`, Kapilavai and Nawratil,
+    /// Eq. 62).
     CoincidentPlatform,
-    /// `a₁′ = a₂′ = a₃′` under a rigid platform (metric `rigid/bars`, Kapilavai and Nawratil, Eq. 63).
+    /// `a₁′ = a₂′ = a₃′` under a rigid platform (metric `rigid/bars`, Kapilavai and
+    /// Nawratil, Eq. 63).
     CoincidentBase,
 }
 

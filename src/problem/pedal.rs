@@ -3,8 +3,8 @@
 //! `bars/bars` for the base).
 //!
 //! The pedal-point theorems of Kapilavai and Nawratil ("Singularity distance computations
-//! for 3-RPR manipulators using extrinsic metrics", Thms 1 and 2; docs/theory.md §5.5) state
-//! that the
+//! for 3-RPR manipulators using extrinsic metrics", Thms 1 and 2; docs/theory.md §5.5)
+//! state that the
 //! closest configuration on the collinear-platform variety has platform points equal
 //! to the orthogonal projections (pedal points) of `b₁, b₂, b₃` onto their
 //! total-least-squares line: the line through the centroid `c` along the eigenvector

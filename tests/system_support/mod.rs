@@ -27,7 +27,8 @@ pub fn tri2(d: &[Point<Expr>; 3]) -> Expr {
         * (1.0 / 6.0)
 }
 
-/// Singularity polynomial S of docs/theory.md §1.3 of the configuration (a_1..a_3, b_1..b_3).
+/// Singularity polynomial S of docs/theory.md §1.3 of the configuration (a_1..a_3,
+/// b_1..b_3).
 pub fn singularity_polynomial(a: &[Point<Expr>; 3], b: &[Point<Expr>; 3]) -> Expr {
     let row = |i: usize| {
         let leg = difference(&a[i], &b[i]);

@@ -31,8 +31,8 @@ pub struct SeededProblem {
     /// solutions. Fewer than [`SeededProblem::generic_count`] only where an
     /// independent seed point confirmed the same count (the others are at infinity
     /// for this design's fixed rigid shapes, e.g. the leg-collapse points of Kapilavai
-    /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding angle), or
-    /// where the shortfall is reported as a seed-stage [`PathFailure`].
+    /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding
+    /// angle), or where the shortfall is reported as a seed-stage [`PathFailure`].
     pub start_count: usize,
 }
 
