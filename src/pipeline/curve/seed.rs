@@ -299,7 +299,7 @@ fn seed_problem(
 /// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
 /// solutions from `provider` and tracks them to the seed (in parallel), confirming
 /// every count below the generic one at an independent seed point
-/// ([`seed_problem`]).
+/// (`seed_problem`).
 pub fn seed_stage(
     design: &Design,
     motion: &Motion,
