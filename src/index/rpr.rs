@@ -48,7 +48,7 @@ pub enum IndexError {
 // ---------------------------------------------------------------------------------
 
 /// How DS combines the three pressure-angle cosines (docs/theory.md §9, **Choice**; the
-/// original formula of Gómez et al. was lost in extraction, so DS is *reconstructed*).
+/// original formula of Gómez et al. was not available to us, so DS is *reconstructed*).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DsAggregate {
