@@ -1,6 +1,7 @@
-//! Speed of the seed-003 GCI (SPEC D.5): one scheme on the 81×81 grid of the example geometry
-//! (the CLI table evaluates 16 of these), one local 1/κ evaluation, and one GA objective
-//! evaluation (41×41 grid, the default inside `--optimize`).
+//! Speed of the GCI of Ramana Babu et al. (docs/theory.md §11.5): one scheme on the 81×81
+//! grid of the example geometry (the CLI table evaluates 16 of these), one local 1/κ
+//! evaluation, and one GA objective evaluation (41×41 grid, the default inside
+//! `--optimize`).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::index::actuation::{

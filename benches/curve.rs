@@ -1,5 +1,5 @@
-//! Distance-to-singularity curve of the built-in example (SPEC A.9): seed stage plus
-//! the pose stage (one chain: the pose nearest `Re τ*` by the seed → pose homotopy
+//! Distance-to-singularity curve of the built-in example (docs/theory.md §8): seed stage
+//! plus the pose stage (one chain: the pose nearest `Re τ*` by the seed → pose homotopy
 //! along the complexified motion, every next one, forwards and backwards from it, by
 //! Newton's method from extrapolated critical
 //! points, with Newton sub-steps and pose-to-pose paths where that fails), 90 poses, on

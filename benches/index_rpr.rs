@@ -1,4 +1,4 @@
-//! Cost of the 3-RPR kinematic indices (SPEC Part B) per pose.
+//! Cost of the 3-RPR kinematic indices (docs/theory.md §9) per pose.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::index::rpr::{

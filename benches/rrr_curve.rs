@@ -1,4 +1,4 @@
-//! 3-RRR distance curves of the built-in example (SPEC Part C): 90 poses, four
+//! 3-RRR distance curves of the built-in example (docs/theory.md §10): 90 poses, four
 //! sub-problems (parallel 50 paths, legs 2 paths each), on 2 threads, embedded start files.
 //! Prints paths/s of one run before the criterion measurement.
 

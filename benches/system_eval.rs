@@ -1,4 +1,4 @@
-//! F + ∂F/∂x of the 13-unknown plate/plate Lagrange system (SPEC A.6): compiled
+//! F + ∂F/∂x of the 13-unknown plate/plate Lagrange system (docs/theory.md §5): compiled
 //! straight-line program vs the naive expression walker. Goal: ≤ 2 µs compiled.
 
 #[path = "../tests/system_support/mod.rs"]

@@ -1,9 +1,10 @@
 //! The arithmetic shared by numbers and symbolic expressions.
 //!
 //! Formulas that appear both numerically and inside Lagrangians (the singularity
-//! polynomial S of SPEC A.2, the collinearity polynomials, the segment and triangle
-//! distances of SPEC A.3) are written once, generic over [`Ring`], and instantiated
-//! with `f64`, [`crate::C64`] or the symbolic expression type of [`crate::system`].
+//! polynomial S of docs/theory.md §1.3, the collinearity polynomials, the segment and
+//! triangle distances of docs/theory.md §2) are written once, generic over [`Ring`], and
+//! instantiated with `f64`, [`crate::C64`] or the symbolic expression type of
+//! [`crate::system`].
 
 use crate::C64;
 use std::ops::{Add, Mul, Neg, Sub};
@@ -137,7 +138,7 @@ pub fn to_cartesian<T: ComplexRing>(p: &Point<T>) -> Point<T> {
     ]
 }
 
-/// `u × v = u_x v_y − u_y v_x` (SPEC notation).
+/// `u × v = u_x v_y − u_y v_x` (the notation of docs/theory.md).
 pub fn cross<T: Ring>(u: &Point<T>, v: &Point<T>) -> T {
     u[0].clone() * v[1].clone() - u[1].clone() * v[0].clone()
 }

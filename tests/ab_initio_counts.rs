@@ -1,5 +1,5 @@
-//! SPEC A.7: the generic root counts do not depend on the random source point — the
-//! ab-initio stage run with a second seed (the stored files used the default seed)
+//! docs/theory.md §6: the generic root counts do not depend on the random source point —
+//! the ab-initio stage run with a second seed (the stored files used the default seed)
 //! finds the same number of certified, nonsingular solutions for every sub-problem.
 
 use singdist::pipeline::ab_initio::{AbInitioOptions, compute_start_solutions, expected_count};

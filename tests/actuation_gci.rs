@@ -291,8 +291,8 @@ fn relative_elbow_psi_psi_psi_is_architecturally_singular_at_zero_orientation() 
 #[test]
 fn isosceles_legs_make_seed_psi_scheme_equal_theta_scheme_in_the_other_mode() {
     // With |O_iB_i| = |B_iC_i| the mirrored elbow (other working mode) swaps the directions of
-    // b_i and c_i, so the seed's ψψψ rows in mode σ are the θθθ rows in mode −σ (and the J_q
-    // diagonals agree): equal 1/κ pose by pose.
+    // b_i and c_i, so the paper-model ψψψ rows in mode σ are the θθθ rows in mode −σ (and
+    // the J_q diagonals agree): equal 1/κ pose by pose.
     let design = RrrDesign::symmetric(5.0, 1.2, 3.0, 3.0).unwrap();
     let psi = Scheme::from_number(2).unwrap();
     let theta = Scheme::from_number(1).unwrap();

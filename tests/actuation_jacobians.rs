@@ -255,7 +255,8 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
         SingularityType::Regular
     );
 
-    // ψψψ, relative-elbow model: lines O_iC_i through Q (the seed's text, Fig. 5).
+    // ψψψ, relative-elbow model: lines O_iC_i through Q (the text of Ramana Babu et al.,
+    // Fig. 5).
     let bases = [0, 1, 2].map(|i| PLATFORM[i] + 3.5 * radial[i]);
     let elbows = [0, 1, 2].map(|i| bases[i] + 2.0 * rotate(-radial[i], 0.7));
     let (design, config) = design_through(bases, elbows, PLATFORM);

@@ -1,4 +1,4 @@
-//! `singdist indices --with-metrics` / `singdist compare` end to end (issue 6, item 3):
+//! `singdist indices --with-metrics` / `singdist compare` end to end:
 //! the metric columns are those of `singdist curve` for the same poses and seed, they
 //! vanish at a singular pose, the plotted data are scaled into [0, 1], the single-pose
 //! JSON carries the metric distances of `singdist distance`, and lost paths give exit
@@ -158,7 +158,7 @@ fn metric_columns_match_curve_vanish_at_the_singular_pose_and_plot_data_are_scal
             assert_eq!(signed[j].signum(), s[j].signum(), "pose {j}: sign of S");
         }
     }
-    // Pose 2 is singular (S = 0 up to rounding): the distance vanishes (SPEC A.8).
+    // Pose 2 is singular (S = 0 up to rounding): the distance vanishes (docs/theory.md §7).
     assert!(s[2].abs() < 1e-9, "S = {}", s[2]);
     assert!(
         distance[2] < 1e-6,

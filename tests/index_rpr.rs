@@ -1,4 +1,4 @@
-//! Kinematic performance indices of a 3-RPR (SPEC Part B).
+//! Kinematic performance indices of a 3-RPR (docs/theory.md §9).
 
 use nalgebra::Vector3;
 use singdist::index::rpr::{

@@ -94,8 +94,8 @@ fn redundant_map_dominates_non_redundant_map() {
     assert_eq!(again, prrr);
 }
 
-/// Seed 001 §4 claims, checked on the computed maps (fontes2017, α = 0, 25 mm grid over the
-/// whole 3-PRRR workspace).
+/// The claims of Fontes et al., §4, checked on the computed maps (fontes2017, α = 0, 25
+/// mm grid over the whole 3-PRRR workspace).
 #[test]
 fn seed001_claims_hold_on_the_maps() {
     let design = PrrrDesign::fontes2017();

@@ -1,4 +1,4 @@
-//! The nine extrinsic metrics (SPEC A.3, A.4): axioms, invariance, hand-computed
+//! The nine extrinsic metrics (docs/theory.md §2, §3): axioms, invariance, hand-computed
 //! values, summand counts and names.
 
 use proptest::prelude::*;

@@ -1,4 +1,5 @@
-//! SPEC D.3 redundancy resolution: trajectories, quintic profile, objective, optimiser.
+//! docs/theory.md §11.3 redundancy resolution: trajectories, quintic profile, objective,
+//! optimiser.
 
 use singdist::mechanism::prrr::{PrrrDesign, WorkingMode};
 use singdist::optimize::redundancy::{
@@ -160,8 +161,8 @@ fn objective_is_mean_or_min_and_zero_when_unreachable() {
     assert_eq!(mean.objective(&[0.0; 2]), f64::NEG_INFINITY);
 }
 
-/// The acceptance test of SPEC D.3: the optimised objective is at least the one at δ = 0
-/// and at 20 random feasible δ; the run repeats exactly for a fixed seed.
+/// The acceptance test of docs/theory.md §11.3: the optimised objective is at least the
+/// one at δ = 0 and at 20 random feasible δ; the run repeats exactly for a fixed seed.
 #[test]
 fn optimised_objective_beats_zero_and_random_inputs_and_is_reproducible() {
     let local = LocalOptions {

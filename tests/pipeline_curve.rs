@@ -1,4 +1,4 @@
-//! Acceptance tests of the distance-to-singularity curves (SPEC A.8, A.9).
+//! Acceptance tests of the distance-to-singularity curves (docs/theory.md §7, §8).
 
 use singdist::C64;
 use singdist::mechanism::rpr::{
@@ -182,7 +182,8 @@ fn global_minimum_is_below_every_local_minimum_and_closest_is_feasible() {
         let result = curve(&design, &pose_list(vec![pose]), 0, &metrics);
         for m in metrics {
             let reported = &result.poses[0].metrics[&m.name()];
-            // Consistency (SPEC A.8): distance recomputed from K′, constraint satisfied.
+            // Consistency (docs/theory.md §7): distance recomputed from K′, constraint
+            // satisfied.
             let recomputed = m.distance(&k, &reported.closest);
             assert!((recomputed - reported.distance).abs() < 1e-12 * (1.0 + recomputed));
             let residual = constraint_residual(&reported.subproblem, &reported.closest);
@@ -250,7 +251,7 @@ fn same_seed_gives_identical_json_on_one_and_two_threads() {
     assert_eq!(run(1), run(2));
 }
 
-/// Similarity equivariance (SPEC A.4: D is invariant under Euclidean motions and
+/// Similarity equivariance (docs/theory.md §3: D is invariant under Euclidean motions and
 /// homogeneous of degree 1 under scaling): the same design and poses in units ten
 /// times smaller give ten times the distance at every pose and for every sub-problem,
 /// including the rigid parts' shape constants (r², which the normalised frame divides

@@ -64,9 +64,9 @@ fn tiny_platform_distance_does_not_depend_on_the_seed() {
     }
 }
 
-/// Two coincident base anchors (paper Lemma 2: a legitimate robot, once rejected),
-/// and the same robot with its legs labelled another way: the same distances, and
-/// the closest configurations relabelled accordingly.
+/// Two coincident base anchors (Kapilavai and Nawratil, Lemma 2: a legitimate robot, once
+/// rejected), and the same robot with its legs labelled another way: the same distances,
+/// and the closest configurations relabelled accordingly.
 #[test]
 fn coincident_anchors_are_solved_and_labelling_does_not_matter() {
     let base = [[0.0, 0.0], [0.0, 0.0], [4.0, 8.0]];

@@ -1,8 +1,8 @@
-//! All six points on one line with a rigid part whose anchors are collinear (SPEC A.6.3,
-//! issue 4): the pipeline's all-collinear distance equals an independent brute force
-//! over the line direction, the metric's distance is the minimum over its
-//! sub-problems, and the sub-problem is reported as not applicable exactly when a rigid
-//! part's anchors are not collinear.
+//! All six points on one line with a rigid part whose anchors are collinear (Kapilavai and
+//! Nawratil, Thm 3; docs/theory.md §5.3): the pipeline's all-collinear distance equals an
+//! independent brute force over the line direction, the metric's distance is the minimum
+//! over its sub-problems, and the sub-problem is reported as not applicable exactly when
+//! a rigid part's anchors are not collinear.
 
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_design};
 use singdist::metric::{Metric, Part};

@@ -1,5 +1,6 @@
-//! The Lagrange sub-problems of SPEC A.6: every metric's list, the unknown counts of
-//! SPEC A.7, and start pairs whose configuration satisfies the constraint.
+//! The Lagrange sub-problems of docs/theory.md §5: every metric's list, the unknown
+//! counts of docs/theory.md §6, and start pairs whose configuration satisfies the
+//! constraint.
 
 use singdist::C64;
 use singdist::mechanism::rpr;
@@ -39,7 +40,7 @@ fn each_metric_needs_the_subproblems_of_spec_a6() {
     assert!("bars/rigid:nonsense".parse::<ProblemId>().is_err());
 }
 
-/// Unknown counts of SPEC A.7's table (and of our parameterisation of the others).
+/// Unknown counts of docs/theory.md §6's table (and of our parameterisation of the others).
 #[test]
 fn unknown_counts_match_spec_a7() {
     for id in ProblemId::all() {

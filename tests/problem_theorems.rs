@@ -1,4 +1,4 @@
-//! Acceptance tests of the sub-problems against SPEC A.7–A.8, solved at real
+//! Acceptance tests of the sub-problems against docs/theory.md §6–§7, solved at real
 //! configurations by a straight parameter homotopy from the stored generic start
 //! solutions (the full curve pipeline lives elsewhere).
 
@@ -166,8 +166,8 @@ fn pedal_point_theorem_fails_for_bars_rigid() {
     );
 }
 
-/// SPEC A.8: a configuration on the singularity hypersurface has distance 0 for every
-/// metric (its own K′ = K is a real critical point with λ = 0). Failed paths are not
+/// docs/theory.md §7: a configuration on the singularity hypersurface has distance 0 for
+/// every metric (its own K′ = K is a real critical point with λ = 0). Failed paths are not
 /// checked here: the rigid-part systems lose up to ~25% of paths on the straight
 /// complex-to-real segment (the curve pipeline re-runs them with detours).
 #[test]
@@ -204,7 +204,7 @@ fn singular_configuration_has_distance_zero_for_all_nine_metrics() {
 }
 
 /// Every stored start-solution file re-checks: residual < 1e-10, distinct,
-/// nonsingular, the SPEC A.7 count (or a trace test where no count is known),
+/// nonsingular, the docs/theory.md §6 count (or a trace test where no count is known),
 /// and a passed certificate.
 #[test]
 fn stored_start_solutions_verify() {

@@ -1,5 +1,5 @@
-//! SPEC D.1–D.2: inverse kinematics, A and B against finite differences, singularity tests,
-//! LCI and NSIR test vectors.
+//! docs/theory.md §11.1–§11.2: inverse kinematics, A and B against finite differences,
+//! singularity tests, LCI and NSIR test vectors.
 #![allow(clippy::needless_range_loop)]
 
 use singdist::index::prrr::{LciVariant, all_indices, incircle_radius_of_lines, lci, nsir};
@@ -357,8 +357,9 @@ fn bad_input_gives_named_errors_not_nan() {
     assert!(PrrrDesign::farias2021().validate().is_ok());
 }
 
-/// Seed 000's platform convention `C_i = D − h e(α + η_i)` equals ours with φ_i = η_i + π,
-/// and the indices are invariant under a rigid rotation of the whole robot about the origin.
+/// The platform convention of Farias Filho et al. (2021) `C_i = D − h e(α + η_i)` equals
+/// ours with φ_i = η_i + π, and the indices are invariant under a rigid rotation of the
+/// whole robot about the origin.
 #[test]
 fn platform_convention_and_rotation_invariance() {
     let design = PrrrDesign::farias2021();

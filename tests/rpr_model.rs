@@ -1,5 +1,5 @@
-//! 3-RPR model: design validation, singularity polynomial (SPEC A.2), rigid shapes
-//! (SPEC A.5), motions and the built-in example, design/motion files.
+//! 3-RPR model: design validation, singularity polynomial (docs/theory.md §1.3), rigid
+//! shapes (docs/theory.md §4), motions and the built-in example, design/motion files.
 
 use nalgebra::Matrix3;
 use singdist::C64;
@@ -155,7 +155,7 @@ fn rigid_shape_reconstructs_third_point_after_rigid_motion() {
 #[test]
 fn design_validation_names_the_field() {
     let base = [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]];
-    // Two coincident anchors are a legitimate robot (paper Lemma 2).
+    // Two coincident anchors are a legitimate robot (Kapilavai and Nawratil, Lemma 2).
     assert!(Design::new(base, [[0.0, 0.0], [0.0, 0.0], [1.0, 2.0]]).is_ok());
     let err = Design::new(
         [[0.0, 0.0], [10.0, f64::NAN], [4.0, 8.0]],

@@ -1,5 +1,5 @@
-//! 3-RRR distance curves (SPEC Part C): zeros and sign changes at singular poses, global
-//! minimality against random-start local minimisations, consistency of the reported
+//! 3-RRR distance curves (docs/theory.md §10): zeros and sign changes at singular poses,
+//! global minimality against random-start local minimisations, consistency of the reported
 //! closest configurations, bad input.
 use singdist::C64;
 use singdist::io::load_motion;

@@ -1,5 +1,5 @@
 //! 3-RRR model: validation errors, inverse kinematics round trip in both working modes,
-//! unreachable poses, nine-point configuration (SPEC Part C / D.5).
+//! unreachable poses, nine-point configuration (docs/theory.md §10, §11.5).
 
 use singdist::mechanism::rrr::{
     ElbowMode, POSITIVE_MODES, Point, RrrDesign, RrrError, RrrPose, WorkingModes,

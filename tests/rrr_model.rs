@@ -1,4 +1,4 @@
-//! 3-RRR model along a motion (SPEC Part C): complex IK, working-mode continuation,
+//! 3-RRR model along a motion (docs/theory.md §10): complex IK, working-mode continuation,
 //! the example's singular crossings.
 use singdist::C64;
 use singdist::mechanism::rrr::*;

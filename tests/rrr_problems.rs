@@ -1,5 +1,5 @@
-//! 3-RRR sub-problems (SPEC Part C): the stored start files (residuals, distinctness,
-//! certificates) and their root counts re-measured from a second seed.
+//! 3-RRR sub-problems (docs/theory.md §10): the stored start files (residuals,
+//! distinctness, certificates) and their root counts re-measured from a second seed.
 use singdist::C64;
 use singdist::mechanism::rrr::{distance_sq, leg_polynomial, parallel_polynomial};
 use singdist::pipeline::rrr_ab_initio::*;

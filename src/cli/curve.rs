@@ -1,5 +1,5 @@
 //! `singdist curve`: distance-to-singularity curves of a 3-RPR along a motion for the
-//! nine extrinsic metrics (SPEC A.9): JSON / CSV table, SVG plot, compact table on
+//! nine extrinsic metrics (docs/theory.md §8): JSON / CSV table, SVG plot, compact table on
 //! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
 use super::curve_log::{PoseLines, RunLog};

@@ -1,7 +1,7 @@
 //! `singdist distance`: the singularity distances of a 3-RPR at one pose for the
-//! selected metrics, in full detail (SPEC A.6, A.9): per metric the distance, signed
-//! distance, attaining sub-problem, closest configuration K′, cut-locus flag and every
-//! sub-problem's own minimum.
+//! selected metrics, in full detail (docs/theory.md §5, §8): per metric the distance,
+//! signed distance, attaining sub-problem, closest configuration K′, cut-locus flag and
+//! every sub-problem's own minimum.
 
 use super::curve::{load_inputs, parse_metrics};
 use super::failures::warn_failures;

@@ -1,14 +1,14 @@
-//! `singdist indices`: kinematic performance indices of a 3-RPR (SPEC Part B) along a
+//! `singdist indices`: kinematic performance indices of a 3-RPR (docs/theory.md §9) along a
 //! motion (CSV / JSON Lines / JSON table, SVG plot) or at one pose (`--pose x,y,phi
 //! --json`).
 //!
 //! With `--with-metrics [all|NAME…]` (or the `compare` command) the table also holds the
-//! singularity distances of the selected extrinsic metrics (SPEC A.9, computed window
-//! by window by [`CurveRun`] at the very same τ samples, [`sample_motion`]), so metric
-//! and index can be compared pose by pose (paper Figs. 14–16). The table is streamed:
-//! each window's rows are written as soon as they are final and dropped. Lost homotopy
-//! paths of the metric computation are reported on stderr, in the output, and by exit
-//! code 3 (as `curve`).
+//! singularity distances of the selected extrinsic metrics (docs/theory.md §8, computed
+//! window by window by [`CurveRun`] at the very same τ samples, [`sample_motion`]), so
+//! metric and index can be compared pose by pose (Kapilavai and Nawratil, Figs. 14–16).
+//! The table is streamed: each window's rows are written as soon as they are final and
+//! dropped. Lost homotopy paths of the metric computation are reported on stderr, in the
+//! output, and by exit code 3 (as `curve`).
 
 use super::curve::{check_samples, parse_metrics, pose_count};
 use super::distance::parse_pose;

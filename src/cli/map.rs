@@ -18,7 +18,7 @@ pub struct MapArgs {
     #[arg(long, default_value = "3prrr")]
     robot: String,
     /// Design preset: fontes2017 (Fontes, Vieira, da Silva) or farias2021 (Farias Filho,
-    /// da Silva, Fontes, COBEM 2021).
+    /// da Silva, Fontes 2021).
     #[arg(long, default_value = "fontes2017")]
     preset: String,
     /// Fixed orientation α (rad).

@@ -1,4 +1,5 @@
-//! `singdist prrr`: 3-PRRR indices at one pose (SPEC D.2) and redundancy resolution (SPEC D.3).
+//! `singdist prrr`: 3-PRRR indices at one pose (docs/theory.md §11.2) and redundancy
+//! resolution (docs/theory.md §11.3).
 
 use super::output::{check_writable, write_file};
 use anyhow::{Context, bail};
@@ -17,7 +18,7 @@ use std::path::PathBuf;
 pub enum PrrrCommand {
     /// LCI (both variants) and NSIR of one configuration (SI units).
     Index(IndexArgs),
-    /// Redundancy resolution along a task: GA + local refinement of δ (Farias Filho, da Silva, Fontes, COBEM 2021, §4).
+    /// Redundancy resolution along a task: GA + local refinement of δ (Farias Filho, da Silva, Fontes 2021, §4).
     Resolve(ResolveArgs),
 }
 
@@ -30,7 +31,7 @@ pub struct IndexArgs {
     /// Prismatic inputs `d1,d2,d3` (m).
     #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
     delta: String,
-    /// Design preset: farias2021 (Farias Filho, da Silva, Fontes, COBEM 2021) or fontes2017 (Fontes, Vieira, da Silva).
+    /// Design preset: farias2021 (Farias Filho, da Silva, Fontes 2021) or fontes2017 (Fontes, Vieira, da Silva).
     #[arg(long, default_value = "farias2021")]
     preset: String,
     /// Working modes σ_i, e.g. `+,-,+`.

@@ -1,9 +1,10 @@
-//! `singdist rrr`: 3-RRR singularity distances (SPEC Part C, paper §6.3).
+//! `singdist rrr`: 3-RRR singularity distances (Kapilavai and Nawratil, §6.3;
+//! docs/theory.md §10).
 //!
 //! - `rrr curve`: the four signed distance curves (parallel, legs 1–3), the overall
-//!   singularity distance and the scaled parallel determinant (paper Fig. 17) along a
-//!   motion, as JSON / CSV / a table on stdout, optionally an SVG plot. Exit code 3 when
-//!   paths were lost.
+//!   singularity distance and the scaled parallel determinant (Kapilavai and Nawratil,
+//!   Fig. 17) along a motion, as JSON / CSV / a table on stdout, optionally an SVG plot.
+//!   Exit code 3 when paths were lost.
 //! - `rrr ab-initio`: computes, certifies and writes the start-solution files
 //!   `rrr-parallel.json`, `rrr-leg1.json` … (or verifies the embedded ones).
 

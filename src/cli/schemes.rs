@@ -1,6 +1,6 @@
-//! `singdist schemes`: the eight actuation schemes of the 3-RRR (SPEC D.5, Ramana Babu et al.): GCI table
-//! per scheme and orientation, singularity-loci plot, and with `--optimize` the GA-optimal
-//! design vector `(a, b, c)` per scheme.
+//! `singdist schemes`: the eight actuation schemes of the 3-RRR (docs/theory.md §11.5,
+//! Ramana Babu et al.): GCI table per scheme and orientation, singularity-loci plot, and
+//! with `--optimize` the GA-optimal design vector `(a, b, c)` per scheme.
 //!
 //! The example geometry (Ramana Babu et al. gives none) is documented in
 //! [`singdist::index::actuation::ExampleGeometry`]: base radius 5, `(a, b, c) = (1.5, 3.0, 3.5)`,
@@ -49,13 +49,13 @@ struct SchemesOptions {
     /// Base circumradius R of the symmetric design.
     #[arg(long, default_value_t = ExampleGeometry::default().base_radius)]
     base_radius: f64,
-    /// Seed `a`: platform circumradius |PC_i|.
+    /// `a` of Ramana Babu et al.: platform circumradius |PC_i|.
     #[arg(long, default_value_t = ExampleGeometry::default().platform_radius)]
     platform: f64,
-    /// Seed `b`: proximal link |O_iB_i|.
+    /// `b` of Ramana Babu et al.: proximal link |O_iB_i|.
     #[arg(long, default_value_t = ExampleGeometry::default().proximal)]
     proximal: f64,
-    /// Seed `c`: distal link |B_iC_i|.
+    /// `c` of Ramana Babu et al.: distal link |B_iC_i|.
     #[arg(long, default_value_t = ExampleGeometry::default().distal)]
     distal: f64,
     /// Nodes per side of the square grid [-half_width, half_width]^2.
@@ -70,13 +70,15 @@ struct SchemesOptions {
     /// Working modes of the three legs, e.g. `+++` or `+-+`.
     #[arg(long, default_value = "+++")]
     modes: String,
-    /// ψ-actuation model: `seed` (absolute ψ, seed matrices) or `relative` (elbow motor).
+    /// ψ-actuation model: `seed` (absolute ψ, the matrices of Ramana Babu et al.) or
+    /// `relative` (elbow motor).
     #[arg(long, default_value = "seed")]
     psi_model: String,
     /// Norm of the condition number: `2-norm` or `weighted-frobenius`.
     #[arg(long, default_value = "2-norm")]
     norm: String,
-    /// GCI mean of the table: `reachable` (seed Eq. 20) or `grid` (unreachable = 0).
+    /// GCI mean of the table: `reachable` (Ramana Babu et al., Eq. 20) or `grid`
+    /// (unreachable = 0).
     #[arg(long, default_value = "reachable")]
     domain: String,
     /// GCI mean inside the GA objective (default `grid`: reachable-only rewards shrinking).

@@ -1,13 +1,13 @@
 //! Monodromy solving of parametric systems, certified by a trace test.
 //!
-//! **Monodromy** (Duff, Hill, Jensen, Lee, Leykin & Sommerhalder 2019): the solutions of
+//! **Monodromy** (Duff, Hill, Jensen, Lee, Leykin & Sommars 2019): the solutions of
 //! `F(x; p₀) = 0` over a generic parameter point form one fiber of a branched cover of
 //! parameter space. Tracking known solutions around a loop `p₀ → p₁ → p₂ → p₀` through
 //! random complex points permutes the fiber, so new solutions appear; repeating with
 //! fresh loops until `max_stagnant_loops` loops in a row add nothing populates the fiber
 //! from a single start pair `(x₀, p₀)`.
 //!
-//! **Trace test** (Sommese, Verschelde & Wampler 2001; Leykin, Rodriguez & Sottile
+//! **Trace test** (Sommese, Verschelde & Wampler 2002; Leykin, Rodriguez & Sottile
 //! 2018): stagnation is no proof. Restrict the family to a random line
 //! `p(μ) = p₀ + μ v`; the incidence curve `C = {(x, μ) : F(x; p₀ + μ v) = 0}` meets a
 //! generic hyperplane `L_c = {μ = a·x + c}` in `deg C` points (a witness set), and for

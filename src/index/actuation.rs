@@ -1,5 +1,5 @@
 //! Actuation schemes of the planar 3-RRR: Jacobians, singularity types, singularity loci and the
-//! global conditioning index GCI (SPEC D.5; Ramana Babu et al. §III–V).
+//! global conditioning index GCI (docs/theory.md §11.5; Ramana Babu et al. §III–V).
 //!
 //! # Jacobians (Ramana Babu et al. Eqs. 16–18)
 //!
@@ -16,15 +16,16 @@
 //! Derivation (checked by finite differences of the inverse kinematics in
 //! `tests/actuation_jacobians.rs`): `C_i = P − a_i` with `ȧ_i = φ̇ E a_i`. A θ-actuated leg keeps
 //! `|C_i − B_i|² = c²`: differentiating gives `c_i·(Ṗ − φ̇ E a_i − θ̇_i E b_i) = 0`, i.e. the θ
-//! row above. The seed's ψ matrices keep `|B_i − O_i|² = b²` with `B_i = C_i − c_i` and the
-//! *absolute* distal angle ψ_i as input; the physical elbow motor drives the *relative* angle
-//! `ψ_i − θ_i`, which fixes `|C_i − O_i|² = b² + c² + 2bc cos(ψ_i − θ_i)` and gives the
-//! `d_i` row (its Type II: lines `O_iC_i` concurrent, as the seed's text says, while the seed's
-//! matrices give Type II when the lines through `C_i` parallel to `O_iB_i` are concurrent).
-//! All the seed's matrices `J_x1..8`, `J_q1..8` agree with this table. Seed typos found and
-//! fixed: the listing of `q̇_6` reads `[ψ̇_1 θ̇_2 ψ̇_3]` (that is `q̇_8`) while Table I and `J_x6`,
-//! `J_q6` give θ_1 ψ_2 ψ_3; the denominator of Eq. 15 reads `e_2i − e_2i` for `e_3i − e_2i`; Eq. 12
-//! has `2a y_oi sin ψ_i` for `2c y_oi sin ψ_i`.
+//! row above. The ψ matrices of Ramana Babu et al. keep `|B_i − O_i|² = b²` with
+//! `B_i = C_i − c_i` and the *absolute* distal angle ψ_i as input; the physical elbow
+//! motor drives the *relative* angle `ψ_i − θ_i`, which fixes
+//! `|C_i − O_i|² = b² + c² + 2bc cos(ψ_i − θ_i)` and gives the `d_i` row (its Type II:
+//! lines `O_iC_i` concurrent, as the paper's text says, while its matrices give Type II
+//! when the lines through `C_i` parallel to `O_iB_i` are concurrent). All the paper's
+//! matrices `J_x1..8`, `J_q1..8` agree with this table. Typos found and fixed: the
+//! listing of `q̇_6` reads `[ψ̇_1 θ̇_2 ψ̇_3]` (that is `q̇_8`) while Table I and `J_x6`,
+//! `J_q6` give θ_1 ψ_2 ψ_3; the denominator of Eq. 15 reads `e_2i − e_2i` for
+//! `e_3i − e_2i`; Eq. 12 has `2a y_oi sin ψ_i` for `2c y_oi sin ψ_i`.
 //!
 //! # Singularities (Ramana Babu et al. §III.B)
 //! Type I: `det J_q = 0` (some leg has `O_i, B_i, C_i` aligned; identical for all schemes).
@@ -34,36 +35,38 @@
 //! GCI table: (1) a rotation of the whole robot by 120° maps leg i to leg i+1 at the *same*
 //! orientation φ, so θθψ, θψθ, ψθθ (schemes 3–5) have equal GCIs on a 120°-invariant region,
 //! and so have θψψ, ψψθ, ψθψ (6–8); on the square grid they differ only by discretisation
-//! (the seed's Table II, where they differ by up to 20 %, therefore cannot come from a
-//! symmetric design with symmetric limits and grid). (2) With the relative-elbow model, ψψψ
-//! is singular at *every* position when φ = 0: base and platform triangles are similar and
-//! equally oriented, so the lines `O_iC_i` all pass through `R·P/(R − a)` (the architecture
-//! singularity of the similar-triangle 3-RPR); its GCI at φ = 0 is 0. (3) With isosceles legs
-//! (`b = c`) the seed-model ψψψ in working mode σ equals θθθ in mode −σ pose by pose (the
-//! mirrored elbow swaps the directions of `b_i` and `c_i`); at φ = 0 the mirror symmetry of
-//! the design then gives equal GCIs for θθθ and ψψψ in the same mode.
+//! (Table II of Ramana Babu et al., where they differ by up to 20 %, therefore cannot
+//! come from a symmetric design with symmetric limits and grid). (2) With the
+//! relative-elbow model, ψψψ is singular at *every* position when φ = 0: base and
+//! platform triangles are similar and equally oriented, so the lines `O_iC_i` all pass
+//! through `R·P/(R − a)` (the architecture singularity of the similar-triangle 3-RPR);
+//! its GCI at φ = 0 is 0. (3) With isosceles legs (`b = c`) the paper-model ψψψ in
+//! working mode σ equals θθθ in mode −σ pose by pose (the mirrored elbow swaps the
+//! directions of `b_i` and `c_i`); at φ = 0 the mirror symmetry of the design then gives
+//! equal GCIs for θθθ and ψψψ in the same mode.
 //!
 //! # GCI (Ramana Babu et al. Eq. 20)
 //! `GCI = ∫_W (1/κ) dw / ∫_W dw`, discretised as the mean of `1/κ(J)`, `J = J_q⁻¹ J_x`, over
 //! the nodes of an (x, y) grid at constant orientation. **Choice** ([`GciDomain`]): by default
-//! the mean runs over the *reachable* nodes only (the seed's `∫_W dw` is the workspace area);
-//! [`GciDomain::Grid`] divides by all grid nodes (unreachable nodes count 0), which is the
-//! objective the design optimisation uses by default because the reachable-only mean rewards
-//! shrinking the workspace. Singular nodes count 0 in both.
+//! the mean runs over the *reachable* nodes only (the paper's `∫_W dw` is the workspace
+//! area); [`GciDomain::Grid`] divides by all grid nodes (unreachable nodes count 0),
+//! which is the objective the design optimisation uses by default because the
+//! reachable-only mean rewards shrinking the workspace. Singular nodes count 0 in both.
 //!
 //! # Findings on the example geometry ([`ExampleGeometry`], `singdist schemes`)
 //!
-//! Seed model, 81×81 grid, reachable mean, 2-norm: at φ = 0 θθθ 0.2901 > ψψψ 0.2152 >
-//! {θθψ, θψθ, ψθθ} 0.1485 > {θψψ, ψψθ, ψθψ} 0.1347; at φ = 20° θθθ 0.2420 > {3, 4, 5} 0.2099 >
-//! ψψψ 0.1980 > {6, 7, 8} 0.1582. So between 0° and 20° the best scheme does **not** change
-//! here; over a wider range it does (θθθ for φ ∈ [−10°, 20°] and 50°–60°, the {3, 4, 5} class at
-//! 25°, ψψψ at 30°–40° and at −20°), and between 0° and 20° it does change for other link
-//! lengths (e.g. (a, b, c) = (2, 2.5, 3.5): θθθ → θψθ class) and with the relative-elbow model
-//! (θθθ at 0°, ψψψ 0.2984 at 20°). The seed's qualitative claim holds in general, but not for
-//! every geometry at its two orientations. GA optima (grid-mean objective, λ = 9.3) push
-//! `b, c` to their upper bound 4 and make `a + b + c ≤ λ` active (a = 1.3) for most schemes,
-//! like the seed's Table IV; θθθ is the best optimised scheme at both orientations, as in the
-//! seed's Table IV. With the reachable-only mean as objective the GA degenerates to tiny
+//! Paper model ([`PsiModel::Seed`]), 81×81 grid, reachable mean, 2-norm: at φ = 0 θθθ
+//! 0.2901 > ψψψ 0.2152 > {θθψ, θψθ, ψθθ} 0.1485 > {θψψ, ψψθ, ψθψ} 0.1347; at φ = 20° θθθ
+//! 0.2420 > {3, 4, 5} 0.2099 > ψψψ 0.1980 > {6, 7, 8} 0.1582. So between 0° and 20° the
+//! best scheme does **not** change here; over a wider range it does (θθθ for φ ∈ [−10°,
+//! 20°] and 50°–60°, the {3, 4, 5} class at 25°, ψψψ at 30°–40° and at −20°), and between
+//! 0° and 20° it does change for other link lengths (e.g. (a, b, c) = (2, 2.5, 3.5): θθθ
+//! → θψθ class) and with the relative-elbow model (θθθ at 0°, ψψψ 0.2984 at 20°). The
+//! paper's qualitative claim holds in general, but not for every geometry at its two
+//! orientations. GA optima (grid-mean objective, λ = 9.3) push `b, c` to their upper
+//! bound 4 and make `a + b + c ≤ λ` active (a = 1.3) for most schemes, like Table IV of
+//! Ramana Babu et al.; θθθ is the best optimised scheme at both orientations, as in their
+//! Table IV. With the reachable-only mean as objective the GA degenerates to tiny
 //! workspaces with GCI → 1, which is why the GA uses the grid mean by default.
 
 use crate::mechanism::rrr::{
@@ -132,10 +135,11 @@ pub enum Actuator {
     Psi,
 }
 
-/// Which elbow input a ψ-actuated leg has (SPEC D.5 **Choice**).
+/// Which elbow input a ψ-actuated leg has (docs/theory.md §11.5 **Choice**).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum PsiModel {
-    /// Seed 003's matrices: input = absolute distal angle `ψ_i = atan2(C_i − B_i)`.
+    /// The matrices of Ramana Babu et al.: input = absolute distal angle
+    /// `ψ_i = atan2(C_i − B_i)`.
     #[default]
     Seed,
     /// Physical elbow motor: input = relative angle `ψ_i − θ_i`; `J_x` row built on
@@ -379,7 +383,8 @@ impl ActuationJacobians {
     }
 
     /// Local conditioning index `1/κ(J)` ∈ [0, 1], `J = J_q⁻¹ J_x` with column 3 divided by
-    /// `length_scale` when given (homogenisation; the seed uses none). 0 at singularities.
+    /// `length_scale` when given (homogenisation; Ramana Babu et al. use none). 0 at
+    /// singularities.
     pub fn inverse_condition(&self, norm: ConditionNorm, length_scale: Option<f64>) -> f64 {
         let Some(mut j) = self.kinematic_jacobian() else {
             return 0.0;
@@ -574,7 +579,8 @@ impl WorkspaceGrid {
 /// Which nodes the GCI mean runs over (module documentation, **Choice**).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum GciDomain {
-    /// Mean over reachable nodes (seed Eq. 20, `∫_W dw` = workspace). Default for analysis.
+    /// Mean over reachable nodes (Ramana Babu et al., Eq. 20, `∫_W dw` = workspace).
+    /// Default for analysis.
     #[default]
     Reachable,
     /// Mean over all grid nodes, unreachable nodes counting 0 (fixed task region).
@@ -609,7 +615,7 @@ impl FromStr for GciDomain {
 /// Options of [`gci`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GciOptions {
-    /// Working modes of the legs (default: the seed's positive modes).
+    /// Working modes of the legs (default: the positive modes of Ramana Babu et al.).
     pub modes: WorkingModes,
     /// ψ-actuation model.
     pub model: PsiModel,
@@ -938,18 +944,18 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
 /// Example geometry of this crate for Ramana Babu et al. (the paper does not give its base geometry, joint
 /// limits or grid): symmetric family of [`RrrDesign::symmetric`] with base radius 5, default
 /// design `(a, b, c) = (1.5, 3.0, 3.5)` (platform circumradius, proximal, distal), size limit
-/// `a + b + c ≤ λ = 9.3` (seed Table IV), bounds `a ∈ [1, 3]`, `b, c ∈ [1, 4]` (the seed's
-/// optima sit at `a = 1.3` and `b, c ≤ 4`), no joint limits, and the square grid
-/// `[−5, 5]²` at constant orientation.
+/// `a + b + c ≤ λ = 9.3` (Ramana Babu et al., Table IV), bounds `a ∈ [1, 3]`,
+/// `b, c ∈ [1, 4]` (the paper's optima sit at `a = 1.3` and `b, c ≤ 4`), no joint limits,
+/// and the square grid `[−5, 5]²` at constant orientation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExampleGeometry {
     /// Base circumradius R.
     pub base_radius: f64,
-    /// Seed `a`: platform circumradius.
+    /// `a` of Ramana Babu et al.: platform circumradius.
     pub platform_radius: f64,
-    /// Seed `b`: proximal link `|O_iB_i|`.
+    /// `b` of Ramana Babu et al.: proximal link `|O_iB_i|`.
     pub proximal: f64,
-    /// Seed `c`: distal link `|B_iC_i|`.
+    /// `c` of Ramana Babu et al.: distal link `|B_iC_i|`.
     pub distal: f64,
 }
 
@@ -981,8 +987,8 @@ impl ExampleGeometry {
     }
 }
 
-/// Seed 003 §V.B: maximise `GCI(a, b, c)` of one scheme at one orientation subject to
-/// `a + b + c ≤ λ` and box bounds, base radius fixed.
+/// Ramana Babu et al., §V.B: maximise `GCI(a, b, c)` of one scheme at one orientation
+/// subject to `a + b + c ≤ λ` and box bounds, base radius fixed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignProblem {
     /// Base circumradius R (fixed).
@@ -1002,8 +1008,9 @@ pub struct DesignProblem {
 }
 
 impl DesignProblem {
-    /// The seed-003 problem for `scheme` at `phi` on the example geometry: λ = 9.3,
-    /// `a ∈ [1, 3]`, `b, c ∈ [1, 4]`, grid `[−R, R]²` with `n × n` nodes, GCI over the grid.
+    /// The problem of Ramana Babu et al. for `scheme` at `phi` on the example geometry: λ
+    /// = 9.3, `a ∈ [1, 3]`, `b, c ∈ [1, 4]`, grid `[−R, R]²` with `n × n` nodes, GCI over
+    /// the grid.
     pub fn example(scheme: Scheme, phi: f64, n: usize) -> Self {
         let base_radius = ExampleGeometry::default().base_radius;
         Self {

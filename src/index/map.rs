@@ -1,4 +1,5 @@
-//! Conditioning maps of the 3RRR and the 3-PRRR over the workspace (SPEC D.4; Fontes et al. §3–4).
+//! Conditioning maps of the 3RRR and the 3-PRRR over the workspace (docs/theory.md §11.4;
+//! Fontes et al. §3–4).
 //!
 //! The (x, y) workspace is gridded at a fixed orientation α. For the 3RRR (δ = 0) each node
 //! has one configuration (fixed working modes) and the map shows its LCI (default
@@ -95,7 +96,8 @@ impl Default for MapOptions {
 /// Working modes used by a map.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ModeSelection {
-    /// The same σ at every node (SPEC D.4 default; Fontes et al. does not state its modes).
+    /// The same σ at every node (docs/theory.md §11.4 default; Fontes et al. does not
+    /// state its modes).
     Fixed([WorkingMode; 3]),
     /// Each leg's σ is searched with its δ levels: the node shows the best of `(2k)³`
     /// configurations (for the 3RRR: the best of the 8 assembly modes).
@@ -313,7 +315,7 @@ fn index_of_rows(rows: [&LegRow; 3], robot: Robot, variant: LciVariant) -> f64 {
     )
 }
 
-/// Compute a conditioning map (SPEC D.4).
+/// Compute a conditioning map (docs/theory.md §11.4).
 pub fn conditioning_map(
     design: &PrrrDesign,
     options: &MapOptions,

@@ -1,4 +1,5 @@
-//! Classic kinematic performance indices (SPEC Parts B and D), for comparison with metric singularity distances.
+//! Classic kinematic performance indices (docs/theory.md §9 and §11), for comparison with
+//! metric singularity distances.
 
 pub mod actuation;
 pub mod map;

@@ -1,5 +1,6 @@
-//! Singularity-avoidance indices of the 3-PRRR and 3RRR (SPEC D.2): LCI in two named
-//! variants and the normalised scaled incircle radius NSIR (Farias Filho et al. (2021) Eqs. 11–26).
+//! Singularity-avoidance indices of the 3-PRRR and 3RRR (docs/theory.md §11.2): LCI in
+//! two named variants and the normalised scaled incircle radius NSIR (Farias Filho et al.
+//! (2021) Eqs. 11–26).
 //!
 //! * `1/κ(Ā⁻¹B̄)` ([`LciVariant::InverseAB`], Farias Filho et al. (2021) Eqs. 10–12): the reciprocal condition
 //!   number of the homogenised Jacobian `J̄ = Ā⁻¹ B̄` (3×6 for the 3-PRRR, 3×3 for the 3RRR),
@@ -15,7 +16,7 @@
 use crate::mechanism::prrr::{PrrrConfiguration, PrrrDesign, Robot};
 use nalgebra::Matrix3;
 
-/// The two LCI variants of SPEC D.2.
+/// The two LCI variants of docs/theory.md §11.2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum LciVariant {
     /// `1/κ(Ā⁻¹B̄)`, Farias Filho et al. (2021) (default for redundancy resolution).
@@ -158,8 +159,8 @@ pub fn lci_from_parts(
     }
 }
 
-/// LCI by the literal formulas of SPEC D.2 (`Ā⁻¹`, the product with B̄, nalgebra SVD):
-/// the reference against which [`lci`] is tested.
+/// LCI by the literal formulas of docs/theory.md §11.2 (`Ā⁻¹`, the product with B̄,
+/// nalgebra SVD): the reference against which [`lci`] is tested.
 pub fn lci_reference(
     design: &PrrrDesign,
     configuration: &PrrrConfiguration,
@@ -199,7 +200,7 @@ pub struct Nsir {
     pub nsir: f64,
 }
 
-/// NSIR of a configuration (SPEC D.2).
+/// NSIR of a configuration (docs/theory.md §11.2).
 pub fn nsir(design: &PrrrDesign, configuration: &PrrrConfiguration, robot: Robot) -> Nsir {
     let r = incircle_radius_of_lines(&configuration.elbow, &configuration.platform);
     let r_norm = r / design.h;
@@ -213,10 +214,11 @@ pub fn nsir(design: &PrrrDesign, configuration: &PrrrConfiguration, robot: Robot
 }
 
 /// Incircle radius of the triangle formed by the three lines through `p[i]` and `q[i]`
-/// (SPEC Part B, IR; Farias Filho et al. (2021) Eqs. 16–21): lines in homogeneous form `L_i = (p_i,1) × (q_i,1)`,
-/// vertices `T_1 = L_1×L_2`, `T_2 = L_2×L_3`, `T_3 = L_3×L_1`, `r = |det[T_k,1]| / (t_1+t_2+t_3)`.
-/// Concurrent lines give 0. **Choice** (SPEC B): two parallel lines at separation d (third
-/// not parallel) give the continuous limit d/2; three parallel lines give 0; a degenerate
+/// (docs/theory.md §9, IR; Farias Filho et al. (2021) Eqs. 16–21): lines in homogeneous
+/// form `L_i = (p_i,1) × (q_i,1)`, vertices `T_1 = L_1×L_2`, `T_2 = L_2×L_3`,
+/// `T_3 = L_3×L_1`, `r = |det[T_k,1]| / (t_1+t_2+t_3)`. Concurrent lines give 0.
+/// **Choice** (docs/theory.md §9): two parallel lines at separation d (third not
+/// parallel) give the continuous limit d/2; three parallel lines give 0; a degenerate
 /// line (p_i = q_i) gives 0.
 pub fn incircle_radius_of_lines(p: &[[f64; 2]; 3], q: &[[f64; 2]; 3]) -> f64 {
     // Normalised lines n·x + c = 0 with |n| = 1.

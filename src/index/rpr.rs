@@ -1,12 +1,14 @@
-//! Kinematic performance indices of a 3-RPR (SPEC Part B; paper §1.1, §6.1–6.2).
+//! Kinematic performance indices of a 3-RPR (docs/theory.md §9; Kapilavai and Nawratil,
+//! §1.1, §6.1–6.2).
 //!
 //! Notation: leg vectors `d_i = b_i − a_i`, lengths `l_i`, unit directions `u_i`, leg
 //! lines `L_i` through `a_i, b_i`, platform reference point `t = (x, y)`. The inverse
 //! Jacobian J has rows `[u_ix, u_iy, (b_i − t) × u_i]`, so that `J · (ṫ, φ̇) = l̇`.
 //!
 //! Every index is either a number or `None` ("undefined", e.g. a leg of length 0 has no
-//! line); no function returns NaN. Every **Choice** of SPEC Part B is an option with the
-//! documented default ([`IndexOptions`]) and is named in the output ([`IndexVariants`]).
+//! line); no function returns NaN. Every **Choice** of docs/theory.md §9 is an option
+//! with the documented default ([`IndexOptions`]) and is named in the output
+//! ([`IndexVariants`]).
 
 use crate::C64;
 use crate::algebra::{Point, cross, difference, dot};
@@ -45,8 +47,8 @@ pub enum IndexError {
 // Options
 // ---------------------------------------------------------------------------------
 
-/// How DS combines the three pressure-angle cosines (SPEC B, **Choice**; the original
-/// formula of Gómez et al. was lost in extraction, so DS is *reconstructed*).
+/// How DS combines the three pressure-angle cosines (docs/theory.md §9, **Choice**; the
+/// original formula of Gómez et al. was not available to us, so DS is *reconstructed*).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DsAggregate {
@@ -98,7 +100,7 @@ impl FromStr for DsAggregate {
     }
 }
 
-/// Which control number (SPEC B, **Choice**).
+/// Which control number (docs/theory.md §9, **Choice**).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum CnVariant {
@@ -134,8 +136,8 @@ impl FromStr for CnVariant {
 }
 
 /// Default half width (radians) of the orientation range of the singularity-free
-/// cylinder around the current φ (**Choice**: the paper's motion has no orientation
-/// limits, where the radius is 0; a bounded range needs a value).
+/// cylinder around the current φ (**Choice**: the motion of Kapilavai and Nawratil has no
+/// orientation limits, where the radius is 0; a bounded range needs a value).
 pub const DEFAULT_CYLINDER_HALF_WIDTH: f64 = 0.1;
 
 /// Options of [`compute_indices`]; `Default` gives the documented defaults.
@@ -281,22 +283,22 @@ impl Legs {
     }
 }
 
-/// Manipulability `M = |det J| = |S| / (l_1 l_2 l_3)` (SPEC B; Yoshikawa).
+/// Manipulability `M = |det J| = |S| / (l_1 l_2 l_3)` (docs/theory.md §9; Yoshikawa).
 pub fn manipulability(k: &Configuration) -> Option<f64> {
     let legs = Legs::new(k)?;
     Some(k.singularity().abs() / (legs.l[0] * legs.l[1] * legs.l[2]))
 }
 
-/// Incircle radius of the triangle of the leg lines (SPEC B, Ebrahimi et al.).
+/// Incircle radius of the triangle of the leg lines (docs/theory.md §9, Ebrahimi et al.).
 ///
 /// With normalised lines `L̂_i = (n_i, c_i)` (`|n_i| = 1`) and `w_ij = n_i × n_j`
 /// (the sine of the angle between two lines), `r = 2·Area/Perimeter` becomes
 ///
 /// `IR = |det(L̂_1, L̂_2, L̂_3)| / (|w_12| + |w_23| + |w_31|)`,
 ///
-/// equal to `|det[T_k, 1]| / (t_1 + t_2 + t_3)` of SPEC B for a proper triangle, 0 for
-/// concurrent lines, and continuous at parallel lines (**Choice**): two parallel legs
-/// at separation d give d/2 (the limit), three parallel legs give 0.
+/// equal to `|det[T_k, 1]| / (t_1 + t_2 + t_3)` of docs/theory.md §9 for a proper
+/// triangle, 0 for concurrent lines, and continuous at parallel lines (**Choice**): two
+/// parallel legs at separation d give d/2 (the limit), three parallel legs give 0.
 pub fn incircle_radius(k: &Configuration) -> Option<f64> {
     let legs = Legs::new(k)?;
     let lines = [legs.line(0), legs.line(1), legs.line(2)];
@@ -309,8 +311,8 @@ pub fn incircle_radius(k: &Configuration) -> Option<f64> {
     Some(det / denominator)
 }
 
-/// Pressure-angle cosines `|cos α_i|` (SPEC B, Takeda & Funabashi): with legs j, k
-/// locked the platform rotates about `Q_i = L_j ∩ L_k`, so
+/// Pressure-angle cosines `|cos α_i|` (docs/theory.md §9, Takeda & Funabashi): with legs
+/// j, k locked the platform rotates about `Q_i = L_j ∩ L_k`, so
 /// `cos α_i = dist(Q_i, L_i) / |b_i − Q_i|`; if `L_j ∥ L_k` the platform translates
 /// and `cos α_i = |u_i · E u_j|`. With `exchanged` the base is seen moving relative to
 /// the platform: `cos α_i* = dist(Q_i, L_i) / |a_i − Q_i|`.
@@ -350,8 +352,8 @@ pub fn pressure_cosines(k: &Configuration, exchanged: bool) -> Option<[f64; 3]> 
 }
 
 /// Eigenvalues `(λ_min, λ_max)` of `GᵀG`, `G = K J⁻¹` the map from actuator rates to
-/// the six passive joint rates (SPEC B, Nawratil's control number), and the derived
-/// CN and MCN.
+/// the six passive joint rates (docs/theory.md §9, Nawratil's control number), and the
+/// derived CN and MCN.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ControlNumber {
     /// `λ_min(GᵀG)`; `None` at a singularity (G unbounded).
@@ -364,8 +366,8 @@ pub struct ControlNumber {
     pub mcn: f64,
 }
 
-/// Control number (SPEC B). Base joint rate `ψ̇_i = (E u_i)·ḃ_i / l_i`, platform joint
-/// rate `ψ̇_i − φ̇`, `ḃ_i = ṫ + φ̇ E(b_i − t)`; `G = K J⁻¹`. Computed as
+/// Control number (docs/theory.md §9). Base joint rate `ψ̇_i = (E u_i)·ḃ_i / l_i`,
+/// platform joint rate `ψ̇_i − φ̇`, `ḃ_i = ṫ + φ̇ E(b_i − t)`; `G = K J⁻¹`. Computed as
 /// `G = K adj(J) / det J`, so CN (a ratio) and `MCN = |det J| / sqrt(λ_max(H))`,
 /// `H = (K adj J)ᵀ(K adj J)`, stay continuous through singularities where they are 0.
 ///
@@ -585,7 +587,7 @@ impl TrigCubic {
     }
 }
 
-/// The singular orientations at a fixed position (SPEC B).
+/// The singular orientations at a fixed position (docs/theory.md §9).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum SingularOrientations {
     /// Every orientation is singular (S ≡ 0 at this position).
@@ -594,7 +596,7 @@ pub enum SingularOrientations {
     Finite(Vec<f64>),
 }
 
-/// All real φ ∈ [0, 2π) with `S(x, y, φ) = 0` (SPEC B): S(φ) is a trigonometric
+/// All real φ ∈ [0, 2π) with `S(x, y, φ) = 0` (docs/theory.md §9): S(φ) is a trigonometric
 /// polynomial of degree ≤ 3; its roots are those of a degree-6 polynomial in
 /// `t = tan((φ − φ0)/2)` (φ0 chosen so that `t = ∞` is not a root), polished by Newton's
 /// method on S(φ) itself.
@@ -652,7 +654,7 @@ pub fn angular_distance(phi1: f64, phi2: f64) -> f64 {
     d.min(TAU - d)
 }
 
-/// Nearest singular orientation at the pose's position (SPEC B; Mao et al.).
+/// Nearest singular orientation at the pose's position (docs/theory.md §9; Mao et al.).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct OrientationDistance {
     /// Angular distance (radians) from φ to the nearest singular orientation.
@@ -702,7 +704,7 @@ fn signum(v: f64) -> f64 {
 // Position singularity distance
 // ---------------------------------------------------------------------------------
 
-/// The conic of singular positions at fixed φ (SPEC B):
+/// The conic of singular positions at fixed φ (docs/theory.md §9):
 /// `S(x, y, φ) = C_xx x² + C_xy xy + C_yy y² + C_x x + C_y y + C_0` (S is quadratic in
 /// the translation because the cubic terms have two equal columns).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -916,7 +918,7 @@ impl SingularConic {
     }
 }
 
-/// Nearest singular position at the pose's orientation (SPEC B; Nag et al.).
+/// Nearest singular position at the pose's orientation (docs/theory.md §9; Nag et al.).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PositionDistance {
     /// Distance from (x, y) to the conic of singular positions.
@@ -940,7 +942,8 @@ pub fn position_singularity_distance(design: &Design, pose: Pose) -> Option<Posi
         })
 }
 
-/// Radius of the singularity-free cylinder (Li, Gosselin & Richard 2006; paper Eq. 4).
+/// Radius of the singularity-free cylinder (Li, Gosselin & Richard 2006; Kapilavai and
+/// Nawratil, Eq. 4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CylinderRadius {
     /// `min_{φ ∈ [lo, hi]}` position singularity distance at (x, y).
@@ -949,10 +952,10 @@ pub struct CylinderRadius {
     pub at_phi: f64,
 }
 
-/// `min` over φ ∈ `[lo, hi]` of the position singularity distance at (x, y) (SPEC B).
-/// It is 0 if some φ in the range is a singular orientation at (x, y) (always the case
-/// for an unbounded range unless the position admits no singular orientation).
-/// Otherwise: 33 samples, then golden-section refinement around the best one.
+/// `min` over φ ∈ `[lo, hi]` of the position singularity distance at (x, y)
+/// (docs/theory.md §9). It is 0 if some φ in the range is a singular orientation at (x,
+/// y) (always the case for an unbounded range unless the position admits no singular
+/// orientation). Otherwise: 33 samples, then golden-section refinement around the best one.
 /// `Ok(None)` if no orientation in the range has a singular position.
 pub fn singularity_free_cylinder_radius(
     design: &Design,
@@ -1049,7 +1052,7 @@ pub fn singularity_free_cylinder_radius(
 // All indices at a pose
 // ---------------------------------------------------------------------------------
 
-/// Every index of SPEC Part B at one pose; `None` = undefined (never NaN).
+/// Every index of docs/theory.md §9 at one pose; `None` = undefined (never NaN).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RprIndices {
     /// The pose.
@@ -1107,7 +1110,7 @@ fn min3(c: [f64; 3]) -> f64 {
     c[0].min(c[1]).min(c[2])
 }
 
-/// All indices of SPEC Part B at `pose`.
+/// All indices of docs/theory.md §9 at `pose`.
 pub fn compute_indices(design: &Design, pose: Pose, options: &IndexOptions) -> RprIndices {
     let k = design.configuration(pose);
     let cos = pressure_cosines(&k, false);

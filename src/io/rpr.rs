@@ -1,4 +1,4 @@
-//! 3-RPR design and motion files (SPEC A.1).
+//! 3-RPR design and motion files (docs/theory.md §1.1).
 //!
 //! - Design: `{"base": [[x, y], [x, y], [x, y]], "platform": [[x, y], [x, y], [x, y]]}`
 //!   (base anchors in the fixed frame, platform anchors in the moving frame).

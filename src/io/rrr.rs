@@ -1,4 +1,4 @@
-//! 3-RRR design files (SPEC Part C):
+//! 3-RRR design files (docs/theory.md §10):
 //!
 //! ```json
 //! {"base": [[x, y], [x, y], [x, y]],

@@ -1,15 +1,16 @@
 //! The 3-PRRR kinematically redundant planar parallel manipulator, and the 3RRR as its
-//! special case δ = 0 (SPEC D.1; Farias Filho et al. (2021) §2, Fontes et al. §2).
+//! special case δ = 0 (docs/theory.md §11.1; Farias Filho et al. (2021) §2, Fontes et al.
+//! §2).
 //!
 //! Leg i (i = 1, 2, 3): an active prismatic joint moves the base joint along a guide,
 //! `A_i = a e(λ_i) + δ_i e(γ_i)`; the active revolute joint at `A_i` turns the link
 //! `A_iB_i` (length `l_1`, angle θ_i); the passive link `B_iC_i` (length `l_2`, angle β_i)
 //! reaches the platform joint `C_i = D + h e(α + φ_i)`, with `D = (x, y)` and orientation α
-//! the pose. Seed 001 uses `φ_i = λ_i` (our default); Farias Filho et al. (2021) writes
+//! the pose. Fontes et al. use `φ_i = λ_i` (our default); Farias Filho et al. (2021) write
 //! `C_i = D − h e(α + η_i)`, i.e. `φ_i = η_i + π` ([`PrrrDesign::with_seed000_platform`]).
 //!
-//! Velocity equation (SPEC D.1): `A Ẋ = B Θ̇`, `Ẋ = (ẋ, ẏ, α̇)`, `Θ̇ = (θ̇_1..3, δ̇_1..3)`,
-//! `A_i = [l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`,
+//! Velocity equation (docs/theory.md §11.1): `A Ẋ = B Θ̇`, `Ẋ = (ẋ, ẏ, α̇)`,
+//! `Θ̇ = (θ̇_1..3, δ̇_1..3)`, `A_i = [l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`,
 //! `B = [diag(l_1 l_2 sin(β_k − θ_k)) | diag(l_2 cos(β_k − γ_k))]` (3RRR: first three columns).
 //! Direct singularity: `det A = 0`; inverse singularity: `rank B < 3`.
 //! Homogenisation: `Ā` divides the third column of A by `L_c`, `B̄` multiplies the prismatic
@@ -145,7 +146,7 @@ impl Pose {
     }
 }
 
-/// Geometry of a 3-PRRR (SPEC D.1 table), SI units.
+/// Geometry of a 3-PRRR (docs/theory.md §11.1 table), SI units.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PrrrDesign {
     /// Distance from the centre to the mid-stroke of each prismatic guide, `a` (m).
@@ -166,15 +167,16 @@ pub struct PrrrDesign {
     pub delta_range: (f64, f64),
     /// Screw pitch p (m per turn): prismatic columns of B̄ are multiplied by p/(2π).
     pub pitch: f64,
-    /// Characteristic length `L_c` dividing the rotational column of Ā (m), `√2·h` in both seeds.
+    /// Characteristic length `L_c` dividing the rotational column of Ā (m), `√2·h` in
+    /// both papers.
     pub characteristic_length: f64,
 }
 
 impl PrrrDesign {
-    /// Seed 000 (Farias Filho, da Silva, Fontes 2021), Table 1: a = 0.260, h = 0.0597,
+    /// Farias Filho et al. (2021), Table 1: a = 0.260, h = 0.0597,
     /// l_1 = 0.191, l_2 = 0.232, λ = (π/2, 11π/6, 7π/6), γ = (π, π/3, 5π/3),
     /// δ ∈ [−0.230, 0.230], p = 0.010 m/turn, L_c = √2 h; platform in Fontes et al.'s
-    /// convention `C_i = D + h e(α + λ_i)` (SPEC D.1 **Choice**).
+    /// convention `C_i = D + h e(α + λ_i)` (docs/theory.md §11.1 **Choice**).
     pub fn farias2021() -> Self {
         let h = 0.0597;
         let lambda = [PI / 2.0, 11.0 * PI / 6.0, 7.0 * PI / 6.0];
@@ -192,7 +194,7 @@ impl PrrrDesign {
         }
     }
 
-    /// Seed 001 (Fontes, Vieira, da Silva 2017), §4: a = 0.260, h = 0.060, l_1 = 0.191,
+    /// Fontes et al., §4: a = 0.260, h = 0.060, l_1 = 0.191,
     /// l_2 = 0.232, δ ∈ [−0.3, 0.3], L_c = √2 h; angles and pitch (not given in Fontes et al.)
     /// as in Farias Filho et al. (2021).
     pub fn fontes2017() -> Self {
@@ -214,7 +216,8 @@ impl PrrrDesign {
         }
     }
 
-    /// Seed 000's platform convention `C_i = D − h e(α + η_i)`, i.e. `φ_i = η_i + π`.
+    /// The platform convention of Farias Filho et al. (2021), `C_i = D − h e(α + η_i)`,
+    /// i.e. `φ_i = η_i + π`.
     pub fn with_seed000_platform(mut self, eta: [f64; 3]) -> Self {
         self.platform_angles = eta.map(|e| e + PI);
         self
@@ -309,7 +312,7 @@ impl PrrrDesign {
         })
     }
 
-    /// Inverse kinematics with explicit working modes (SPEC D.1):
+    /// Inverse kinematics with explicit working modes (docs/theory.md §11.1):
     /// `(μ_i, ρ_i) = C_i − A_i`, `θ_i = atan2(ρ_i, μ_i) + σ_i acos((μ_i²+ρ_i²+l_1²−l_2²)/(2 l_1 √(μ_i²+ρ_i²)))`,
     /// `B_i = A_i + l_1 e(θ_i)`, `β_i = atan2(C_i − B_i)`.
     /// Errors: [`PrrrError::Unreachable`] when the acos argument leaves [−1, 1];
@@ -433,7 +436,7 @@ impl PrrrConfiguration {
         b_prismatic(&self.elbow[k], &self.platform[k], design.gamma[k])
     }
 
-    /// Direct-kinematics matrix A (SPEC D.1; Fontes et al. Eq. 12):
+    /// Direct-kinematics matrix A (docs/theory.md §11.1; Fontes et al. Eq. 12):
     /// row i `[l_2 cos β_i, l_2 sin β_i, l_2 h sin(β_i − α − φ_i)]`, evaluated from the joint
     /// points as `[C_i − B_i, (C_i − D) × (C_i − B_i)]`.
     pub fn matrix_a(&self, _design: &PrrrDesign) -> Matrix3<f64> {
@@ -456,8 +459,8 @@ impl PrrrConfiguration {
         a
     }
 
-    /// Inverse-kinematics matrix B (3×6; SPEC D.1; Farias Filho et al. (2021) Eq. 9):
-    /// `b_kk = l_1 l_2 sin(β_k − θ_k)`, `b_k,k+3 = l_2 cos(β_k − γ_k)`.
+    /// Inverse-kinematics matrix B (3×6; docs/theory.md §11.1; Farias Filho et al. (2021)
+    /// Eq. 9): `b_kk = l_1 l_2 sin(β_k − θ_k)`, `b_k,k+3 = l_2 cos(β_k − γ_k)`.
     pub fn matrix_b(&self, design: &PrrrDesign) -> Matrix3x6 {
         let mut b = Matrix3x6::zeros();
         for k in 0..3 {
@@ -489,8 +492,9 @@ impl PrrrConfiguration {
     }
 
     /// Dimensionless inverse-singularity measure in [0, 1]: for the 3-PRRR
-    /// `√(Π_k(b̄_kk² + b̄_k,k+3²)) / √((l_1²l_2² + l_2²(p/2π)²)³)` (= ξ of SPEC D.2, 0 ⇔ rank B < 3);
-    /// for the 3RRR `Π_k |sin(β_k − θ_k)|` (0 ⇔ a leg is stretched or folded).
+    /// `√(Π_k(b̄_kk² + b̄_k,k+3²)) / √((l_1²l_2² + l_2²(p/2π)²)³)` (= ξ of docs/theory.md
+    /// §11.2, 0 ⇔ rank B < 3); for the 3RRR `Π_k |sin(β_k − θ_k)|` (0 ⇔ a leg is
+    /// stretched or folded).
     pub fn inverse_singularity_measure(&self, design: &PrrrDesign, robot: Robot) -> f64 {
         match robot {
             Robot::ThreePrrr => {

@@ -1,4 +1,4 @@
-//! The 3-RPR planar parallel manipulator (SPEC Part A.1, A.2, A.5).
+//! The 3-RPR planar parallel manipulator (docs/theory.md §1.1, §1.3, §4).
 //!
 //! A design is three base anchors `A_i` (fixed frame) and three platform anchors `P_i`
 //! (moving frame). A pose `(x, y, φ)` places the platform anchors at
@@ -10,10 +10,10 @@
 //! [`Ring`], so the same code evaluates numbers (`f64`, [`C64`]) and builds the
 //! symbolic Lagrangians of the distance problems.
 //!
-//! Motions (SPEC A.1, paper §5.2 Eq. 64) are either an explicit list of poses or an
-//! analytic motion `τ ↦ (x(τ), y(τ), φ(τ))` on an interval, each coordinate a polynomial
-//! plus cosine terms, which can be evaluated at complex τ (the seed of the parameter
-//! homotopy is the motion at a random complex τ*).
+//! Motions (Kapilavai and Nawratil, §5.2, Eq. 64; docs/theory.md §1.2) are either an
+//! explicit list of poses or an analytic motion `τ ↦ (x(τ), y(τ), φ(τ))` on an interval,
+//! each coordinate a polynomial plus cosine terms, which can be evaluated at complex τ
+//! (the seed of the parameter homotopy is the motion at a random complex τ*).
 
 use crate::C64;
 use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
@@ -64,11 +64,11 @@ pub enum RprError {
 pub const COINCIDENCE_TOLERANCE: f64 = 1e-9;
 
 /// A 3-RPR design: base anchors `A_i` (fixed frame) and platform anchors `P_i`
-/// (moving frame), SPEC A.1.
+/// (moving frame), docs/theory.md §1.1.
 ///
 /// Invariants: all coordinates finite, and neither part collapsed to a point. Two
-/// coincident anchors of one part are a legitimate robot (Nawratil and
-/// Rasoulzadeh's Lemma 2: a pair of distinct anchors always exists); the
+/// coincident anchors of one part are a legitimate robot (Kapilavai and
+/// Nawratil, Lemma 2: a pair of distinct anchors always exists); the
 /// sub-problems of a rigid part take their reference pair from
 /// [`Design::conditioned_labelling`], not from the user's labels.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -202,7 +202,7 @@ impl Design {
     }
 
     /// The leg labelling under which the rigid parts' reference anchors (internal
-    /// legs 1 and 2 of the point-based representation, SPEC A.5) are best
+    /// legs 1 and 2 of the point-based representation, docs/theory.md §4) are best
     /// conditioned: the largest `min` over the rigid parts of `|e| / longest edge`,
     /// `e` the reference edge (ties: the first of identity, the cyclic shifts, the
     /// transpositions). With a tiny `e` the shape constants `u, v` grow like `1/|e|`
@@ -273,7 +273,8 @@ impl Design {
             .fold(1.0_f64, |m, v| m.max(v.abs()))
     }
 
-    /// Configuration at a pose: `a_i = A_i`, `b_i = (x, y) + R(φ) P_i` (SPEC A.1).
+    /// Configuration at a pose: `a_i = A_i`, `b_i = (x, y) + R(φ) P_i` (docs/theory.md
+    /// §1.1).
     pub fn configuration(&self, pose: Pose) -> Configuration {
         let (s, c) = pose.phi.sin_cos();
         let b = self
@@ -284,7 +285,8 @@ impl Design {
 
     /// Configuration at a complex pose, as the 12-vector
     /// `(a1x, a1y, a2x, a2y, a3x, a3y, b1x, b1y, b2x, b2y, b3x, b3y)`, with complex
-    /// `cos φ`, `sin φ` (the seed configurations of the parameter homotopy, SPEC A.9).
+    /// `cos φ`, `sin φ` (the seed configurations of the parameter homotopy,
+    /// docs/theory.md §8).
     pub fn configuration_complex(&self, x: C64, y: C64, phi: C64) -> [C64; 12] {
         let (c, s) = (phi.cos(), phi.sin());
         let mut k = [C64::new(0.0, 0.0); 12];
@@ -298,13 +300,13 @@ impl Design {
         k
     }
 
-    /// Shape constants `(u, v, |e|²)` of the rigid base (SPEC A.5).
+    /// Shape constants `(u, v, |e|²)` of the rigid base (docs/theory.md §4).
     pub fn base_shape(&self) -> RigidShape {
         rigid_shape(&self.base[0], &self.base[1], &self.base[2])
     }
 
-    /// Shape constants `(u, v, |e|²)` of the rigid platform (SPEC A.5); they do not
-    /// change along a motion.
+    /// Shape constants `(u, v, |e|²)` of the rigid platform (docs/theory.md §4); they do
+    /// not change along a motion.
     pub fn platform_shape(&self) -> RigidShape {
         rigid_shape(&self.platform[0], &self.platform[1], &self.platform[2])
     }
@@ -344,7 +346,7 @@ impl From<Pose> for [f64; 3] {
 }
 
 /// A configuration `K = (a_1, a_2, a_3, b_1, b_2, b_3)`: all six anchor points in the
-/// fixed frame (SPEC A.1).
+/// fixed frame (docs/theory.md §1.1).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Configuration {
     /// Base anchors `a_i`.
@@ -375,7 +377,8 @@ impl Configuration {
         }
     }
 
-    /// The singularity polynomial S(K) (SPEC A.2, paper Eq. 6).
+    /// The singularity polynomial S(K) (Kapilavai and Nawratil, Eq. 6; docs/theory.md
+    /// §1.3).
     pub fn singularity(&self) -> f64 {
         singularity_polynomial(&self.to_array())
     }
@@ -385,7 +388,8 @@ fn point<T: Ring>(k: &[T; 12], j: usize) -> Point<T> {
     [k[j].clone(), k[j + 1].clone()]
 }
 
-/// The singularity polynomial (SPEC A.2, paper Eq. 6), degree 4:
+/// The singularity polynomial (Kapilavai and Nawratil, Eq. 6; docs/theory.md §1.3),
+/// degree 4:
 ///
 /// `S(K) = det[ b_i − a_i | a_i × b_i ]_{i=1..3}` (rows: non-normalised Plücker
 /// coordinates of the leg lines). `S = 0` iff the three leg lines are concurrent or
@@ -413,8 +417,8 @@ fn collinearity<P: Plane<T>, T: Ring>(p: [Point<T>; 3]) -> T {
     P::cross(&difference(&p1, &p2), &difference(&p1, &p3))
 }
 
-/// Collinearity polynomial of the platform (SPEC A.2, paper Eq. 31):
-/// `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]
+/// Collinearity polynomial of the platform (Kapilavai and Nawratil, Eq. 31;
+/// docs/theory.md §1.4): `C_p(K) = det[[b_1x, b_1y, 1], [b_2x, b_2y, 1], [b_3x, b_3y, 1]]
 /// = (b_2 − b_1) × (b_3 − b_1)` (twice the signed area of the platform triangle).
 pub fn collinearity_platform<T: Ring>(k: &[T; 12]) -> T {
     collinearity_platform_in::<Cartesian, T>(k)
@@ -425,8 +429,8 @@ pub fn collinearity_platform_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
     collinearity::<P, T>([point(k, 6), point(k, 8), point(k, 10)])
 }
 
-/// Collinearity polynomial of the base (SPEC A.2, paper Eq. 31):
-/// `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]
+/// Collinearity polynomial of the base (Kapilavai and Nawratil, Eq. 31; docs/theory.md
+/// §1.4): `C_b(K) = det[[a_1x, a_1y, 1], [a_2x, a_2y, 1], [a_3x, a_3y, 1]]
 /// = (a_2 − a_1) × (a_3 − a_1)`.
 pub fn collinearity_base<T: Ring>(k: &[T; 12]) -> T {
     collinearity_base_in::<Cartesian, T>(k)
@@ -437,9 +441,9 @@ pub fn collinearity_base_in<P: Plane<T>, T: Ring>(k: &[T; 12]) -> T {
     collinearity::<P, T>([point(k, 0), point(k, 2), point(k, 4)])
 }
 
-/// Shape constants of a rigid triangle `p_1 p_2 p_3` (SPEC A.5, paper Eqs. 23–26):
-/// with `e = p_2 − p_1`, `u = ((p_3 − p_1)·e)/|e|²`, `v = ((p_3 − p_1)·Ee)/|e|²`,
-/// `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
+/// Shape constants of a rigid triangle `p_1 p_2 p_3` (Kapilavai and Nawratil, Eqs. 23–26;
+/// docs/theory.md §4): with `e = p_2 − p_1`, `u = ((p_3 − p_1)·e)/|e|²`,
+/// `v = ((p_3 − p_1)·Ee)/|e|²`, `r2 = |e|²`, so that `p_3 = p_1 + u e + v E e`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RigidShape {
     /// Dimensionless coordinate of `p_3 − p_1` along `e`.
@@ -450,7 +454,7 @@ pub struct RigidShape {
     pub r2: f64,
 }
 
-/// The rigid shape constants of SPEC A.5. Requires `p_1 ≠ p_2` (guaranteed for the
+/// The rigid shape constants of docs/theory.md §4. Requires `p_1 ≠ p_2` (guaranteed for the
 /// anchors of a validated [`Design`]); for `p_1 = p_2` the result is not finite.
 pub fn rigid_shape(p1: &Point<f64>, p2: &Point<f64>, p3: &Point<f64>) -> RigidShape {
     let e = difference(p1, p2);
@@ -469,7 +473,7 @@ pub fn rotate_quarter<T: Ring>(u: &Point<T>) -> Point<T> {
     Cartesian::rotate_quarter(u)
 }
 
-/// Third point of a rigid triangle from the first two (SPEC A.5):
+/// Third point of a rigid triangle from the first two (docs/theory.md §4):
 /// `p_3 = p_1 + u (p_2 − p_1) + v E (p_2 − p_1)`.
 pub fn reconstruct_third_point<T: Ring>(p1: &Point<T>, p2: &Point<T>, u: T, v: T) -> Point<T> {
     reconstruct_third_point_in::<Cartesian, T>(p1, p2, u, v)
@@ -490,7 +494,7 @@ pub fn reconstruct_third_point_in<P: Plane<T>, T: Ring>(
     ]
 }
 
-/// Rigidity constraint of SPEC A.5: `g(p_1, p_2) = |p_2 − p_1|² − r2`.
+/// Rigidity constraint of docs/theory.md §4: `g(p_1, p_2) = |p_2 − p_1|² − r2`.
 pub fn rigidity_constraint<T: Ring>(p1: &Point<T>, p2: &Point<T>, r2: T) -> T {
     rigidity_constraint_in::<Cartesian, T>(p1, p2, r2)
 }
@@ -620,7 +624,7 @@ impl MotionCoordinate {
 }
 
 /// An analytic 1-parametric motion `τ ↦ (x(τ), y(τ), φ(τ))` on `tau_range`
-/// (SPEC A.1, paper Eq. 64).
+/// (Kapilavai and Nawratil, Eq. 64; docs/theory.md §1.2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AnalyticMotion {
@@ -642,7 +646,7 @@ pub struct PoseList {
     pub poses: Vec<Pose>,
 }
 
-/// A 1-parametric motion of the platform (SPEC A.1).
+/// A 1-parametric motion of the platform (docs/theory.md §1.2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum Motion {
@@ -799,9 +803,9 @@ pub fn check_sampled_poses(samples: &[SampledPose]) -> Result<(), RprError> {
 // ---------------------------------------------------------------------------------
 
 /// The built-in example design (also `systems/rpr_example_design.json`):
-/// `A = (0,0), (10,0), (4,8)`, `P = (0,0), (3,0), (1,2)` (the design of the SPEC Part B
-/// test vector). The paper's example design (Eq. 67) was lost in extraction, so this
-/// one is ours.
+/// `A = (0,0), (10,0), (4,8)`, `P = (0,0), (3,0), (1,2)` (the design of the test vector of
+/// docs/theory.md §9). The example design of Kapilavai and Nawratil (their Eq. 67) is not
+/// given in the text available to us, so this one is ours.
 pub fn example_design() -> Design {
     Design {
         base: [[0.0, 0.0], [10.0, 0.0], [4.0, 8.0]],
@@ -812,9 +816,9 @@ pub fn example_design() -> Design {
 /// The built-in example motion (also `systems/rpr_example_motion.json`), τ ∈ [−1, 4.5]:
 ///
 /// `x = 4 + sin τ`, `y = 3.8 − 0.8 cos τ`, `φ = τ` (the rotation angle is the motion
-/// parameter, as in the paper's example, Eq. 68 of which was lost). Along it S changes
-/// sign exactly twice, near τ ≈ −0.086 and τ ≈ 3.107 (checked in the tests), like the
-/// paper's motion with its two singular poses.
+/// parameter, as in the example of Kapilavai and Nawratil, §6, whose Eq. 68 is not given in
+/// the text available to us). Along it S changes sign exactly twice, near τ ≈ −0.086 and
+/// τ ≈ 3.107 (checked in the tests), like their motion with its two singular poses.
 pub fn example_motion() -> Motion {
     Motion::Analytic(AnalyticMotion {
         tau_range: [-1.0, 4.5],

@@ -1,10 +1,10 @@
 //! The planar 3-RRR parallel manipulator: design, pose, inverse kinematics with an explicit
-//! working mode per leg, and the configuration of its nine joint points (SPEC Part C, D.1, D.5;
-//! Ramana Babu et al. §II).
+//! working mode per leg, and the configuration of its nine joint points (docs/theory.md
+//! §10, §11.1, §11.5; Ramana Babu et al. §II).
 //!
 //! # Model
 //!
-//! Leg `i` (0-based in code, 1-based in the SPEC and the seeds) is the chain
+//! Leg `i` (0-based in code, 1-based in docs/theory.md and the papers) is the chain
 //! `O_i —(proximal link)— B_i —(distal link)— C_i`:
 //! - `O_i`: base revolute joint, fixed frame;
 //! - `B_i`: elbow (middle revolute joint), `|B_i − O_i| = proximal_i`;
@@ -22,20 +22,21 @@
 //! Each leg reaches a platform joint `C_i` with two elbow postures, mirror images about the
 //! line `O_iC_i`. [`ElbowMode::Positive`] (σ_i = +1) is the posture with
 //! `(B_i − O_i) × (C_i − B_i) > 0` (the distal link turns counter-clockwise from the proximal
-//! link), [`ElbowMode::Negative`] (σ_i = −1) the other one. The seed's "positive working
-//! modes" are taken to be σ = (+1, +1, +1).
+//! link), [`ElbowMode::Negative`] (σ_i = −1) the other one. The "positive working
+//! modes" of Ramana Babu et al. are taken to be σ = (+1, +1, +1).
 //!
 //! # Symmetric family of Ramana Babu et al.
 //!
-//! Seed 003 writes the loop closure (its Eqs. 2–3) as
-//! `x_p = b cos θ_i + c cos ψ_i + a cos(φ + γ_i) + x_oi`, so in its notation
+//! Ramana Babu et al. write the loop closure (their Eqs. 2–3) as
+//! `x_p = b cos θ_i + c cos ψ_i + a cos(φ + γ_i) + x_oi`, so in their notation
 //! **`a` = distance from P to each platform joint C_i (platform circumradius), `b` = |O_iB_i|
-//! (proximal link), `c` = |B_iC_i| (distal link)**; its design vector `[a b c]` is optimised
-//! under `a + b + c ≤ λ`. [`RrrDesign::symmetric`] maps `(R, a, b, c)` to: base joints on the
-//! circle of radius `R` about the origin at angles 90°, 210°, 330°; platform joints on the circle
-//! of radius `a` about P at the same angles in the moving frame (so at φ = 0 every leg points
-//! radially); every proximal link `b`, every distal link `c`. The base radius `R` is not given
-//! by the seed and is a free choice of the example geometry.
+//! (proximal link), `c` = |B_iC_i| (distal link)**; their design vector `[a b c]` is
+//! optimised under `a + b + c ≤ λ`. [`RrrDesign::symmetric`] maps `(R, a, b, c)` to: base
+//! joints on the circle of radius `R` about the origin at angles 90°, 210°, 330°;
+//! platform joints on the circle of radius `a` about P at the same angles in the moving
+//! frame (so at φ = 0 every leg points radially); every proximal link `b`, every distal
+//! link `c`. The base radius `R` is not given by Ramana Babu et al. and is a free choice
+//! of the example geometry.
 
 use crate::C64;
 use crate::algebra::{
@@ -150,7 +151,7 @@ impl ElbowMode {
 /// Working modes of the three legs.
 pub type WorkingModes = [ElbowMode; 3];
 
-/// The seed's "positive working modes": σ = (+1, +1, +1).
+/// The "positive working modes" of Ramana Babu et al.: σ = (+1, +1, +1).
 pub const POSITIVE_MODES: WorkingModes = [ElbowMode::Positive; 3];
 
 /// Pose of the platform: operation point `P = (x, y)` and orientation `φ` (radians) of the
@@ -205,7 +206,7 @@ fn check_number(field: &str, value: f64) -> Result<(), RrrError> {
     Ok(())
 }
 
-/// A validated general planar 3-RRR design (SPEC Part C / D.5).
+/// A validated general planar 3-RRR design (docs/theory.md §10, §11.5).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RrrDesign {
     base: [Point; 3],
@@ -284,10 +285,11 @@ impl RrrDesign {
         })
     }
 
-    /// Seed-003 style symmetric design (see the module documentation): base joints on the
-    /// circle of radius `base_radius` at 90°, 210°, 330°; platform joints at distance
-    /// `platform_radius` (seed `a`) from P at the same angles in the moving frame; proximal
-    /// links `proximal` (seed `b`), distal links `distal` (seed `c`).
+    /// Symmetric design in the style of Ramana Babu et al. (see the module
+    /// documentation): base joints on the circle of radius `base_radius` at 90°, 210°,
+    /// 330°; platform joints at distance `platform_radius` (`a` of Ramana Babu et al.)
+    /// from P at the same angles in the moving frame; proximal links `proximal` (`b`),
+    /// distal links `distal` (`c`).
     pub fn symmetric(
         base_radius: f64,
         platform_radius: f64,
@@ -425,7 +427,8 @@ fn cross(u: Point, v: Point) -> f64 {
 }
 
 impl RrrConfiguration {
-    /// The nine points in the order `O_1, O_2, O_3, B_1, B_2, B_3, C_1, C_2, C_3` (SPEC Part C).
+    /// The nine points in the order `O_1, O_2, O_3, B_1, B_2, B_3, C_1, C_2, C_3`
+    /// (docs/theory.md §10).
     pub fn points(&self) -> [Point; 9] {
         let mut out = [Point::zeros(); 9];
         out[..3].copy_from_slice(&self.base);
@@ -461,15 +464,16 @@ impl RrrConfiguration {
         c.y.atan2(c.x)
     }
 
-    /// Leg-singularity determinant `det[[O_i,1],[B_i,1],[C_i,1]] = b_i × c_i` (SPEC Part C):
-    /// zero iff `O_i, B_i, C_i` are collinear (Type I of Ramana Babu et al.), sign = working mode.
+    /// Leg-singularity determinant `det[[O_i,1],[B_i,1],[C_i,1]] = b_i × c_i`
+    /// (docs/theory.md §10): zero iff `O_i, B_i, C_i` are collinear (Type I of Ramana
+    /// Babu et al.), sign = working mode.
     pub fn leg_determinant(&self, leg: usize) -> f64 {
         cross(self.proximal_vector(leg), self.distal_vector(leg))
     }
 
-    /// Parallel-singularity polynomial of SPEC Part C: `S` of A.2 with `(a_i, b_i) → (B_i, C_i)`,
-    /// `det [ C_i − B_i , B_i × C_i ]_{i=1..3}`; zero iff the lines `B_iC_i` are concurrent or
-    /// parallel.
+    /// Parallel-singularity polynomial of docs/theory.md §10: `S` of docs/theory.md §1.3
+    /// with `(a_i, b_i) → (B_i, C_i)`, `det [ C_i − B_i , B_i × C_i ]_{i=1..3}`; zero iff
+    /// the lines `B_iC_i` are concurrent or parallel.
     pub fn parallel_determinant(&self) -> f64 {
         let rows = [0, 1, 2].map(|i| {
             let c = self.distal_vector(i);
@@ -487,7 +491,7 @@ pub(crate) fn det3(m: &[[f64; 3]; 3]) -> f64 {
 }
 
 // ---------------------------------------------------------------------------------
-// Polynomial formulas on the 18-vector of the nine points (SPEC Part C)
+// Polynomial formulas on the 18-vector of the nine points (docs/theory.md §10)
 // ---------------------------------------------------------------------------------
 
 /// Number of coordinates of a 3-RRR configuration: nine points in the plane.
@@ -504,18 +508,19 @@ fn ring_point<T: Ring>(k: &[T; CONFIGURATION_LEN], index: usize) -> RingPoint<T>
     [k[2 * index].clone(), k[2 * index + 1].clone()]
 }
 
-/// Parallel-singularity polynomial of SPEC Part C on the 18-vector `k`: the singularity
-/// polynomial S of SPEC A.2 (paper Eq. 6) with `(a_i, b_i) → (B_i, C_i)`,
-/// `det[ C_i − B_i | B_i × C_i ]_{i=1..3}` (degree 4). Zero iff the lines `B_iC_i` are
-/// concurrent or parallel. Generic over [`Ring`] (numbers and symbolic Lagrangians).
+/// Parallel-singularity polynomial of docs/theory.md §10 on the 18-vector `k`: the
+/// singularity polynomial S of docs/theory.md §1.3 (Kapilavai and Nawratil, Eq. 6) with
+/// `(a_i, b_i) → (B_i, C_i)`, `det[ C_i − B_i | B_i × C_i ]_{i=1..3}` (degree 4). Zero
+/// iff the lines `B_iC_i` are concurrent or parallel. Generic over [`Ring`] (numbers and
+/// symbolic Lagrangians).
 pub fn parallel_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN]) -> T {
     let lines: [T; 12] = std::array::from_fn(|j| k[6 + j].clone());
     rpr::singularity_polynomial(&lines)
 }
 
-/// Leg-singularity polynomial of leg `leg` (0-based) on the 18-vector `k` (SPEC Part C):
-/// `det[[O_i, 1], [B_i, 1], [C_i, 1]] = (B_i − O_i) × (C_i − B_i)` (quadratic); zero iff
-/// `O_i, B_i, C_i` are collinear.
+/// Leg-singularity polynomial of leg `leg` (0-based) on the 18-vector `k` (docs/theory.md
+/// §10): `det[[O_i, 1], [B_i, 1], [C_i, 1]] = (B_i − O_i) × (C_i − B_i)` (quadratic);
+/// zero iff `O_i, B_i, C_i` are collinear.
 pub fn leg_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN], leg: usize) -> T {
     let o = ring_point(k, leg);
     let b = ring_point(k, 3 + leg);
@@ -523,12 +528,12 @@ pub fn leg_polynomial<T: Ring>(k: &[T; CONFIGURATION_LEN], leg: usize) -> T {
     algebra_cross(&algebra_difference(&o, &b), &algebra_difference(&b, &c))
 }
 
-/// The all-deformable metric of SPEC Part C (paper §6.3): base plate, platform plate and
-/// six deformable bars,
+/// The all-deformable metric of docs/theory.md §10 (Kapilavai and Nawratil, §6.3): base
+/// plate, platform plate and six deformable bars,
 ///
 /// `D²(K, K′) = (tri²(O) + tri²(C) + Σ_i seg²(O_iB_i) + Σ_i seg²(B_iC_i)) / 8`
 ///
-/// with `seg²`, `tri²` of SPEC A.3 ([`crate::metric`]). Generic over [`Ring`].
+/// with `seg²`, `tri²` of docs/theory.md §2 ([`crate::metric`]). Generic over [`Ring`].
 pub fn distance_sq<T: Ring>(k: &[T; CONFIGURATION_LEN], k_prime: &[T; CONFIGURATION_LEN]) -> T {
     let p: [RingPoint<T>; 9] = std::array::from_fn(|j| ring_point(k, j));
     let q: [RingPoint<T>; 9] = std::array::from_fn(|j| ring_point(k_prime, j));
@@ -542,7 +547,7 @@ pub fn distance_sq<T: Ring>(k: &[T; CONFIGURATION_LEN], k_prime: &[T; CONFIGURAT
     total * T::from_f64(1.0 / 8.0)
 }
 
-/// `D(K, K′)`: square root of [`distance_sq`] (SPEC Part C).
+/// `D(K, K′)`: square root of [`distance_sq`] (docs/theory.md §10).
 pub fn distance(k: &[f64; CONFIGURATION_LEN], k_prime: &[f64; CONFIGURATION_LEN]) -> f64 {
     distance_sq(k, k_prime).max(0.0).sqrt()
 }
@@ -570,10 +575,10 @@ impl RrrConfiguration {
 impl RrrDesign {
     /// Configuration at a complex pose `(x, y, φ)` with working modes `modes`, as the
     /// 18-vector of [`COORDINATE_NAMES`] (the seed configuration of the parameter
-    /// homotopy, SPEC A.9 step 2). With `d = C − O`, `L² = d·d`, `k = (L² + b² − c²)/(2L²)`,
-    /// `h = √(b²/L² − k²)` (principal branch), the elbow is `B = O + k d − σ h E d`, which
-    /// for a real reachable pose equals [`leg_elbow`](Self::leg_elbow) (`k = (b/L) cos α`,
-    /// `h = (b/L) sin α`).
+    /// homotopy, docs/theory.md §8.2). With `d = C − O`, `L² = d·d`,
+    /// `k = (L² + b² − c²)/(2L²)`, `h = √(b²/L² − k²)` (principal branch), the elbow is
+    /// `B = O + k d − σ h E d`, which for a real reachable pose equals
+    /// [`leg_elbow`](Self::leg_elbow) (`k = (b/L) cos α`, `h = (b/L) sin α`).
     pub fn configuration_complex(
         &self,
         x: C64,
@@ -609,13 +614,13 @@ impl RrrDesign {
 // Motions and the working modes along them
 // ---------------------------------------------------------------------------------
 
-/// Motions of the 3-RRR platform: the same type as the 3-RPR's (SPEC A.1, paper §5.2
-/// Eq. 64): an explicit list of poses `[x, y, φ]` or an analytic motion (polynomial plus
-/// cosine terms per coordinate), evaluable at complex τ.
+/// Motions of the 3-RRR platform: the same type as the 3-RPR's (Kapilavai and Nawratil,
+/// §5.2, Eq. 64; docs/theory.md §1.2): an explicit list of poses `[x, y, φ]` or an
+/// analytic motion (polynomial plus cosine terms per coordinate), evaluable at complex τ.
 pub type RrrMotion = rpr::Motion;
 
 /// Circular translation of the operation point, `x = x_c + r cos τ`, `y = y_c + r sin τ`,
-/// `φ` fixed, on `tau_range` (SPEC Part C example motion).
+/// `φ` fixed, on `tau_range` (docs/theory.md §10 example motion).
 pub fn circular_translation(
     center: Point,
     radius: f64,

@@ -1,4 +1,5 @@
-//! Extrinsic metrics on the configuration space of a 3-RPR (SPEC A.3–A.5): segment and triangle distances, the nine interpretations `PLATFORM/BASE`, and D(K, K′).
+//! Extrinsic metrics on the configuration space of a 3-RPR (docs/theory.md §2–§4):
+//! segment and triangle distances, the nine interpretations `PLATFORM/BASE`, and D(K, K′).
 //!
 //! A configuration is the 12-vector `K = (a_1, a_2, a_3, b_1, b_2, b_3)` of
 //! [`crate::mechanism::rpr::Configuration::to_array`]. Every formula is generic over
@@ -29,7 +30,8 @@ pub enum MetricError {
 }
 
 /// Mean squared distance of corresponding points of two oriented segments
-/// `p_1 p_2` and `p_1′ p_2′` (SPEC A.3, paper Eq. 8): with `d_k = p_k′ − p_k`,
+/// `p_1 p_2` and `p_1′ p_2′` (Kapilavai and Nawratil, Eq. 8; docs/theory.md §2): with
+/// `d_k = p_k′ − p_k`,
 ///
 /// `seg² = (|d_1|² + |d_2|² + d_1·d_2) / 3`.
 pub fn segment_distance_sq<T: Ring>(p: [&Point<T>; 2], q: [&Point<T>; 2]) -> T {
@@ -44,7 +46,8 @@ pub fn segment_distance_sq_in<P: Plane<T>, T: Ring>(p: [&Point<T>; 2], q: [&Poin
 }
 
 /// Mean squared distance of corresponding points of two triangles under the affine
-/// correspondence (SPEC A.3, paper Eq. 9): with `d_k = p_k′ − p_k`,
+/// correspondence (Kapilavai and Nawratil, Eq. 9; docs/theory.md §2): with
+/// `d_k = p_k′ − p_k`,
 ///
 /// `tri² = (|d_1|² + |d_2|² + |d_3|² + d_1·d_2 + d_1·d_3 + d_2·d_3) / 6`.
 pub fn triangle_distance_sq<T: Ring>(p: [&Point<T>; 3], q: [&Point<T>; 3]) -> T {
@@ -65,7 +68,7 @@ pub fn triangle_distance_sq_in<P: Plane<T>, T: Ring>(p: [&Point<T>; 3], q: [&Poi
         * T::from_f64(1.0 / 6.0)
 }
 
-/// How a part (platform or base) is modelled (SPEC A.4).
+/// How a part (platform or base) is modelled (docs/theory.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Part {
     /// ▲ deformable triangular plate: one summand `tri²`.
@@ -121,7 +124,8 @@ impl Part {
     }
 }
 
-/// One of the nine extrinsic metrics `PLATFORM/BASE` (SPEC A.4, paper §1.4, Eqs. 10–22).
+/// One of the nine extrinsic metrics `PLATFORM/BASE` (Kapilavai and Nawratil, §1.4, Eqs.
+/// 10–22; docs/theory.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Metric {
     /// Model of the platform.
@@ -176,15 +180,15 @@ impl Metric {
         Ok(out)
     }
 
-    /// `n = 3 + (#platform summands) + (#base summands)` (SPEC A.4): the three legs
-    /// always contribute three summands.
+    /// `n = 3 + (#platform summands) + (#base summands)` (docs/theory.md §3): the three
+    /// legs always contribute three summands.
     pub fn number_of_summands(&self) -> usize {
         3 + self.platform.number_of_summands() + self.base.number_of_summands()
     }
 
-    /// Calls `sink` with each unnormalised summand of D²(K, K′) (SPEC A.4), in order:
-    /// the three leg terms `seg²(a_i b_i, a_i′ b_i′)`, then the platform's (`tri²` of
-    /// `b_1 b_2 b_3` for a plate, `seg²` of its edges 12, 23, 31 for bars), then the
+    /// Calls `sink` with each unnormalised summand of D²(K, K′) (docs/theory.md §3), in
+    /// order: the three leg terms `seg²(a_i b_i, a_i′ b_i′)`, then the platform's (`tri²`
+    /// of `b_1 b_2 b_3` for a plate, `seg²` of its edges 12, 23, 31 for bars), then the
     /// base's likewise. Rigid parts contribute nothing: the caller guarantees K′ moved
     /// them rigidly. `D² = (Σ summands) / n`. Allocation-free.
     pub fn for_each_summand<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12], sink: impl FnMut(T)) {
@@ -226,7 +230,8 @@ impl Metric {
         out
     }
 
-    /// `D²(K, K′) = (Σ summands) / n` (SPEC A.4), generic over the ring; allocation-free.
+    /// `D²(K, K′) = (Σ summands) / n` (docs/theory.md §3), generic over the ring;
+    /// allocation-free.
     pub fn distance_sq<T: Ring>(&self, k: &[T; 12], k_prime: &[T; 12]) -> T {
         self.distance_sq_in::<Cartesian, T>(k, k_prime)
     }

@@ -41,7 +41,8 @@ pub struct GeneticOptions {
 }
 
 impl Default for GeneticOptions {
-    /// Seed 003's setting (population 60, 100 generations) with common GA rates.
+    /// The setting of Ramana Babu et al. (population 60, 100 generations) with common GA
+    /// rates.
     fn default() -> Self {
         Self {
             population: 60,

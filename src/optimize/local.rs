@@ -1,8 +1,9 @@
 //! Local constrained refinement: projected BFGS ascent with finite-difference gradients.
 //!
-//! Seed 000 refines the GA's best individual with SQP. Our constraints are bounds only, for
-//! which SQP reduces to maximising a quadratic model over the box; we use the compact
-//! active-set form of that idea (as in L-BFGS-B, without the limited memory):
+//! Farias Filho et al. (2021) refine the GA's best individual with SQP. Our constraints
+//! are bounds only, for which SQP reduces to maximising a quadratic model over the box;
+//! we use the compact active-set form of that idea (as in L-BFGS-B, without the limited
+//! memory):
 //!
 //! 1. variables are scaled to `u_j = (x_j − lo_j)/(hi_j − lo_j) ∈ [0, 1]` (zero-width
 //!    intervals are frozen);

@@ -1,5 +1,5 @@
 //! Seeded genetic algorithm and local constrained refinement, for redundancy resolution and
-//! design optimisation (SPEC D.3, D.5).
+//! design optimisation (docs/theory.md §11.3, §11.5).
 //!
 //! Both optimisers *maximise* a real objective over a box `lo_j ≤ x_j ≤ hi_j`:
 //!
@@ -11,7 +11,8 @@
 //! * [`local`]: a projected quasi-Newton (BFGS) ascent with central finite-difference
 //!   gradients and box bounds, a compact SQP-like method for bound constraints (the
 //!   quadratic model is maximised over the free variables, the step projected on the box).
-//! * [`redundancy`]: redundancy resolution of the 3-PRRR along a task (SPEC D.3).
+//! * [`redundancy`]: redundancy resolution of the 3-PRRR along a task (docs/theory.md
+//!   §11.3).
 //! * [`maximize`]: the hybrid of Farias Filho et al. (2021) §4: the GA's best individual seeds the local solver.
 //!
 //! Objective values that are NaN are treated as `−∞` (never selected, never accepted).
@@ -101,8 +102,9 @@ pub struct HybridResult {
     pub local: LocalResult,
 }
 
-/// Seed 000 §4's optimiser: a genetic algorithm whose best individual starts a local
-/// constrained (projected quasi-Newton) refinement. The result is never worse than the GA's best.
+/// The optimiser of Farias Filho et al. (2021), §4: a genetic algorithm whose best
+/// individual starts a local constrained (projected quasi-Newton) refinement. The result
+/// is never worse than the GA's best.
 pub fn maximize<F>(
     objective: F,
     bounds: &[(f64, f64)],

@@ -1,4 +1,5 @@
-//! Redundancy resolution of the 3-PRRR along a task (SPEC D.3; Farias Filho et al. (2021) §4).
+//! Redundancy resolution of the 3-PRRR along a task (docs/theory.md §11.3; Farias Filho
+//! et al. (2021) §4).
 //!
 //! The end effector follows one of four trajectories sampled at `s_k = k/(N−1)`; the
 //! redundant prismatic inputs δ are chosen to maximise an objective
@@ -10,9 +11,10 @@
 //!   acceleration);
 //!
 //! with bounds `δ_min ≤ δ ≤ δ_max` on every variable. The index is LCI `1/κ(Ā⁻¹B̄)` or NSIR
-//! (SPEC D.2); the aggregate is the mean (default, **Choice**) or the minimum along the samples;
-//! an unreachable sample contributes 0. The optimiser is [`super::maximize`]: GA, then the
-//! local projected quasi-Newton refinement from the GA's best.
+//! (docs/theory.md §11.2); the aggregate is the mean (default, **Choice**) or the minimum
+//! along the samples; an unreachable sample contributes 0. The optimiser is
+//! [`super::maximize`]: GA, then the local projected quasi-Newton refinement from the
+//! GA's best.
 
 use super::{GaResult, GeneticOptions, LocalOptions, LocalResult, OptimizeError, maximize};
 use crate::index::prrr::{LciVariant, lci, nsir};
@@ -40,7 +42,8 @@ pub enum RedundancyError {
     },
 }
 
-/// The four tasks of Farias Filho et al. (2021) §4 (SPEC D.3), parametrised by `s ∈ [0, 1]`.
+/// The four tasks of Farias Filho et al. (2021) §4 (docs/theory.md §11.3), parametrised
+/// by `s ∈ [0, 1]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Trajectory {
@@ -58,7 +61,7 @@ pub enum Trajectory {
 }
 
 impl Trajectory {
-    /// All four, in seed order.
+    /// All four, in the order of Farias Filho et al. (2021).
     pub const ALL: [Trajectory; 4] = [
         Trajectory::Line,
         Trajectory::Circle,
@@ -353,8 +356,8 @@ impl RedundancyProblem {
         }
     }
 
-    /// Objective F: aggregate of the problem's index along the samples (SPEC D.3).
-    /// Allocation-free. Variables of the wrong length give −∞.
+    /// Objective F: aggregate of the problem's index along the samples (docs/theory.md
+    /// §11.3). Allocation-free. Variables of the wrong length give −∞.
     pub fn objective(&self, variables: &[f64]) -> f64 {
         if variables.len() != self.scheme.dimension() {
             return f64::NEG_INFINITY;

@@ -1,11 +1,11 @@
-//! Ab-initio stage (SPEC A.9 step 1): all finite critical points of a sub-problem at a
+//! Ab-initio stage (docs/theory.md §8.1): all finite critical points of a sub-problem at a
 //! random complex source configuration, computed once, certified, and stored as the
 //! project's generic start solutions in `supplementary/start/`.
 //!
 //! Method: a start pair from minimum-norm Gauss–Newton ([`super::start_pair`]), then
 //! monodromy loops through random complex parameter points until stagnation, then the
 //! trace test of [`crate::homotopy::monodromy`] as the certificate of completeness.
-//! The counts are checked against SPEC A.7 ([`expected_count`]).
+//! The counts are checked against docs/theory.md §6 ([`expected_count`]).
 
 use super::start_file::{Certificate, StartSolutions, StoredMeasures};
 use super::start_pair::{StartPairError, find_start_pair};
@@ -65,8 +65,9 @@ pub enum AbInitioError {
     },
 }
 
-/// Generic number of finite critical points (SPEC A.7 table; the counts of
-/// sub-problems whose paper counts were lost were measured by this stage and are
+/// Generic number of finite critical points (docs/theory.md §6 table; the counts of
+/// sub-problems whose counts are not in the text of Kapilavai and Nawratil available to us
+/// (their Tables 8–9) were measured by this stage and are
 /// asserted here). `None` where no count is known.
 pub fn expected_count(id: ProblemId) -> Option<usize> {
     let rigid = [id.metric.platform, id.metric.base]
@@ -86,12 +87,12 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
 }
 
 /// Generic count of the all-collinear sub-problem with one rigid part whose anchors
-/// are collinear (`plate/rigid`, `rigid/plate`; SPEC A.6.3, parameterisation of
+/// are collinear (`plate/rigid`, `rigid/plate`; docs/theory.md §5.3, parameterisation of
 /// `problem::build::all_collinear_offsets`), per orientation of the platform for
-/// `rigid/rigid`. Derivation (as the TLS note of SPEC A.7): with `n = E w` the line's
-/// normal, every displacement `x_k′ − x_k` splits into a normal part `h − x_k·n`
-/// (`h = q·n`) and a tangential part `q·w + c_k − x_k·w`; the cost `D²` is an
-/// isotropic PSD quadratic form in the displacements, so it is the sum of the same
+/// `rigid/rigid`. Derivation (as the total-least-squares note of docs/theory.md §5.3):
+/// with `n = E w` the line's normal, every displacement `x_k′ − x_k` splits into a normal
+/// part `h − x_k·n` (`h = q·n`) and a tangential part `q·w + c_k − x_k·w`; the cost `D²`
+/// is an isotropic PSD quadratic form in the displacements, so it is the sum of the same
 /// form on both parts. Minimising over `h` leaves `nᵀ C n` (C a weighted 2×2 scatter
 /// matrix); minimising over `q·w` and the free offsets (plate part, rigid platform's
 /// shift) leaves a quadratic in `w` with a *linear* term (the fixed offsets `s₂`, `s₃`
@@ -106,10 +107,11 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
 /// components with 4 each; the ab-initio stage's extra start pairs collect both).
 const ALL_COLLINEAR_RIGID: usize = 4;
 
-/// Generic count of the coincident-points sub-problems (SPEC A.7 note: measured). For a
-/// fixed coincidence point q the cost over the rigid part's rotation angle θ has the
-/// form `A cos θ + B sin θ + C`, with exactly two critical angles; monodromy finds 2
-/// for both `bars/rigid:coincident-platform` and `rigid/bars:coincident-base`.
+/// Generic count of the coincident-points sub-problems (docs/theory.md §6 note:
+/// measured). For a fixed coincidence point q the cost over the rigid part's rotation
+/// angle θ has the form `A cos θ + B sin θ + C`, with exactly two critical angles;
+/// monodromy finds 2 for both `bars/rigid:coincident-platform` and
+/// `rigid/bars:coincident-base`.
 const MEASURED_COINCIDENT: Option<usize> = Some(2);
 
 /// Options of the ab-initio stage.
@@ -190,9 +192,9 @@ fn compute_at_source(
     if monodromy.target_solution_count.is_none() {
         monodromy.target_solution_count = expected_count(id);
     }
-    // Where the generic count is known exactly (SPEC A.7), reaching it with distinct
-    // nonsingular solutions is the certificate; the trace test (whose witness set on
-    // the incidence curve is far larger than the fiber) is run only where it is not.
+    // Where the generic count is known exactly (docs/theory.md §6), reaching it with
+    // distinct nonsingular solutions is the certificate; the trace test (whose witness
+    // set on the incidence curve is far larger than the fiber) is run only where it is not.
     if expected_count(id).is_some() {
         monodromy.trace_test = false;
     }
@@ -274,10 +276,11 @@ fn compute_at_source(
     let kind = if certified {
         "trace-test".to_string()
     } else if count_matches(&solutions) && min_relative_singular_value > NONSINGULAR_THRESHOLD {
-        // The generic fiber has exactly `expected` points (SPEC A.7, exact Gröbner-basis
-        // counts), so that many distinct nonsingular solutions at a generic point are all.
+        // The generic fiber has exactly `expected` points (docs/theory.md §6, exact
+        // Gröbner-basis counts), so that many distinct nonsingular solutions at a generic
+        // point are all.
         certified = true;
-        "verified-count (SPEC A.7 generic count reached with distinct nonsingular solutions)"
+        "verified-count (generic count of docs/theory.md §6 reached with distinct nonsingular solutions)"
             .to_string()
     } else {
         "none".to_string()
@@ -361,7 +364,7 @@ fn refine_all<E: Evaluator + ?Sized>(system: &E, p: &[C64], solutions: &mut [Vec
     worst
 }
 
-/// Largest residual `‖F(x; p)‖_∞` of a stored start solution (issue 4 acceptance).
+/// Largest residual `‖F(x; p)‖_∞` a stored start solution may have (checked by [`verify`]).
 pub const MAX_STORED_RESIDUAL: f64 = 1e-10;
 
 /// Solutions whose `σ_min/σ_max(∂F/∂x)` is below this are treated as singular.
@@ -398,7 +401,7 @@ pub struct Verification {
     pub problem: String,
     /// Number of stored solutions.
     pub count: usize,
-    /// The count SPEC A.7 expects, if known.
+    /// The count docs/theory.md §6 expects, if known.
     pub expected: Option<usize>,
     /// Largest residual recomputed at the stored parameters.
     pub max_residual: f64,
@@ -412,7 +415,7 @@ pub struct Verification {
 }
 
 /// Re-checks a start-solution file: its variables and parameters match the problem,
-/// residuals, distinctness, count (SPEC A.7) and the trace test (re-run, seeded).
+/// residuals, distinctness, count (docs/theory.md §6) and the trace test (re-run, seeded).
 pub fn verify(
     problem: &LagrangeProblem,
     file: &StartSolutions,
@@ -438,8 +441,8 @@ pub fn verify(
     let expected = expected_count(id);
     let nonsingular =
         smallest_relative_singular_value(system, &p, &file.solutions) > NONSINGULAR_THRESHOLD;
-    // Completeness: the known generic count (SPEC A.7) or, where none is known, the
-    // trace test re-run on fresh random slices.
+    // Completeness: the known generic count (docs/theory.md §6) or, where none is known,
+    // the trace test re-run on fresh random slices.
     let (complete, trace_residual) = match expected {
         Some(count) => (count == file.solutions.len(), None),
         None => {

@@ -1,4 +1,5 @@
-//! The stages of the main job (SPEC A.9): ab-initio, user homotopy, parameter homotopy, post-processing.
+//! The stages of the main job (docs/theory.md §8): ab-initio, user homotopy, parameter
+//! homotopy, post-processing.
 
 pub mod ab_initio;
 pub mod curve;

@@ -1,17 +1,20 @@
-//! Post-processing of the critical points at one pose (SPEC A.9 step 4, paper §5.4).
+//! Post-processing of the critical points at one pose (Kapilavai and Nawratil, §5.4;
+//! docs/theory.md §8.4).
 //!
 //! From the finite endpoints of every sub-problem's Lagrange system `∇Λ = 0` at the
 //! real configuration `K` of a pose:
 //!
 //! 1. keep the real ones: `max_k |Im x_k| ≤ real_tolerance · (1 + ‖x‖∞)`;
 //! 2. map each to its closest-configuration candidate `K′ = Re K′(x; p)` and recompute
-//!    `D(K, K′)` in f64 with [`Metric::distance`] (SPEC A.4), independently of the
+//!    `D(K, K′)` in f64 with [`Metric::distance`] (docs/theory.md §3), independently of the
 //!    homotopy's arithmetic;
 //! 3. the sub-problem distance is the smallest such `D`; the metric's singularity
-//!    distance is the minimum over its sub-problems (SPEC A.6, paper Fig. 14);
-//! 4. the signed distance carries the sign of `S(K)` (SPEC A.2, A.8);
+//!    distance is the minimum over its sub-problems (Kapilavai and Nawratil, Fig. 14;
+//!    docs/theory.md §5);
+//! 4. the signed distance carries the sign of `S(K)` (docs/theory.md §1.3, §7);
 //! 5. a pose is on a cut locus when a second minimiser with a different `K′` attains
-//!    the minimum within `cut_locus_tolerance` (paper §6): both are reported.
+//!    the minimum within `cut_locus_tolerance` (Kapilavai and Nawratil, §6): both are
+//!    reported.
 
 use crate::certify::distance::{MetricCertificate, SubproblemCertificate};
 use crate::metric::Metric;
@@ -24,7 +27,7 @@ use std::collections::BTreeMap;
 pub struct Candidate {
     /// `D(K, K′)` recomputed in f64.
     pub distance: f64,
-    /// The configuration `K′` (twelve coordinates, SPEC A.1 order).
+    /// The configuration `K′` (twelve coordinates in the order of docs/theory.md §1.1).
     pub closest: [f64; 12],
 }
 
@@ -58,7 +61,7 @@ pub struct Minimiser {
     pub closest: [f64; 12],
 }
 
-/// Singularity distance of one metric at one pose (SPEC A.6, A.9).
+/// Singularity distance of one metric at one pose (docs/theory.md §5, §8).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MetricDistance {
     /// `min` over the sub-problems of the smallest real critical value of `D`.
@@ -117,7 +120,7 @@ pub fn subproblem_distance(
     }
 }
 
-/// Combines the sub-problems of one metric (SPEC A.6: minimum over sub-problems),
+/// Combines the sub-problems of one metric (docs/theory.md §5: minimum over sub-problems),
 /// attaches the sign of `S(K)` and detects a cut locus: another candidate with a
 /// different `K′` (coordinates differ by more than `1e-6` relative) whose distance
 /// exceeds the minimum by at most `cut_locus_tolerance`. Returns `None` when no

@@ -1,7 +1,7 @@
-//! Ab-initio stage for the 3-RRR sub-problems of SPEC Part C (paper §6.3): all finite
-//! critical points of `∇Λ = 0` at a random complex source configuration, certified by a
-//! trace test, stored in `supplementary/start/rrr-*.json` (the JSON format of
-//! [`super::start_file`], `metric` = `rrr-all-deformable`).
+//! Ab-initio stage for the 3-RRR sub-problems of docs/theory.md §10 (Kapilavai and
+//! Nawratil, §6.3): all finite critical points of `∇Λ = 0` at a random complex source
+//! configuration, certified by a trace test, stored in `supplementary/start/rrr-*.json`
+//! (the JSON format of [`super::start_file`], `metric` = `rrr-all-deformable`).
 //!
 //! Method (as for the 3-RPR, [`super::ab_initio`]): a start pair from minimum-norm
 //! Gauss–Newton ([`find_start_pair`]), monodromy loops until stagnation

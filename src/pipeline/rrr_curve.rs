@@ -1,19 +1,21 @@
-//! 3-RRR singularity-distance curves along a motion (SPEC Part C, paper §6.3, Fig. 17).
+//! 3-RRR singularity-distance curves along a motion (Kapilavai and Nawratil, §6.3, Fig.
+//! 17; docs/theory.md §10).
 //!
 //! Four sub-problems ([`crate::problem::rrr::RrrSubProblem`]): the parallel singularity and the three leg
-//! singularities, each with the all-deformable metric of SPEC Part C. Stages, as for the
-//! 3-RPR (SPEC A.9):
+//! singularities, each with the all-deformable metric of docs/theory.md §10. Stages, as
+//! for the 3-RPR (docs/theory.md §8):
 //!
-//! 1. **Seed** (user homotopy, paper Eqs. 65–66; [`super::rrr_seed`]): the generic start
-//!    solutions ([`super::rrr_ab_initio`]) are tracked to `K*`, the trajectory's
-//!    configuration at a random complex `τ*` plus a small random complex perturbation,
-//!    in the run's normalised frame ([`RrrFrame`]: centroid and RMS radius of the first
-//!    configuration), so that a design and its scaled copy are solved alike. At most the
-//!    generic count of distinct seed solutions is kept; a count below it must be
-//!    confirmed at an independent seed point or is reported.
-//! 2. **Parameter homotopy** (paper §5.3): seed solutions → the real (normalised)
-//!    configuration of every pose, all (pose, sub-problem) pairs in parallel (rayon); each path is a pure
-//!    function of its inputs, so results do not depend on the thread count.
+//! 1. **Seed** (user homotopy, Kapilavai and Nawratil, Eqs. 65–66; [`super::rrr_seed`]):
+//!    the generic start solutions ([`super::rrr_ab_initio`]) are tracked to `K*`, the
+//!    trajectory's configuration at a random complex `τ*` plus a small random complex
+//!    perturbation, in the run's normalised frame ([`RrrFrame`]: centroid and RMS radius
+//!    of the first configuration), so that a design and its scaled copy are solved alike.
+//!    At most the generic count of distinct seed solutions is kept; a count below it must
+//!    be confirmed at an independent seed point or is reported.
+//! 2. **Parameter homotopy** (Kapilavai and Nawratil, §5.3): seed solutions → the real
+//!    (normalised) configuration of every pose, all (pose, sub-problem) pairs in parallel
+//!    (rayon); each path is a pure function of its inputs, so results do not depend on
+//!    the thread count.
 //! 3. **No silent losses** (the 3-RPR machinery, [`super::curve`]): a (pose,
 //!    sub-problem) with failed paths re-tracks them with conservative settings, then
 //!    every path along polylines through a random complex detour point near the target
@@ -26,7 +28,7 @@
 //!    back to the caller's frame, `D(K, K′)` recomputed in f64 ([`distance`]), minimum per sub-problem; the signed distance
 //!    carries the sign of the sub-problem's determinant at K (parallel determinant, or
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
-//!    the four (paper Remark 11).
+//!    the four (Kapilavai and Nawratil, Remark 11).
 
 use super::curve::{Retried, TrackingPlan, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
@@ -140,7 +142,7 @@ pub struct RrrSubproblemResult {
     pub expected_endpoints: usize,
 }
 
-/// Result at one pose (JSON field names fixed by the issue: `tau`, `parallel`, `leg1`,
+/// Result at one pose (stable JSON field names: `tau`, `parallel`, `leg1`,
 /// `leg2`, `leg3`, `distance`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RrrPoseResult {
@@ -160,13 +162,14 @@ pub struct RrrPoseResult {
     pub leg2: Option<f64>,
     /// Signed distance to the leg-3 singularity.
     pub leg3: Option<f64>,
-    /// Overall singularity distance: the smallest |value| of the four (paper Remark 11).
+    /// Overall singularity distance: the smallest |value| of the four (Kapilavai and
+    /// Nawratil, Remark 11).
     pub distance: Option<f64>,
     /// Which curve attains it (`parallel`, `leg1`, `leg2`, `leg3`).
     pub nearest: Option<String>,
-    /// Comparison index of paper Fig. 17: `|det|` of the parallel determinant
-    /// (`det[C_i − B_i | B_i × C_i]`, SPEC Part C) divided by its largest |value| over the
-    /// sampled poses, so in [0, 1].
+    /// Comparison index of Kapilavai and Nawratil, Fig. 17: `|det|` of the parallel
+    /// determinant (`det[C_i − B_i | B_i × C_i]`, docs/theory.md §10) divided by its
+    /// largest |value| over the sampled poses, so in [0, 1].
     pub parallel_determinant_abs_scaled: f64,
     /// Per sub-problem (`parallel`, `leg1`, …): distance, closest configuration, counts.
     pub subproblems: BTreeMap<String, RrrSubproblemResult>,

@@ -1,6 +1,7 @@
-//! Stage 1 of the 3-RRR curve, the user homotopy (paper Eqs. 65–66): the normalised
-//! frame of the run, the seed configuration `K*`, and the generic start solutions
-//! tracked to it, with the bookkeeping that never lets a count exceed the generic one.
+//! Stage 1 of the 3-RRR curve, the user homotopy (Kapilavai and Nawratil, Eqs. 65–66):
+//! the normalised frame of the run, the seed configuration `K*`, and the generic start
+//! solutions tracked to it, with the bookkeeping that never lets a count exceed the
+//! generic one.
 //!
 //! - **Frame** ([`RrrFrame`]): every parameter vector lives in the similarity frame
 //!   `K ↦ (K − c)/s`, `c` the centroid of the nine points of the motion's first

@@ -1,5 +1,5 @@
 //! Generic start solutions: the files `supplementary/start/PLATFORM-BASE-SUBPROBLEM.json`
-//! written by the ab-initio stage (SPEC A.9 step 1) and read by every later stage.
+//! written by the ab-initio stage (docs/theory.md §8.1) and read by every later stage.
 //!
 //! A file records the problem, the variable names in order, the complex parameter
 //! values of its source point, all finite critical points there, the largest residual,
@@ -13,10 +13,10 @@ use std::collections::BTreeMap;
 /// Certificate that a start-solution set is complete.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Certificate {
-    /// `"trace-test"` (trace residual below tolerance), `"verified-count"` (the SPEC
-    /// A.7 generic count, known exactly from Gröbner-basis computations, reached with
-    /// distinct nonsingular solutions at a generic point: then no solution is missing),
-    /// or `"none"` (not certified: the set may be incomplete).
+    /// `"trace-test"` (trace residual below tolerance), `"verified-count"` (the
+    /// generic count of docs/theory.md §6, known exactly from Gröbner-basis computations,
+    /// reached with distinct nonsingular solutions at a generic point: then no solution
+    /// is missing), or `"none"` (not certified: the set may be incomplete).
     pub kind: String,
     /// Trace-test residual: relative deviation of the solutions' trace from linearity
     /// along a pencil of slices (small when no solution is missing); `None` when the
@@ -34,7 +34,7 @@ pub struct Certificate {
     /// Number of solutions found.
     #[serde(default)]
     pub found_count: usize,
-    /// Generic count expected (SPEC A.7), if known.
+    /// Generic count expected (docs/theory.md §6), if known.
     #[serde(default)]
     pub expected_count: Option<usize>,
 }

@@ -1,5 +1,5 @@
 //! A start pair `(x₀, p₀)` with `F(x₀; p₀) = 0` for a parametric system, the seed of
-//! the monodromy solver (ab-initio stage, SPEC A.9 step 1).
+//! the monodromy solver (ab-initio stage, docs/theory.md §8.1).
 //!
 //! The solution set `{(x, p) : F(x; p) = 0}` of a square parametric system is a variety
 //! of dimension m (the number of parameters) in `C^{n+m}`. From a random complex point

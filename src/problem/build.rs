@@ -19,7 +19,7 @@ pub enum ProblemError {
         /// What would have been accepted.
         valid: String,
     },
-    /// A sub-problem that the metric does not need (SPEC A.6).
+    /// A sub-problem that the metric does not need (docs/theory.md §5).
     #[error("problem `{problem}` is not part of its metric; that metric needs: {needed}")]
     NotNeeded {
         /// The problem name given.
@@ -46,7 +46,7 @@ pub enum ProblemError {
     },
 }
 
-/// Names of the twelve coordinates of a configuration, in the order of SPEC A.1:
+/// Names of the twelve coordinates of a configuration, in the order of docs/theory.md §1.1:
 /// `a1x a1y a2x a2y a3x a3y b1x b1y b2x b2y b3x b3y`.
 pub const COORDINATE_NAMES: [&str; 12] = [
     "a1x", "a1y", "a2x", "a2y", "a3x", "a3y", "b1x", "b1y", "b2x", "b2y", "b3x", "b3y",
@@ -179,12 +179,12 @@ fn flatten(base: &[Point<Expr>; 3], platform: &[Point<Expr>; 3]) -> [Expr; 12] {
 }
 
 /// A rigid part's anchors count as collinear (all-collinear sub-problem applicable,
-/// SPEC A.6.3) when `|v| ≤ COLLINEAR_ANCHOR_TOLERANCE`, with `v` the dimensionless
-/// offset of anchor 3 from the line of anchors 1, 2 (SPEC A.5: distance / `|e|`).
+/// docs/theory.md §5.3) when `|v| ≤ COLLINEAR_ANCHOR_TOLERANCE`, with `v` the dimensionless
+/// offset of anchor 3 from the line of anchors 1, 2 (docs/theory.md §4: distance / `|e|`).
 pub const COLLINEAR_ANCHOR_TOLERANCE: f64 = 1e-9;
 
 /// Offsets along the common line of the six points of the all-collinear sub-problem
-/// (SPEC A.6.3), in the order `a₁ a₂ a₃ b₁ b₂ b₃` (`None` = 0, point 1 is `q`).
+/// (docs/theory.md §5.3), in the order `a₁ a₂ a₃ b₁ b₂ b₃` (`None` = 0, point 1 is `q`).
 struct LineOffsets {
     offsets: Vec<Option<Expr>>,
     variables: Vec<String>,
@@ -194,10 +194,11 @@ struct LineOffsets {
 }
 
 /// Offsets `c_k` of the all-collinear parameterisation `x_k′ = q + c_k w`, `w·w = 1`
-/// (SPEC A.6.3, paper Eq. 56), with `c_{a₁} = 0` (the gauge: `q = a₁′`):
+/// (Kapilavai and Nawratil, Eq. 56; docs/theory.md §5.3), with `c_{a₁} = 0` (the gauge:
+/// `q = a₁′`):
 ///
 /// - a `plate` part: free offsets (`t2 t3` for the base, `t4 t5 t6` for the platform);
-/// - a `rigid` part whose anchors are collinear (SPEC A.5 with `v = 0`:
+/// - a `rigid` part whose anchors are collinear (docs/theory.md §4 with `v = 0`:
 ///   `x₃ = x₁ + u (x₂ − x₁)`): a proper motion keeps them on one line at fixed signed
 ///   distances, so its offsets are known up to a common shift: `(0, s₂, s₃)` for the
 ///   base (the base fixes the direction of `w`), `(t4, t4 + s₂, t4 + s₃)` for the
@@ -258,8 +259,8 @@ pub fn anchors_collinear(shape: &rpr::RigidShape) -> bool {
 }
 
 impl LagrangeProblem {
-    /// Whether sub-problem `id` exists for `design` (SPEC A.6.3): all-collinear with a
-    /// rigid part needs that part's anchors to be collinear
+    /// Whether sub-problem `id` exists for `design` (docs/theory.md §5.3): all-collinear
+    /// with a rigid part needs that part's anchors to be collinear
     /// ([`COLLINEAR_ANCHOR_TOLERANCE`]); every other sub-problem always applies.
     pub fn check_applicable(id: ProblemId, design: &Design) -> Result<(), ProblemError> {
         if id.subproblem != SubProblem::AllCollinear {
@@ -274,7 +275,8 @@ impl LagrangeProblem {
                     problem: id.name(),
                     reason: format!(
                         "all six points on one line needs the rigid {role}'s anchors to be \
-                         collinear (SPEC A.6.3); here anchor 3 is off the line of anchors 1, 2 \
+                         collinear (Kapilavai and Nawratil, Thm 3; docs/theory.md §5.3); \
+                         here anchor 3 is off the line of anchors 1, 2 \
                          by v = {:.3e} |e| (tolerance {COLLINEAR_ANCHOR_TOLERANCE:e})",
                         shape.v
                     ),
@@ -300,7 +302,7 @@ impl LagrangeProblem {
         Self::new_in(id, coordinates)
     }
 
-    /// Builds and compiles the Lagrange system of `id` (SPEC A.6).
+    /// Builds and compiles the Lagrange system of `id` (docs/theory.md §5).
     ///
     /// Variables: the unknown coordinates of K′ (a rigid part lists only its first two
     /// points), then the multipliers (`lambda`, `mu_base`, `mu_platform`), or for
@@ -538,8 +540,8 @@ impl LagrangeProblem {
 
     /// Parameter vector for the given configuration `k` (twelve coordinates, possibly
     /// complex) of `design`: `k` followed by the rigid parts' shape constants
-    /// `(u, v, r²)` of SPEC A.5, computed from the design's base and platform anchors
-    /// (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
+    /// `(u, v, r²)` of docs/theory.md §4, computed from the design's base and platform
+    /// anchors (all-collinear: the line offsets `s₂ = |e|`, `s₃ = u·|e|`).
     pub fn parameters_for(&self, design: &Design, k: &[C64; 12]) -> Vec<C64> {
         self.parameters_in_units(design, k, 1.0)
     }

@@ -1,4 +1,5 @@
-//! The Lagrangian sub-problems of every metric (SPEC A.6, paper §3–§4).
+//! The Lagrangian sub-problems of every metric (Kapilavai and Nawratil, §3–§4;
+//! docs/theory.md §5).
 //!
 //! For a given configuration `K` (the parameters) the closest configuration `K′` on a
 //! constraint set is a critical point of a Lagrangian
@@ -7,13 +8,13 @@
 //!   Λ(K′, λ, μ; K) = D²(K, K′) − λ·C(K′) − Σ_rigid μ·g(K′)
 //! ```
 //!
-//! where `C` is the singularity polynomial S (SPEC A.2), or a collinearity polynomial
-//! `C_p`, `C_b`, and `g = |x₂′ − x₁′|² − r²` keeps a rigid part congruent (SPEC A.5,
-//! point-based representation of SE(2): a rigid part's third point is
+//! where `C` is the singularity polynomial S (docs/theory.md §1.3), or a collinearity
+//! polynomial `C_p`, `C_b`, and `g = |x₂′ − x₁′|² − r²` keeps a rigid part congruent
+//! (docs/theory.md §4, point-based representation of SE(2): a rigid part's third point is
 //! `x₃′ = x₁′ + u (x₂′ − x₁′) + v E(x₂′ − x₁′)`). Two further sub-problems parameterise
 //! singular points of the constraint varieties directly: all six points on one line
-//! (paper Thm 3 case 1, Eqs. 56–57) and three coincident platform (base) points under a
-//! rigid base (platform) (paper §4.2, Eqs. 62–63).
+//! (Kapilavai and Nawratil, Thm 3 case 1, Eqs. 56–57) and three coincident platform
+//! (base) points under a rigid base (platform) (Kapilavai and Nawratil, §4.2, Eqs. 62–63).
 //!
 //! Every sub-problem is the square system `∇Λ = 0`, built once with
 //! [`crate::system`] and compiled; its parameters are the twelve coordinates of `K`
@@ -33,7 +34,7 @@ use crate::metric::{Metric, Part};
 use std::fmt;
 use std::str::FromStr;
 
-/// The kinds of sub-problem of SPEC A.6, with their stable names.
+/// The kinds of sub-problem of docs/theory.md §5, with their stable names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum SubProblem {
     /// `S(K′) = 0`: leg lines concurrent or parallel (all nine metrics).
@@ -42,12 +43,14 @@ pub enum SubProblem {
     CollinearPlatform,
     /// `C_b(K′) = 0`: base anchors collinear (base `bars`).
     CollinearBase,
-    /// All six points on one line `q + t_k w`, `w·w = 1` (paper Thm 3 case 1;
-    /// platform and base `plate` or `rigid`).
+    /// All six points on one line `q + t_k w`, `w·w = 1` (Kapilavai and Nawratil, Thm 3
+    /// case 1; platform and base `plate` or `rigid`).
     AllCollinear,
-    /// `b₁′ = b₂′ = b₃′` under a rigid base (metric `bars/rigid`, paper Eq. 62).
+    /// `b₁′ = b₂′ = b₃′` under a rigid base (metric `bars/rigid`, Kapilavai and Nawratil,
+    /// Eq. 62).
     CoincidentPlatform,
-    /// `a₁′ = a₂′ = a₃′` under a rigid platform (metric `rigid/bars`, paper Eq. 63).
+    /// `a₁′ = a₂′ = a₃′` under a rigid platform (metric `rigid/bars`, Kapilavai and
+    /// Nawratil, Eq. 63).
     CoincidentBase,
 }
 
@@ -99,7 +102,7 @@ impl FromStr for SubProblem {
 }
 
 /// The sub-problems whose minimum is the singularity distance of `metric`
-/// (SPEC A.6; paper Eqs. 55 and 59 justify the ones left out):
+/// (docs/theory.md §5; Kapilavai and Nawratil, Eqs. 55 and 59 justify the ones left out):
 /// the singularity variety always; the collinear platform (base) for a `bars`
 /// platform (base); all-collinear when neither part is `bars`; coincident
 /// platform (base) points when the platform (base) is `bars` and the other part rigid.

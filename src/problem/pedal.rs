@@ -2,8 +2,9 @@
 //! part is deformable (`bars/plate`, `bars/bars`, and symmetrically `plate/bars`,
 //! `bars/bars` for the base).
 //!
-//! Nawratil and Rasoulzadeh's pedal-point theorems ("Singularity distance computations
-//! for 3-RPR manipulators using extrinsic metrics", Thms 1 and 2) state that the
+//! The pedal-point theorems of Kapilavai and Nawratil ("Singularity distance computations
+//! for 3-RPR manipulators using extrinsic metrics", Thms 1 and 2; docs/theory.md §5.5)
+//! state that the
 //! closest configuration on the collinear-platform variety has platform points equal
 //! to the orthogonal projections (pedal points) of `b₁, b₂, b₃` onto their
 //! total-least-squares line: the line through the centroid `c` along the eigenvector
@@ -37,7 +38,7 @@ pub struct PedalSolution {
 /// Whether sub-problem `id` has the closed form of this module: the collinear
 /// platform of a `bars` platform over a `plate` or `bars` base, or the collinear base
 /// of a `bars` base under a `plate` or `bars` platform (not with a rigid other part,
-/// where the theorem fails: the paper's Counter example 1).
+/// where the theorem fails: Kapilavai and Nawratil, Counter example 1).
 pub fn has_closed_form(id: ProblemId) -> bool {
     let deformable = |p: Part| p != Part::Rigid;
     match id.subproblem {

@@ -1,5 +1,6 @@
-//! The 3-RRR singularity-distance sub-problems of SPEC Part C (paper §6.3) with the
-//! all-deformable metric `D²` of [`crate::mechanism::rrr::distance_sq`].
+//! The 3-RRR singularity-distance sub-problems of docs/theory.md §10 (Kapilavai and
+//! Nawratil, §6.3) with the all-deformable metric `D²` of
+//! [`crate::mechanism::rrr::distance_sq`].
 //!
 //! For a given configuration `K` of the nine points (the 18 parameters `O1x … C3y`), the
 //! closest configuration `K′` on a constraint set `C(K′) = 0` is a critical point of
@@ -45,7 +46,7 @@ pub enum RrrProblemError {
     },
 }
 
-/// The four 3-RRR sub-problems of SPEC Part C.
+/// The four 3-RRR sub-problems of docs/theory.md §10.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum RrrSubProblem {
     /// Parallel singularity: lines `B_iC_i` concurrent or parallel.

@@ -3,8 +3,9 @@
 //!
 //! For each metric and each of its constraint sets (the singularity variety
 //! `S(K′) = 0`, the collinear platform `C_p(K′) = 0` or base `C_b(K′) = 0`, all six
-//! points on one line, three coincident platform or base points; Nawratil,
-//! *Extrinsic metrics for singularity distances of 3-RPR manipulators*), the
+//! points on one line, three coincident platform or base points; Kapilavai and Nawratil,
+//! *Singularity distance computations for 3-RPR manipulators using extrinsic metrics*,
+//! docs/theory.md §5), the
 //! configuration `K′` is written in unknowns `x` that make every structural condition
 //! hold exactly:
 //!

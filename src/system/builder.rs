@@ -97,7 +97,7 @@ impl System {
 
     /// The Lagrange system `∇_variables Λ = 0` of a Lagrangian `Λ` (the variable list
     /// includes the multipliers, so the system is square: one equation `∂Λ/∂v` per
-    /// variable `v`, in the order of `variables`). SPEC A.6.
+    /// variable `v`, in the order of `variables`); see docs/theory.md §5.
     pub fn lagrange(
         lagrangian: &Expr,
         variables: impl IntoIterator<Item = impl AsRef<str>>,

@@ -11,12 +11,12 @@ fn squared<T: singdist::algebra::Ring>(d: &Point<T>) -> T {
     dot(d, d)
 }
 
-/// `seg²` of SPEC A.3 from the displacements of the two end points.
+/// `seg²` of docs/theory.md §2 from the displacements of the two end points.
 pub fn seg2(d1: &Point<Expr>, d2: &Point<Expr>) -> Expr {
     (squared(d1) + squared(d2) + dot(d1, d2)) * (1.0 / 3.0)
 }
 
-/// `tri²` of SPEC A.3 from the displacements of the three corners.
+/// `tri²` of docs/theory.md §2 from the displacements of the three corners.
 pub fn tri2(d: &[Point<Expr>; 3]) -> Expr {
     (squared(&d[0])
         + squared(&d[1])
@@ -27,7 +27,8 @@ pub fn tri2(d: &[Point<Expr>; 3]) -> Expr {
         * (1.0 / 6.0)
 }
 
-/// Singularity polynomial S of SPEC A.2 of the configuration (a_1..a_3, b_1..b_3).
+/// Singularity polynomial S of docs/theory.md §1.3 of the configuration (a_1..a_3,
+/// b_1..b_3).
 pub fn singularity_polynomial(a: &[Point<Expr>; 3], b: &[Point<Expr>; 3]) -> Expr {
     let row = |i: usize| {
         let leg = difference(&a[i], &b[i]);
@@ -53,7 +54,7 @@ pub fn coordinate_names(a: &str, b: &str) -> Vec<String> {
 }
 
 /// The Lagrangian `Λ = D²(K, K′) − λ S(K′)` of the singularity-variety sub-problem of
-/// the metric plate/plate (SPEC A.4, A.6): unknowns K′ = a1x..b3y and `lambda`,
+/// the metric plate/plate (docs/theory.md §3, §5): unknowns K′ = a1x..b3y and `lambda`,
 /// parameters K = A1x..B3y.
 pub fn plate_plate_lagrangian() -> (Expr, Vec<String>, Vec<String>) {
     let a_new: [Point<Expr>; 3] = std::array::from_fn(|i| point("a", i + 1, Expr::variable));

@@ -1,11 +1,12 @@
-//! Distance-to-singularity curves of a 3-RPR along a motion (SPEC A.9, paper §5).
+//! Distance-to-singularity curves of a 3-RPR along a motion (Kapilavai and Nawratil, §5;
+//! docs/theory.md §8).
 //!
 //! Stages, for every (metric, sub-problem) the selected metrics need. Every parameter
 //! vector lives in one normalised frame per curve ([`Normalization`]: centroid and RMS
 //! size of the first configuration), so coordinates and multipliers stay of order one.
 //!
-//! 1. **User homotopy** (paper Eqs. 65–66): the generic start solutions at their
-//!    source parameters `p_src` (ab-initio stage) are tracked along the straight
+//! 1. **User homotopy** (Kapilavai and Nawratil, Eqs. 65–66): the generic start solutions
+//!    at their source parameters `p_src` (ab-initio stage) are tracked along the straight
 //!    parameter segment `p(t) = (1 − t) p_src + t p*` to the *seed* `p*`: the motion at
 //!    a random complex `τ*` (seeded), `K* = K(x(τ*), y(τ*), φ(τ*))` with complex
 //!    `cos`, `sin` (for explicit pose lists: the first pose plus a complex
@@ -14,11 +15,11 @@
 //!    ([`seed_point`]). The rigid parts' shape constants are those of the design. One
 //!    seed solve serves every pose. Paths that end at infinity there are critical
 //!    points the design's fixed shape does not have (e.g. the example design's base and
-//!    platform have equal angles at anchor 1, so leg-collapse singular points of paper
-//!    Thm 3 case 4 exist and absorb some critical points); the poses expect the seed's
-//!    finite count.
-//! 2. **Parameter homotopy** (paper §5.3): the seed solutions are tracked to the real
-//!    configuration `K_j` of every pose along the complexified motion
+//!    platform have equal angles at anchor 1, so leg-collapse singular points of Kapilavai
+//!    and Nawratil, Thm 3 case 4 exist and absorb some critical points); the poses expect
+//!    the seed's finite count.
+//! 2. **Parameter homotopy** (Kapilavai and Nawratil, §5.3): the seed solutions are
+//!    tracked to the real configuration `K_j` of every pose along the complexified motion
 //!    (`MotionPath`: straight from τ* to τ_j in the τ-plane, or from the seed pose to
 //!    pose j in pose coordinates, with δ fading), so every intermediate parameter is a
 //!    pose of the design; poses × sub-problems run in parallel (rayon). Every path is a
@@ -178,7 +179,7 @@ pub struct PoseResult {
     pub tau: f64,
     /// `[x, y, φ]`.
     pub pose: [f64; 3],
-    /// `S(K)` (SPEC A.2).
+    /// `S(K)` (docs/theory.md §1.3).
     #[serde(rename = "S")]
     pub singularity: f64,
     /// Per metric name: distance, signed distance, closest configuration, …
@@ -856,7 +857,7 @@ pub fn compute_curve(
 }
 
 /// Parameters τ where `S(K(τ))` changes sign between consecutive samples, refined by
-/// bisection on the analytic motion to `|Δτ| ≤ 1e-14·(1 + |τ|)` (SPEC A.8: the
+/// bisection on the analytic motion to `|Δτ| ≤ 1e-14·(1 + |τ|)` (docs/theory.md §7: the
 /// distance vanishes there). For pose lists, the midpoint of the sign change.
 pub fn singular_parameters(design: &Design, motion: &Motion, samples: &[SampledPose]) -> Vec<f64> {
     let s_of = |tau: f64| {

@@ -30,9 +30,9 @@ pub struct SeededProblem {
     /// Number of paths tracked from the seed to every pose: the seed's finite
     /// solutions. Fewer than [`SeededProblem::generic_count`] only where an
     /// independent seed point confirmed the same count (the others are at infinity
-    /// for this design's fixed rigid shapes, e.g. the leg-collapse points of paper
-    /// Thm 3 case 4 when base and platform have an equal corresponding angle), or
-    /// where the shortfall is reported as a seed-stage [`PathFailure`].
+    /// for this design's fixed rigid shapes, e.g. the leg-collapse points of Kapilavai
+    /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding
+    /// angle), or where the shortfall is reported as a seed-stage [`PathFailure`].
     pub start_count: usize,
 }
 
@@ -66,7 +66,7 @@ pub struct SeedStage {
     /// The prepared sub-problems, in the order of [`Metric::all`] and
     /// [`subproblems_of`].
     pub problems: Vec<SeededProblem>,
-    /// Sub-problems reported as not applicable for this design (SPEC A.6.3).
+    /// Sub-problems reported as not applicable for this design (docs/theory.md §5.3).
     pub not_applicable: Vec<String>,
     /// Sub-problems solved in closed form at every pose instead of by homotopy
     /// ([`crate::problem::pedal`], [`crate::problem::equilateral`]: where the critical
@@ -314,7 +314,7 @@ fn seed_problem(
 /// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
 /// solutions from `provider` and tracks them to the seed (in parallel), confirming
 /// every count below the generic one at an independent seed point
-/// ([`seed_problem`]).
+/// (`seed_problem`).
 pub fn seed_stage(
     design: &Design,
     motion: &Motion,
