@@ -639,6 +639,7 @@ fn track_problem(
             },
             retry: &options.retry_tracker,
             endgame: false,
+            whole_detours: true,
         },
     );
     let failure = (best < seeded.start_count).then(|| PathFailure {

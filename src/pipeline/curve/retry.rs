@@ -235,6 +235,9 @@ pub(crate) struct TrackingPlan<'a> {
     /// nonsingular) the endpoint is Newton-refined at `t = 1`; a path that fails,
     /// crosses another one or diverges is re-run with the endgame.
     pub endgame: bool,
+    /// Whether a detour re-tracks every path when the lost ones alone do not complete
+    /// the set (`false`: only the lost ones, along each detour in turn).
+    pub whole_detours: bool,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -244,6 +247,15 @@ impl<'a> TrackingPlan<'a> {
             first,
             retry,
             endgame: true,
+            whole_detours: true,
+        }
+    }
+
+    /// The same plan with detours of the lost paths only.
+    pub fn lost_paths_only(self) -> Self {
+        TrackingPlan {
+            whole_detours: false,
+            ..self
         }
     }
 }
@@ -276,6 +288,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         first: tracker,
         retry: retry_tracker,
         endgame,
+        whole_detours,
     } = plan;
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
@@ -371,17 +384,18 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
-        if attempt == 1 && !missing.is_empty() && missing.len() < starts.len() {
+        if (attempt == 1 || !whole_detours) && !missing.is_empty() && missing.len() < starts.len() {
             // First only those on the detour: any distinct finite endpoint they reach
             // is a critical point the reference route missed (e.g. 2 of the example's
             // 80 `rigid/rigid` seed → pose-0 paths, which pass through a pole on the
-            // way). The whole detour only if they do not complete the set.
+            // way). The whole detour only if they do not complete the set (and the
+            // plan asks for whole detours).
             let found = track_all(&detour, &missing, tracker, endgame);
             tracked += missing.len();
             merge(&mut endpoints, finite_solutions(&found));
             best = best.max(endpoints.len() + at_infinity);
-            if best >= expected {
-                break;
+            if best >= expected || !whole_detours {
+                continue;
             }
         }
         let paths = track_all(&detour, starts, tracker, endgame);

@@ -228,6 +228,17 @@ fn seed_problem(
 ) -> (SeededProblem, Option<PathFailure>, usize) {
     let design = &design;
     let generic = starts.len();
+    // A seed point after the first confirms (or not) a count: its detours re-track
+    // only its own lost paths (the first point's whole detours try to reach the
+    // generic count outright).
+    let plan = |point: usize| {
+        let plan = TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker);
+        if point == 0 {
+            plan
+        } else {
+            plan.lost_paths_only()
+        }
+    };
     let mut runs: Vec<SeedRun> = Vec::new();
     let mut tracked = 0;
     for point in 0..SEED_POINTS {
@@ -253,7 +264,7 @@ fn seed_problem(
                 PolylinePath::new(points)
             },
             options.seed_retry_attempts,
-            TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
+            plan(point),
         );
         tracked += retried.tracked;
         let solutions = distinct_seed_solutions(retried.endpoints, generic);
