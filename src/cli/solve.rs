@@ -3,8 +3,8 @@
 //! on the constant-term family (`--monodromy`). Exit code 3 when paths failed (listed
 //! with their reasons on stderr).
 
+use super::args::ThreadsArg;
 use super::outcome::Outcome;
-use super::resources::thread_count;
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
@@ -26,9 +26,8 @@ pub struct SolveArgs {
     /// Print `{"summary": …, "solutions": […]}` as JSON instead of the text summary.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long)]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub threads: ThreadsArg,
     /// Seed of every random choice; the same seed gives the same result on any
     /// number of threads.
     #[arg(long, default_value_t = 0x5eed)]
@@ -172,7 +171,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         ..SolveOptions::default()
     };
     let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = thread_count(args.threads)? {
+    if let Some(threads) = args.threads.checked()? {
         builder = builder.num_threads(threads);
     }
     let pool = builder.build().context("cannot start the thread pool")?;

@@ -1,5 +1,6 @@
 //! `singdist system`: inspect and convert polynomial system files.
 
+use super::outcome::Outcome;
 use super::output::{check_writable, write_file};
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
@@ -80,12 +81,12 @@ pub fn summary(system: &System) -> String {
 }
 
 /// Runs `singdist system`.
-pub fn run(command: SystemCommand) -> anyhow::Result<()> {
+pub fn run(command: SystemCommand) -> anyhow::Result<Outcome> {
     match command {
         SystemCommand::Show { file, from } => {
             let system = read_system(&file, from)?;
             print!("{}", summary(&system));
-            Ok(())
+            Ok(Outcome::Complete)
         }
         SystemCommand::Export {
             file,
@@ -122,7 +123,7 @@ pub fn run(command: SystemCommand) -> anyhow::Result<()> {
                 Some(path) => write_file("--out", &path, text)?,
                 None => print!("{text}"),
             }
-            Ok(())
+            Ok(Outcome::Complete)
         }
     }
 }
