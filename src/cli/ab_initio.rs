@@ -8,11 +8,10 @@
 use super::args::ThreadsArg;
 use super::outcome::Outcome;
 use super::output::{check_output_folder, write_file};
-use super::start_check::{all_passed, print_missing, read_stored, verify_rpr, verify_rrr};
+use super::start_check::{all_passed, check_stored};
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use singdist::pipeline::ab_initio::{self, AbInitioOptions, embedded_start_solutions};
-use singdist::pipeline::rrr_ab_initio::embedded_rrr_start_solutions;
+use singdist::pipeline::ab_initio::{self, AbInitioOptions};
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use singdist::problem::{LagrangeProblem, ProblemError, ProblemId};
 use std::path::{Path, PathBuf};
@@ -88,35 +87,18 @@ fn applicable(id: ProblemId) -> Result<Option<LagrangeProblem>> {
 /// `--verify`: re-checks the stored file of `problem`, or without one every stored
 /// file of the 3-RPR problems and the 3-RRR sub-problems; returns how many failed.
 fn verify_stored(problem: Option<ProblemId>, dir: &Path) -> Result<usize> {
-    let mut failures = 0;
     let ids = problem.map_or_else(ProblemId::all, |id| vec![id]);
+    let mut problems = Vec::new();
     for id in ids {
-        let Some(problem) = applicable(id)? else {
-            continue;
-        };
-        let path = dir.join(format!("{}.json", id.file_stem()));
-        let passed = match read_stored(&path, || embedded_start_solutions(id))? {
-            Some(file) => verify_rpr(&problem, &file)?,
-            None => {
-                print_missing(&id.name(), &path);
-                false
-            }
-        };
-        failures += usize::from(!passed);
+        problems.extend(applicable(id)?);
     }
+    let mut failures = check_stored(dir, &problems)?;
     if problem.is_none() {
-        for kind in RrrSubProblem::ALL {
-            let problem = RrrProblem::new(kind)?;
-            let path = dir.join(format!("{}.json", kind.file_stem()));
-            let passed = match read_stored(&path, || embedded_rrr_start_solutions(kind))? {
-                Some(file) => verify_rrr(&problem, &file)?,
-                None => {
-                    print_missing(&kind.name(), &path);
-                    false
-                }
-            };
-            failures += usize::from(!passed);
-        }
+        let rrr: Vec<RrrProblem> = RrrSubProblem::ALL
+            .into_iter()
+            .map(RrrProblem::new)
+            .collect::<Result<_, _>>()?;
+        failures += check_stored(dir, &rrr)?;
     }
     Ok(failures)
 }

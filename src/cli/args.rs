@@ -1,10 +1,10 @@
 //! The option groups several commands share, each a `#[command(flatten)]` struct, so
 //! every shared option is declared once with one help text: the design and its motion,
 //! one pose, the metrics, the output table and its plot, the HTML report, the worker
-//! threads and seed, `--quiet`, and the 3-RRR working modes. What a command does with
+//! threads and seed, and the 3-RRR working modes. What a command does with
 //! an option beyond this help is in the command's own `--help` text.
 
-use super::resources::{thread_count, with_threads};
+use super::resources::thread_count;
 use super::values::{parse_metrics, parse_pose};
 use anyhow::Result;
 use clap::Args;
@@ -30,9 +30,11 @@ impl DesignArg {
     }
 }
 
-/// `--design`, `--motion`, `--poses`: the manipulator and the poses of its motion.
+/// The options of a command along a motion (`curve`, `indices`, `compare`, `rrr
+/// curve`): `--design`, `--motion` and `--poses`, the output table and plot, threads
+/// and seed, `--quiet`.
 #[derive(Args, Debug)]
-pub struct MotionArgs {
+pub struct MotionRunArgs {
     #[command(flatten)]
     pub design: DesignArg,
     /// Motion file (analytic motion or explicit pose list); default: the built-in
@@ -47,9 +49,16 @@ pub struct MotionArgs {
     /// 3-RRR).
     #[arg(long, value_name = "N", default_value_t = 90)]
     pub poses: usize,
+    #[command(flatten)]
+    pub output: TableOutputArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// No progress bar and no timing line on stderr.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
-impl MotionArgs {
+impl MotionRunArgs {
     /// The design file, `None` for the built-in example.
     pub fn design(&self) -> Option<&Path> {
         self.design.path()
@@ -130,11 +139,6 @@ impl ThreadsArg {
     pub fn checked(self) -> Result<Option<usize>> {
         thread_count(self.threads)
     }
-
-    /// Runs `f` on a pool of the requested workers ([`with_threads`]).
-    pub fn install<T: Send>(self, f: impl FnOnce() -> T + Send) -> Result<T> {
-        with_threads(self.threads, f)
-    }
 }
 
 /// `--threads`, `--seed`: how the homotopy commands run.
@@ -145,14 +149,6 @@ pub struct RunArgs {
     /// Seed of every random choice (results are identical for any thread count).
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
-}
-
-/// `--quiet`: less on stderr.
-#[derive(Args, Debug, Clone, Copy)]
-pub struct QuietArg {
-    /// No progress bar and no timing line on stderr.
-    #[arg(long)]
-    pub quiet: bool,
 }
 
 /// `--modes`: the 3-RRR working modes.

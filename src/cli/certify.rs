@@ -18,6 +18,7 @@
 use super::args::ThreadsArg;
 use super::curve::load_inputs;
 use super::outcome::Outcome;
+use super::resources::with_threads;
 use super::values::parse_metrics;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
@@ -319,7 +320,7 @@ pub fn run(args: CertifyArgs) -> Result<Outcome> {
         self_check: false,
         ..CurveOptions::default()
     };
-    let result = args.threads.install(|| {
+    let result = with_threads(args.threads, || {
         compute_curve(
             &design,
             &motion,

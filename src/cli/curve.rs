@@ -2,12 +2,12 @@
 //! nine extrinsic metrics (SPEC A.9): JSON / CSV table, SVG plot, compact table on
 //! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
-use super::args::{HtmlReportArg, MetricsArg, MotionArgs, QuietArg, RunArgs, TableOutputArgs};
+use super::args::{HtmlReportArg, MetricsArg, MotionRunArgs};
 use super::curve_log::{PoseLines, RunLog};
 use super::failures::warn_failures;
 use super::outcome::Outcome;
 use super::output::{PartialFile, check_output_file, extension, write_file};
-use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count};
+use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -27,15 +27,11 @@ use std::path::Path;
 #[derive(Args, Debug)]
 pub struct CurveArgs {
     #[command(flatten)]
-    input: MotionArgs,
+    motion_run: MotionRunArgs,
     #[command(flatten)]
     metrics: MetricsArg,
     #[command(flatten)]
-    output: TableOutputArgs,
-    #[command(flatten)]
     report: HtmlReportArg,
-    #[command(flatten)]
-    run: RunArgs,
     /// Poses per chain: one pose of every block of N is solved from the seed (the
     /// one nearest Re τ*; the first for pose lists), the others forwards and
     /// backwards from it, each from its predecessors (Newton's method from extrapolated critical
@@ -68,8 +64,6 @@ pub struct CurveArgs {
     /// the thread count.
     #[arg(long, value_name = "N", default_value_t = CurveOptions::default().window_poses)]
     window: usize,
-    #[command(flatten)]
-    quiet: QuietArg,
 }
 
 /// Loads the design and motion (built-in example by default).
@@ -153,13 +147,14 @@ fn run_arguments(
 
 /// Runs `singdist curve`.
 pub fn run(args: CurveArgs) -> Result<Outcome> {
-    let (design, motion) = load_inputs(args.input.design(), args.input.motion())?;
+    let (design, motion) = load_inputs(args.motion_run.design(), args.motion_run.motion())?;
     let metrics = args.metrics.parse()?;
-    let kind = OutputKind::of(args.output.out.as_deref());
-    let count = pose_count(&motion, args.input.poses);
+    let kind = OutputKind::of(args.motion_run.output.out.as_deref());
+    let count = pose_count(&motion, args.motion_run.poses);
     // Only a `.json` document, a plot or a report holds every pose until the end.
-    let in_memory =
-        kind == OutputKind::Json || args.output.plot.is_some() || args.report.html.is_some();
+    let in_memory = kind == OutputKind::Json
+        || args.motion_run.output.plot.is_some()
+        || args.report.html.is_some();
     if in_memory {
         check_metric_pose_count(count, metrics.len()).map_err(|e| {
             anyhow!(
@@ -169,15 +164,15 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = sample_motion(&motion, args.input.poses).context("--poses")?;
-    check_samples(args.input.motion(), &samples)?;
+    let samples = sample_motion(&motion, args.motion_run.poses).context("--poses")?;
+    check_samples(args.motion_run.motion(), &samples)?;
     if args.chain == 0 {
         bail!("--chain: must be at least 1");
     }
     if args.window == 0 {
         bail!("--window: must be at least 1");
     }
-    if let Some(out) = &args.output.out {
+    if let Some(out) = &args.motion_run.output.out {
         check_output_file("--out", out, &["json", "jsonl", "csv"])?;
     }
     if args.resume && !matches!(kind, OutputKind::Csv | OutputKind::JsonLines) {
@@ -185,10 +180,10 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
             "--resume: continues a streamed run: needs --out FILE.csv or FILE.jsonl (the run to continue is FILE.partial)"
         );
     }
-    if args.resume && (args.output.plot.is_some() || args.report.html.is_some()) {
+    if args.resume && (args.motion_run.output.plot.is_some() || args.report.html.is_some()) {
         bail!("--resume: --plot and --html need every pose in memory; resume without them");
     }
-    if let Some(plot) = &args.output.plot {
+    if let Some(plot) = &args.motion_run.output.plot {
         check_output_file("--plot", plot, &["svg"])?;
         if samples.len() < 2 {
             bail!("--plot: need at least 2 poses, got {}", samples.len());
@@ -198,7 +193,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         check_output_file("--html", html, &["html"])?;
     }
     let options = CurveOptions {
-        seed: args.run.seed,
+        seed: args.motion_run.run.seed,
         chain_length: args.chain,
         self_check: !args.no_self_check,
         window_poses: args.window,
@@ -206,7 +201,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         ..CurveOptions::default()
     };
     let arguments = run_arguments((&design, &motion, &metrics), samples.len(), &options)?;
-    let progress = if args.quiet.quiet {
+    let progress = if args.motion_run.quiet {
         ProgressBar::hidden()
     } else {
         let bar = ProgressBar::new(samples.len() as u64);
@@ -225,8 +220,8 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     };
     let started = std::time::Instant::now();
     let context = (&design, &motion, &metrics[..]);
-    let streamed = args.run.threads.install(|| -> Result<Streamed> {
-        let run = CurveRun::new(context, args.input.poses, &options, &default_start_solutions)?;
+    let streamed = with_threads(args.motion_run.run.threads, || -> Result<Streamed> {
+        let run = CurveRun::new(context, args.motion_run.poses, &options, &default_start_solutions)?;
         let header = run.header();
         let lines = match kind {
             OutputKind::Csv => PoseLines::Csv,
@@ -235,7 +230,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         let log_header = (arguments, header.clone());
         let samples = run.samples();
         let tau_of = |j: usize| samples.get(j).map(|s| s.tau);
-        let mut log = match &args.output.out {
+        let mut log = match &args.motion_run.output.out {
             None => None,
             Some(out) if args.resume && PartialFile::path_for(out).exists() => {
                 let log = RunLog::resume(out, log_header, (lines, &metrics[..]), &tau_of)?;
@@ -294,7 +289,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     let streamed = streamed?;
     let elapsed = started.elapsed().as_secs_f64();
     let singular = singular_parameters(&design, &motion, &samples);
-    if let (Some(path), Some(log)) = (&args.output.out, streamed.log) {
+    if let (Some(path), Some(log)) = (&args.motion_run.output.out, streamed.log) {
         match kind {
             OutputKind::JsonLines => log.finish_jsonl(path)?,
             OutputKind::Csv => log.finish_csv(path)?,
@@ -320,7 +315,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
             );
         }
     }
-    if let (Some(path), Some(result)) = (&args.output.plot, &streamed.curve) {
+    if let (Some(path), Some(result)) = (&args.motion_run.output.plot, &streamed.curve) {
         plot(path, result, &metrics, &singular)?;
     }
     if let (Some(path), Some(result)) = (&args.report.html, &streamed.curve) {
@@ -328,7 +323,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         let report = rpr_report(&design, result, &names, &singular);
         write_file("--html", path, report_html(&report))?;
     }
-    if !args.quiet.quiet {
+    if !args.motion_run.quiet {
         eprintln!(
             "singdist: {} poses, {} metrics, {} paths in {:.3} s ({:.0} paths/s)",
             samples.len(),

@@ -7,6 +7,7 @@ use super::args::{DesignArg, MetricsArg, PoseArg, RunArgs};
 use super::curve::load_inputs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
+use super::resources::with_threads;
 use anyhow::{Context, Result};
 use clap::Args;
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList};
@@ -84,19 +85,18 @@ pub fn solve_pose(
         seed: run.seed,
         ..CurveOptions::default()
     };
-    run.threads
-        .install(|| {
-            compute_curve(
-                design,
-                &motion,
-                1,
-                metrics,
-                &options,
-                &default_start_solutions,
-                &|_| {},
-            )
-        })?
-        .map_err(Into::into)
+    with_threads(run.threads, || {
+        compute_curve(
+            design,
+            &motion,
+            1,
+            metrics,
+            &options,
+            &default_start_solutions,
+            &|_| {},
+        )
+    })?
+    .map_err(Into::into)
 }
 
 /// The twelve coordinates of a configuration as `a1 (x, y)  a2 (x, y) … b3 (x, y)`.

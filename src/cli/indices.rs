@@ -10,14 +10,14 @@
 //! paths of the metric computation are reported on stderr, in the output, and by exit
 //! code 3 (as `curve`).
 
-use super::args::{MotionArgs, QuietArg, RunArgs, TableOutputArgs};
+use super::args::MotionRunArgs;
 use super::curve::{check_samples, pose_count};
 use super::failures::warn_failures;
 use super::indices_plot::{plot, scaled_curves, write_plot_data};
 use super::indices_stream::{RowSink, TableFormat};
 use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
-use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count};
+use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
 use super::values::{parse_metrics, parse_pose};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
@@ -44,9 +44,7 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug)]
 pub struct IndicesArgs {
     #[command(flatten)]
-    input: MotionArgs,
-    #[command(flatten)]
-    output: TableOutputArgs,
+    motion_run: MotionRunArgs,
     /// One pose `x,y,phi` instead of a motion.
     #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
     pose: Option<String>,
@@ -71,14 +69,10 @@ pub struct IndicesArgs {
     /// object per pose; the plot shows them next to the indices.
     #[arg(long, value_name = "NAME", num_args = 0.., default_missing_value = "all")]
     with_metrics: Option<Vec<String>>,
-    #[command(flatten)]
-    run: RunArgs,
     /// CSV of the plotted data: τ and every curve divided by its maximum along the
     /// motion (the divisor is in the column header).
     #[arg(long, value_name = "FILE.csv")]
     plot_data: Option<PathBuf>,
-    #[command(flatten)]
-    quiet: QuietArg,
 }
 
 /// Runs `singdist compare`: `indices` with the metric distances (all nine unless
@@ -109,12 +103,15 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
         Some(values) => parse_metrics(values).context("--with-metrics")?,
         None => Vec::new(),
     };
-    let design = match args.input.design() {
+    let design = match args.motion_run.design() {
         Some(path) => load_design(path)?,
         None => example_design(),
     };
     if let Some(text) = &args.pose {
-        if args.output.plot.is_some() || args.plot_data.is_some() || args.output.out.is_some() {
+        if args.motion_run.output.plot.is_some()
+            || args.plot_data.is_some()
+            || args.motion_run.output.out.is_some()
+        {
             bail!("--pose: --out, --plot and --plot-data apply to a motion, not to one pose");
         }
         let pose = parse_pose(text)?;
@@ -137,18 +134,19 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     if args.json {
         bail!("--json applies to a single pose (--pose x,y,phi); use --out FILE.json for a motion");
     }
-    let motion = match args.input.motion() {
+    let motion = match args.motion_run.motion() {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    if args.input.poses == 0 {
+    if args.motion_run.poses == 0 {
         bail!("--poses: expected at least 1");
     }
-    let count = pose_count(&motion, args.input.poses);
-    let format = TableFormat::of(args.output.out.as_deref());
+    let count = pose_count(&motion, args.motion_run.poses);
+    let format = TableFormat::of(args.motion_run.output.out.as_deref());
     // Only a `.json` document or a plot holds every row until the end.
-    let keep =
-        format == TableFormat::Json || args.output.plot.is_some() || args.plot_data.is_some();
+    let keep = format == TableFormat::Json
+        || args.motion_run.output.plot.is_some()
+        || args.plot_data.is_some();
     if keep {
         let why = "a .json document, --plot and --plot-data hold every row: stream long runs with --out FILE.csv or FILE.jsonl";
         check_pose_count(count, MAX_POSES, why)?;
@@ -156,12 +154,12 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = sample_motion(&motion, args.input.poses).context("--poses")?;
-    check_samples(args.input.motion(), &samples)?;
-    if let Some(path) = &args.output.out {
+    let samples = sample_motion(&motion, args.motion_run.poses).context("--poses")?;
+    check_samples(args.motion_run.motion(), &samples)?;
+    if let Some(path) = &args.motion_run.output.out {
         check_output_file("--out", path, &["csv", "jsonl", "json"])?;
     }
-    if let Some(path) = &args.output.plot {
+    if let Some(path) = &args.motion_run.output.plot {
         check_output_file("--plot", path, &["svg"])?;
         if samples.len() < 2 {
             bail!("--plot: need at least 2 poses, got {}", samples.len());
@@ -172,7 +170,7 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     }
     let metric_names: Vec<String> = metrics.iter().map(Metric::name).collect();
     let sink = RowSink::new(
-        (format, args.output.out.as_deref()),
+        (format, args.motion_run.output.out.as_deref()),
         (&options, &metric_names),
         keep,
     );
@@ -193,12 +191,12 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
                 failures: s.failures.clone(),
             }),
         };
-        if let (Some(path), TableFormat::Json) = (&args.output.out, format) {
+        if let (Some(path), TableFormat::Json) = (&args.motion_run.output.out, format) {
             write_json_document(path, &table, &options)?;
         }
-        if args.output.plot.is_some() || args.plot_data.is_some() {
+        if args.motion_run.output.plot.is_some() || args.plot_data.is_some() {
             let curves = scaled_curves(&table);
-            if let Some(path) = &args.output.plot {
+            if let Some(path) = &args.motion_run.output.plot {
                 let singular = singular_parameters(&design, &motion, &samples);
                 plot(path, &table, &curves, &singular)?;
             }
@@ -225,24 +223,21 @@ fn metric_curve(
         return Ok(None);
     }
     let options = CurveOptions {
-        seed: args.run.seed,
+        seed: args.motion_run.run.seed,
         ..CurveOptions::default()
     };
-    let result = args
-        .run
-        .threads
-        .install(|| {
-            compute_curve(
-                design,
-                motion,
-                poses,
-                metrics,
-                &options,
-                &default_start_solutions,
-                &|_: &PoseResult| {},
-            )
-        })?
-        .context("--with-metrics")?;
+    let result = with_threads(args.motion_run.run.threads, || {
+        compute_curve(
+            design,
+            motion,
+            poses,
+            metrics,
+            &options,
+            &default_start_solutions,
+            &|_: &PoseResult| {},
+        )
+    })?
+    .context("--with-metrics")?;
     Ok(Some(result))
 }
 
@@ -285,36 +280,33 @@ fn stream_table(
             .collect()
     };
     let curve_options = CurveOptions {
-        seed: args.run.seed,
+        seed: args.motion_run.run.seed,
         ..CurveOptions::default()
     };
     if metrics.is_empty() {
-        let result = args
-            .run
-            .threads
-            .install(|| -> Result<()> {
-                sink.start(None)?;
-                for range in window_ranges(samples.len(), curve_options.window_poses) {
-                    sink.write(index_rows(range))?;
-                }
-                Ok(())
-            })
-            .and_then(|r| r);
+        let result = with_threads(args.motion_run.run.threads, || -> Result<()> {
+            sink.start(None)?;
+            for range in window_ranges(samples.len(), curve_options.window_poses) {
+                sink.write(index_rows(range))?;
+            }
+            Ok(())
+        })
+        .and_then(|r| r);
         return match result {
             Ok(()) => Ok((None, sink.finish(None)?)),
             Err(error) => Err(sink.fail(error)),
         };
     }
-    let progress = progress_bar(args.quiet.quiet, samples.len());
+    let progress = progress_bar(args.motion_run.quiet, samples.len());
     let on_pose = |_: &PoseResult| {
         progress.set_message("metric distances");
         progress.inc(1);
     };
     let mut summary: Option<CurveSummary> = None;
-    let result = args.run.threads.install(|| -> Result<()> {
+    let result = with_threads(args.motion_run.run.threads, || -> Result<()> {
         let run = CurveRun::new(
             (design, motion, metrics),
-            args.input.poses,
+            args.motion_run.poses,
             &curve_options,
             &default_start_solutions,
         )

@@ -1,6 +1,7 @@
 //! Resource bounds checked before any work: the worker-thread count and the number of
 //! poses a command may hold in memory.
 
+use super::args::ThreadsArg;
 use anyhow::{Context, Result, bail};
 
 /// Most poses of one motion: streamed runs (`curve`, `indices`, `compare`, `rrr
@@ -48,10 +49,10 @@ pub fn thread_count(requested: Option<usize>) -> Result<Option<usize>> {
     }
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (checked by [`thread_count`]) or on
-/// the global pool.
-pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T> {
-    match thread_count(threads)? {
+/// Runs `f` on a rayon pool of the `--threads` workers (checked by [`thread_count`])
+/// or on the global pool.
+pub fn with_threads<T: Send>(threads: ThreadsArg, f: impl FnOnce() -> T + Send) -> Result<T> {
+    match threads.checked()? {
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

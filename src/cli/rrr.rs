@@ -7,12 +7,12 @@
 //! - `rrr ab-initio`: computes, certifies and writes the start-solution files
 //!   `rrr-parallel.json`, `rrr-leg1.json` … (or verifies the embedded ones).
 
-use super::args::{HtmlReportArg, ModesArg, MotionArgs, QuietArg, RunArgs, TableOutputArgs};
+use super::args::{HtmlReportArg, ModesArg, MotionRunArgs};
 use super::curve::{check_samples, pose_count};
 use super::failures::{lost_paths, warn_failures};
 use super::outcome::Outcome;
 use super::output::{PartialFile, check_output_file, check_output_folder, is_csv, write_file};
-use super::resources::{MAX_POSES, MAX_RRR_POSES, check_pose_count};
+use super::resources::{MAX_POSES, MAX_RRR_POSES, check_pose_count, with_threads};
 use super::start_check::{all_passed, verify_rrr};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Subcommand};
@@ -59,15 +59,9 @@ pub enum RrrCommand {
 #[derive(Args, Debug)]
 pub struct RrrCurveArgs {
     #[command(flatten)]
-    input: MotionArgs,
-    #[command(flatten)]
-    output: TableOutputArgs,
+    motion_run: MotionRunArgs,
     #[command(flatten)]
     report: HtmlReportArg,
-    #[command(flatten)]
-    run: RunArgs,
-    #[command(flatten)]
-    quiet: QuietArg,
     #[command(flatten)]
     modes: ModesArg,
     /// Hold the working modes along the whole motion instead of continuing the
@@ -114,11 +108,16 @@ pub fn run(command: RrrCommand) -> Result<Outcome> {
 }
 
 fn load_trajectory(args: &RrrCurveArgs) -> Result<RrrTrajectory> {
-    let motion = match args.input.motion() {
+    let motion = match args.motion_run.motion() {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    let trajectory = trajectory_of(args.input.design(), args.modes.text(), motion, "--motion")?;
+    let trajectory = trajectory_of(
+        args.motion_run.design(),
+        args.modes.text(),
+        motion,
+        "--motion",
+    )?;
     Ok(if args.hold_modes {
         trajectory.holding_modes()
     } else {
@@ -167,11 +166,16 @@ pub(super) fn trajectory_of(
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let trajectory = load_trajectory(&args)?;
-    let count = pose_count(trajectory.motion(), args.input.poses);
+    let count = pose_count(trajectory.motion(), args.motion_run.poses);
     // Only a `.json` document, a plot or a report holds every pose until the end.
-    let in_memory = args.output.plot.is_some()
+    let in_memory = args.motion_run.output.plot.is_some()
         || args.report.html.is_some()
-        || args.output.out.as_deref().is_some_and(|p| !is_csv(p));
+        || args
+            .motion_run
+            .output
+            .out
+            .as_deref()
+            .is_some_and(|p| !is_csv(p));
     if in_memory {
         check_pose_count(
             count,
@@ -181,12 +185,12 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = trajectory.motion().sample(args.input.poses);
-    check_samples(args.input.motion(), &samples)?;
-    if let Some(out) = &args.output.out {
+    let samples = trajectory.motion().sample(args.motion_run.poses);
+    check_samples(args.motion_run.motion(), &samples)?;
+    if let Some(out) = &args.motion_run.output.out {
         check_output_file("--out", out, &["json", "csv"])?;
     }
-    if let Some(plot) = &args.output.plot {
+    if let Some(plot) = &args.motion_run.output.plot {
         check_output_file("--plot", plot, &["svg"])?;
         if count < 2 {
             bail!("--plot: need at least 2 poses, got {}", count);
@@ -196,7 +200,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
         check_output_file("--html", html, &["html"])?;
     }
     let options = RrrCurveOptions {
-        seed: args.run.seed,
+        seed: args.motion_run.run.seed,
         ..RrrCurveOptions::default()
     };
     let taus: Vec<f64> = samples.iter().map(|s| s.tau).collect();
@@ -204,22 +208,22 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let started = std::time::Instant::now();
     if !in_memory {
         let (poses, paths_tracked, failures) = stream_curve(&trajectory, &taus, &options, &args)?;
-        if args.output.out.is_none() {
+        if args.motion_run.output.out.is_none() {
             let parallel = parallel_singular_parameters(&trajectory, &taus);
             print_table_footer(&parallel, trajectory.leg_crossings());
         }
         report_speed(&args, poses, paths_tracked, started);
         return Ok(Outcome::paths_lost_if(warn_failures(&failures)));
     }
-    let result = args.run.threads.install(|| {
+    let result = with_threads(args.motion_run.run.threads, || {
         compute_rrr_curve(
             &trajectory,
-            args.input.poses,
+            args.motion_run.poses,
             &options,
             &default_rrr_start_solutions,
         )
     })??;
-    match &args.output.out {
+    match &args.motion_run.output.out {
         Some(path) => {
             let text = serde_json::to_string_pretty(&result).context("serialising the curve")?;
             write_file("--out", path, text)?;
@@ -234,7 +238,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
         }
     }
     report_speed(&args, result.poses.len(), result.paths_tracked, started);
-    if let Some(path) = &args.output.plot {
+    if let Some(path) = &args.motion_run.output.plot {
         plot(path, &result)?;
     }
     if let Some(path) = &args.report.html {
@@ -254,7 +258,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
 
 /// The closing line on stderr: poses, paths, time.
 fn report_speed(args: &RrrCurveArgs, poses: usize, paths: usize, started: std::time::Instant) {
-    if !args.quiet.quiet {
+    if !args.motion_run.quiet {
         let elapsed = started.elapsed().as_secs_f64();
         eprintln!(
             "singdist: {poses} poses, 4 sub-problems, {paths} paths in {elapsed:.3} s ({:.0} paths/s)",
@@ -274,10 +278,9 @@ fn stream_curve(
     args: &RrrCurveArgs,
 ) -> Result<(usize, usize, Vec<RrrPathFailure>)> {
     let mut partial: Option<PartialFile> = None;
-    let result = args
-        .run
-        .threads
-        .install(|| -> Result<(usize, usize, Vec<RrrPathFailure>)> {
+    let result = with_threads(
+        args.motion_run.run.threads,
+        || -> Result<(usize, usize, Vec<RrrPathFailure>)> {
             let run = RrrCurveRun::new(trajectory, taus, options, &default_rrr_start_solutions)?;
             let write = |partial: &Option<PartialFile>, text: &str| -> Result<()> {
                 match partial {
@@ -290,7 +293,7 @@ fn stream_curve(
                     }
                 }
             };
-            match &args.output.out {
+            match &args.motion_run.output.out {
                 Some(out) => {
                     let file = partial.insert(PartialFile::create("--out", out)?);
                     file.append(&csv_header()?)?;
@@ -301,7 +304,7 @@ fn stream_curve(
             let mut paths_tracked = run.seed_paths_tracked();
             for range in window_ranges(taus.len(), WINDOW_POSES) {
                 let poses = run.solve_poses(range)?;
-                let text = match &args.output.out {
+                let text = match &args.motion_run.output.out {
                     Some(_) => csv_rows(&poses, run.seed_failures())?,
                     None => table_rows(&poses),
                 };
@@ -310,9 +313,10 @@ fn stream_curve(
                 failures.extend(poses.iter().flat_map(|p| p.failures.iter().cloned()));
             }
             Ok((taus.len(), paths_tracked, failures))
-        })
-        .and_then(|r| r);
-    match (result, partial, &args.output.out) {
+        },
+    )
+    .and_then(|r| r);
+    match (result, partial, &args.motion_run.output.out) {
         (Ok(done), Some(file), Some(out)) => match std::fs::rename(file.path(), out) {
             Ok(()) => Ok(done),
             Err(e) => {

@@ -7,6 +7,7 @@ use super::draw::DrawingOutputArgs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
+use super::resources::with_threads;
 use super::rrr::trajectory_of;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -41,7 +42,7 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
         seed: output.run.seed,
         ..RrrCurveOptions::default()
     };
-    let result = output.run.threads.install(|| {
+    let result = with_threads(output.run.threads, || {
         compute_rrr_curve_at(&trajectory, &[0.0], &options, &default_rrr_start_solutions)
     })??;
     let Some(at) = result.poses.first() else {

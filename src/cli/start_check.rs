@@ -4,33 +4,83 @@
 
 use super::outcome::Outcome;
 use anyhow::{Context, Result, bail};
-use singdist::pipeline::ab_initio;
-use singdist::pipeline::rrr_ab_initio::verify_rrr_start_solutions;
+use singdist::pipeline::ab_initio::{self, embedded_start_solutions};
+use singdist::pipeline::rrr_ab_initio::{embedded_rrr_start_solutions, verify_rrr_start_solutions};
 use singdist::pipeline::start_file::StartSolutions;
 use singdist::problem::LagrangeProblem;
 use singdist::problem::rrr::RrrProblem;
 use std::path::Path;
 
-/// The start-solution file at `path` if it exists, otherwise the copy `embedded` in the
-/// binary; `None` when there is neither. Errors name the file.
-pub fn read_stored<E>(
-    path: &Path,
-    embedded: impl FnOnce() -> Option<Result<StartSolutions, E>>,
-) -> Result<Option<StartSolutions>>
-where
-    E: std::error::Error + Send + Sync + 'static,
-{
+/// A problem with a stored start file.
+pub trait StoredProblem {
+    /// Its name in the output (`bars/rigid:collinear-platform`, `rrr:leg1`).
+    fn name(&self) -> String;
+    /// The file's name in the start folder without `.json`.
+    fn file_stem(&self) -> String;
+    /// The copy embedded in the binary, if the build had one.
+    fn embedded(&self) -> Option<Result<StartSolutions>>;
+    /// Re-checks `file` and prints its line; `true` if it passes.
+    fn verify(&self, file: &StartSolutions) -> Result<bool>;
+}
+
+impl StoredProblem for LagrangeProblem {
+    fn name(&self) -> String {
+        self.id().name()
+    }
+    fn file_stem(&self) -> String {
+        self.id().file_stem()
+    }
+    fn embedded(&self) -> Option<Result<StartSolutions>> {
+        embedded_start_solutions(self.id()).map(|file| file.map_err(Into::into))
+    }
+    fn verify(&self, file: &StartSolutions) -> Result<bool> {
+        verify_rpr(self, file)
+    }
+}
+
+impl StoredProblem for RrrProblem {
+    fn name(&self) -> String {
+        self.kind().name()
+    }
+    fn file_stem(&self) -> String {
+        self.kind().file_stem()
+    }
+    fn embedded(&self) -> Option<Result<StartSolutions>> {
+        embedded_rrr_start_solutions(self.kind()).map(|file| file.map_err(Into::into))
+    }
+    fn verify(&self, file: &StartSolutions) -> Result<bool> {
+        verify_rrr(self, file)
+    }
+}
+
+/// Re-checks the stored start file of every problem: `dir/STEM.json` where it exists,
+/// otherwise the copy embedded in the binary; a problem with neither gets a `MISSING`
+/// line. Returns how many are missing or fail.
+pub fn check_stored<P: StoredProblem>(dir: &Path, problems: &[P]) -> Result<usize> {
+    let mut failures = 0;
+    for problem in problems {
+        let path = dir.join(format!("{}.json", problem.file_stem()));
+        let passed = match read_stored(&path, problem)? {
+            Some(file) => problem.verify(&file)?,
+            None => {
+                println!("{:<40} MISSING ({})", problem.name(), path.display());
+                false
+            }
+        };
+        failures += usize::from(!passed);
+    }
+    Ok(failures)
+}
+
+/// The start-solution file at `path` if it exists, otherwise `problem`'s embedded
+/// copy; `None` when there is neither. Errors name the file.
+fn read_stored(path: &Path, problem: &impl StoredProblem) -> Result<Option<StartSolutions>> {
     if path.exists() {
         let text = std::fs::read_to_string(path).with_context(|| path.display().to_string())?;
         let file = serde_json::from_str(&text).with_context(|| path.display().to_string())?;
         return Ok(Some(file));
     }
-    Ok(embedded().transpose()?)
-}
-
-/// Prints the line of a problem whose file is neither at `path` nor embedded.
-pub fn print_missing(problem: &str, path: &Path) {
-    println!("{problem:<40} MISSING ({})", path.display());
+    problem.embedded().transpose()
 }
 
 /// Re-checks a 3-RPR start file ([`ab_initio::verify`]: residuals, count, distinctness,
