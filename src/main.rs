@@ -78,8 +78,8 @@ enum Command {
     /// Outputs: `--out` the table of every index along the motion, `.csv`, `.jsonl`
     /// (JSON Lines: a header record, one object per pose, a closing summary with every
     /// lost path) or `.json` (one document); default: CSV on stdout. `--plot`: the
-    /// indices along the motion, each scaled to [0, 1] by its maximum. `--threads` and
-    /// `--seed` are those of the metric computation (`--with-metrics`, as `curve`'s).
+    /// indices along the motion, each scaled to [0, 1] by its maximum. `--seed` seeds
+    /// the metric computation (`--with-metrics`, as `curve --seed`).
     Indices(cli::indices::IndicesArgs),
     /// Indices and metric distances side by side (`indices --with-metrics all`).
     ///
