@@ -5,10 +5,10 @@
 
 use super::args::ThreadsArg;
 use super::outcome::Outcome;
+use super::values::parse_assignment;
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
-use singdist::C64;
 use singdist::homotopy::{
     FailureReason, MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary,
     solve_by_monodromy, solve_total_degree,
@@ -125,15 +125,6 @@ fn warn_failed_paths(result: &SolveResult) -> bool {
         paths.join(", ")
     );
     true
-}
-
-fn parse_assignment(text: &str) -> anyhow::Result<(String, C64)> {
-    let (name, value) = text
-        .split_once('=')
-        .with_context(|| format!("--set `{text}`: expected NAME=VALUE"))?;
-    let value = bertini::read_constant(value.trim())
-        .with_context(|| format!("--set `{text}`: cannot read the value"))?;
-    Ok((name.trim().to_string(), value))
 }
 
 /// Runs `singdist solve`.

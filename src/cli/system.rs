@@ -2,6 +2,7 @@
 
 use super::outcome::Outcome;
 use super::output::{check_writable, write_file};
+use super::values::parse_assignment;
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
 use singdist::system::{System, bertini, phc};
@@ -99,15 +100,10 @@ pub fn run(command: SystemCommand) -> anyhow::Result<Outcome> {
                 check_writable("--out", path)?;
             }
             let system = read_system(&file, from)?;
-            let mut values = Vec::new();
-            for assignment in &set {
-                let (name, value) = assignment
-                    .split_once('=')
-                    .with_context(|| format!("--set `{assignment}`: expected NAME=VALUE"))?;
-                let value = bertini::read_constant(value)
-                    .with_context(|| format!("--set `{assignment}`: invalid value"))?;
-                values.push((name.trim().to_string(), value));
-            }
+            let values = set
+                .iter()
+                .map(|assignment| parse_assignment(assignment))
+                .collect::<anyhow::Result<Vec<_>>>()?;
             let text = match to {
                 Format::Bertini => {
                     let system = if values.is_empty() {

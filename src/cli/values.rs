@@ -1,10 +1,12 @@
 //! Option values given as lists on the command line: comma-separated numbers (a pose
-//! `x,y,phi`, prismatic inputs, a range `lo,hi`) and metric names. Errors name the
-//! option and the item at fault.
+//! `x,y,phi`, prismatic inputs, a range `lo,hi`), metric names, and parameter values
+//! `NAME=VALUE`. Errors name the option and the item at fault.
 
 use anyhow::{Context, Result, bail};
+use singdist::C64;
 use singdist::mechanism::rpr::{Pose, check_input_number};
 use singdist::metric::Metric;
+use singdist::system::bertini;
 
 /// Parses `N` comma-separated numbers called `names` (e.g. `x`, `y`, `phi`), the value
 /// of `option`; each must be finite and within ±1e12
@@ -56,6 +58,17 @@ pub fn parse_metrics(values: &[String]) -> Result<Vec<Metric>> {
         bail!("--metric: no metric given");
     }
     Ok(metrics)
+}
+
+/// Parses a `--set NAME=VALUE` parameter value (VALUE a Bertini constant like `1.5` or
+/// `0.5+2*I`).
+pub fn parse_assignment(text: &str) -> Result<(String, C64)> {
+    let (name, value) = text
+        .split_once('=')
+        .with_context(|| format!("--set `{text}`: expected NAME=VALUE"))?;
+    let value = bertini::read_constant(value.trim())
+        .with_context(|| format!("--set `{text}`: cannot read the value"))?;
+    Ok((name.trim().to_string(), value))
 }
 
 #[cfg(test)]
