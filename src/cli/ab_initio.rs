@@ -64,7 +64,9 @@ pub fn run(args: AbInitioArgs) -> Result<Outcome> {
         let ids = match (problem, args.all) {
             (Some(id), _) => vec![id],
             (None, true) => ProblemId::all(),
-            (None, false) => bail!("give --problem NAME or --all (or --verify alone)"),
+            (None, false) => bail!(
+                "give --problem NAME or --all to compute, or --verify to re-check the stored files"
+            ),
         };
         compute(&ids, &args)?
     };
