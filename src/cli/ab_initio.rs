@@ -8,6 +8,7 @@
 use super::args::ThreadsArg;
 use super::outcome::Outcome;
 use super::output::{check_output_folder, write_file};
+use super::resources::thread_count;
 use super::start_check::{all_passed, check_stored};
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -44,7 +45,7 @@ pub struct AbInitioArgs {
 
 /// Runs `singdist ab-initio`.
 pub fn run(args: AbInitioArgs) -> Result<Outcome> {
-    if let Some(threads) = args.threads.checked()? {
+    if let Some(threads) = thread_count(args.threads)? {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build_global()

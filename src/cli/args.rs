@@ -4,7 +4,6 @@
 //! threads and seed, and the 3-RRR working modes. What a command does with
 //! an option beyond this help is in the command's own `--help` text.
 
-use super::resources::thread_count;
 use super::values::{parse_metrics, parse_pose};
 use anyhow::Result;
 use clap::Args;
@@ -135,9 +134,10 @@ pub struct ThreadsArg {
 }
 
 impl ThreadsArg {
-    /// The checked thread count ([`thread_count`]): `None` for all cores.
-    pub fn checked(self) -> Result<Option<usize>> {
-        thread_count(self.threads)
+    /// The `--threads` value as given, `None` for all cores (checked by
+    /// [`thread_count`](super::resources::thread_count)).
+    pub fn requested(self) -> Option<usize> {
+        self.threads
     }
 }
 

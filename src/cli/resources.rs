@@ -31,8 +31,8 @@ pub fn available_cores() -> usize {
 /// than the machine's cores is clamped to the cores with a one-line warning (more
 /// workers than cores only add contention: `curve --threads 2000` took 265 s instead
 /// of 1.4 s).
-pub fn thread_count(requested: Option<usize>) -> Result<Option<usize>> {
-    match requested {
+pub fn thread_count(threads: ThreadsArg) -> Result<Option<usize>> {
+    match threads.requested() {
         None => Ok(None),
         Some(0) => bail!("--threads: must be at least 1"),
         Some(n) => {
@@ -52,7 +52,7 @@ pub fn thread_count(requested: Option<usize>) -> Result<Option<usize>> {
 /// Runs `f` on a rayon pool of the `--threads` workers (checked by [`thread_count`])
 /// or on the global pool.
 pub fn with_threads<T: Send>(threads: ThreadsArg, f: impl FnOnce() -> T + Send) -> Result<T> {
-    match threads.checked()? {
+    match thread_count(threads)? {
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

@@ -5,6 +5,7 @@
 
 use super::args::ThreadsArg;
 use super::outcome::Outcome;
+use super::resources::thread_count;
 use super::values::parse_assignment;
 use anyhow::Context;
 use clap::Args;
@@ -162,7 +163,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         ..SolveOptions::default()
     };
     let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = args.threads.checked()? {
+    if let Some(threads) = thread_count(args.threads)? {
         builder = builder.num_threads(threads);
     }
     let pool = builder.build().context("cannot start the thread pool")?;
