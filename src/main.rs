@@ -4,6 +4,8 @@
 mod cli;
 
 use clap::{Parser, Subcommand};
+use std::io::Write;
+use std::process::ExitCode;
 
 /// Distance to the nearest singularity of planar parallel manipulators
 /// (3-RPR with nine extrinsic metrics, 3-RRR, 3-PRRR indices), by homotopy continuation.
@@ -26,6 +28,15 @@ enum Command {
     /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
     /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
     /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
+    ///
+    /// Outputs: `--out FILE.csv` (signed distance per metric, and `lost_paths` per pose:
+    /// paths lost there plus those lost at the seed, which affect every pose),
+    /// `FILE.jsonl` (JSON Lines, full detail: a header record, one object per pose, a
+    /// record per window, a closing summary with every failure) or `FILE.json` (one
+    /// document, full detail); without `--out` a compact table on stdout. While running,
+    /// every window of poses is appended to `FILE.partial` (JSON Lines) as soon as it is
+    /// final; `--resume` continues from it. `--plot`: the signed distance curves against
+    /// τ, singular poses marked.
     Curve(cli::curve::CurveArgs),
     /// Singularity distances of a 3-RPR at one pose, in full detail.
     ///
@@ -63,6 +74,12 @@ enum Command {
     /// orientation_distance (rad) and position_distance (length) to the nearest singular
     /// orientation / position; cylinder_radius the singularity-free cylinder radius.
     /// τ: the motion parameter; lengths in the design's unit.
+    ///
+    /// Outputs: `--out` the table of every index along the motion, `.csv`, `.jsonl`
+    /// (JSON Lines: a header record, one object per pose, a closing summary with every
+    /// lost path) or `.json` (one document); default: CSV on stdout. `--plot`: the
+    /// indices along the motion, each scaled to [0, 1] by its maximum. `--seed` seeds
+    /// the metric computation (`--with-metrics`, as `curve --seed`).
     Indices(cli::indices::IndicesArgs),
     /// Indices and metric distances side by side (`indices --with-metrics all`).
     ///
@@ -76,6 +93,9 @@ enum Command {
     /// orientation / position; cylinder_radius the singularity-free cylinder radius.
     /// τ: the motion parameter; lengths in the design's unit.
     /// D: the metric distances to the closest singular configuration (see `curve --help`).
+    ///
+    /// Outputs as `indices --help` describes; the plot shows the metric distances next
+    /// to the indices.
     Compare(cli::indices::IndicesArgs),
     /// Inspect and export polynomial systems (Bertini input format).
     #[command(subcommand)]
@@ -90,6 +110,9 @@ enum Command {
     /// Conditioning maps of 3RRR and 3PRRR over the workspace.
     Map(cli::map::MapArgs),
     /// 3RRR actuation schemes, singularity loci and GCI.
+    ///
+    /// Outputs: `--out` the GCI table (`.csv` or `.json`); `--plot` the singularity loci
+    /// (rows = orientations, columns = schemes).
     Schemes(cli::schemes::SchemesArgs),
     /// 3-RRR distances to parallel and leg singularities along a motion.
     #[command(subcommand)]
@@ -114,12 +137,10 @@ fn restore_default_sigpipe() {
     }
 }
 
-fn main() {
-    use cli::outcome::{EXIT_ERROR, Outcome, one_line_message};
+fn main() -> ExitCode {
     #[cfg(unix)]
     restore_default_sigpipe();
     let cli = Cli::parse();
-    let complete = |result: anyhow::Result<()>| result.map(|()| Outcome::Complete);
     let result = match cli.command {
         Command::Curve(args) => cli::curve::run(args),
         Command::Distance(args) => cli::distance::run(args),
@@ -127,23 +148,29 @@ fn main() {
         Command::Draw(args) => cli::draw::run(args),
         Command::Indices(args) => cli::indices::run(args),
         Command::Compare(args) => cli::indices::run_compare(args),
-        Command::System(cmd) => complete(cli::system::run(cmd)),
+        Command::System(cmd) => cli::system::run(cmd),
         Command::Solve(args) => cli::solve::run(args),
-        Command::AbInitio(args) => complete(cli::ab_initio::run(args)),
-        Command::Prrr(cmd) => complete(cli::prrr::run(cmd)),
-        Command::Map(args) => complete(cli::map::run(args)),
-        Command::Schemes(args) => complete(cli::schemes::run(args)),
+        Command::AbInitio(args) => cli::ab_initio::run(args),
+        Command::Prrr(cmd) => cli::prrr::run(cmd),
+        Command::Map(args) => cli::map::run(args),
+        Command::Schemes(args) => cli::schemes::run(args),
         Command::Rrr(cmd) => cli::rrr::run(cmd),
     };
-    match result {
-        Ok(outcome) => {
-            use std::io::Write;
-            let _ = std::io::stdout().flush();
-            std::process::exit(outcome.exit_code());
-        }
-        Err(error) => {
-            eprintln!("singdist: error: {}", one_line_message(&error));
-            std::process::exit(EXIT_ERROR);
-        }
+    // What is still buffered goes out before the exit code is decided; a reader that
+    // has gone away is not an error of the run.
+    let _ = std::io::stdout().flush();
+    cli::outcome::exit_code_of(result)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// clap's own check of the definition: every flattened group's ids are unique,
+    /// every `conflicts_with`/`requires` names an argument, defaults parse.
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        Cli::command().debug_assert();
     }
 }

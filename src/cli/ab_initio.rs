@@ -1,13 +1,21 @@
 //! `singdist ab-initio`: compute, store and verify the generic start solutions.
+//!
+//! `--verify` without `--problem` re-checks every stored file: those of the 3-RPR
+//! problems and of the four 3-RRR sub-problems (`rrr ab-initio --verify` checks the
+//! latter alone), each read from `--dir` or, where the folder has none, from the copy
+//! embedded in the binary.
 
+use super::args::ThreadsArg;
+use super::outcome::Outcome;
 use super::output::{check_output_folder, write_file};
 use super::resources::thread_count;
-use anyhow::{Context, bail};
+use super::start_check::{all_passed, check_stored};
+use anyhow::{Context, Result, bail};
 use clap::Args;
-use singdist::pipeline::ab_initio::{self, AbInitioOptions, embedded_start_solutions};
-use singdist::pipeline::start_file::StartSolutions;
+use singdist::pipeline::ab_initio::{self, AbInitioOptions};
+use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use singdist::problem::{LagrangeProblem, ProblemError, ProblemId};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Arguments of `singdist ab-initio`.
@@ -22,81 +30,91 @@ pub struct AbInitioArgs {
     /// Seed of the start pair and the monodromy loops.
     #[arg(long, default_value_t = ab_initio::DEFAULT_SEED)]
     seed: u64,
-    /// Re-check the stored files (residuals, counts, distinctness, trace test) instead of computing.
+    /// Re-check the stored files (residuals, counts, distinctness, trace test) instead
+    /// of computing: the one of `--problem`, or else every stored file (the 3-RRR ones
+    /// too).
     #[arg(long)]
     verify: bool,
-    /// Directory of the start-solution files.
+    /// Directory of the start-solution files (where it has no file of a problem,
+    /// `--verify` checks the copy embedded in the binary).
     #[arg(long, default_value = "supplementary/start")]
     dir: PathBuf,
-    /// Number of threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long)]
-    threads: Option<usize>,
+    #[command(flatten)]
+    threads: ThreadsArg,
 }
 
 /// Runs `singdist ab-initio`.
-pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
+pub fn run(args: AbInitioArgs) -> Result<Outcome> {
     if let Some(threads) = thread_count(args.threads)? {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build_global()
             .context("--threads")?;
     }
-    let ids: Vec<ProblemId> = match (&args.problem, args.all) {
-        (Some(name), _) => vec![
-            name.parse()
+    let problem = match &args.problem {
+        Some(name) => Some(
+            name.parse::<ProblemId>()
                 .with_context(|| format!("--problem `{name}`"))?,
-        ],
-        (None, true) => ProblemId::all(),
-        (None, false) => bail!("give --problem NAME or --all"),
+        ),
+        None => None,
     };
-    if !args.verify {
-        check_output_folder("--dir", &args.dir, true)?;
-    }
-    let mut failures = 0;
     let started = Instant::now();
-    for id in ids {
-        let problem = match LagrangeProblem::new(id) {
-            Ok(problem) => problem,
-            Err(ProblemError::NotApplicable { reason, .. }) => {
-                println!("{:<40} not applicable: {reason}", id.name());
-                continue;
-            }
-            Err(error) => return Err(error.into()),
+    let failures = if args.verify {
+        verify_stored(problem, &args.dir)?
+    } else {
+        let ids = match (problem, args.all) {
+            (Some(id), _) => vec![id],
+            (None, true) => ProblemId::all(),
+            (None, false) => bail!(
+                "give --problem NAME or --all to compute, or --verify to re-check the stored files"
+            ),
         };
-        let path = args.dir.join(format!("{}.json", id.file_stem()));
-        if args.verify {
-            let file: StartSolutions = if path.exists() {
-                let text = std::fs::read_to_string(&path)
-                    .with_context(|| format!("{}", path.display()))?;
-                serde_json::from_str(&text).with_context(|| format!("{}", path.display()))?
-            } else {
-                match embedded_start_solutions(id) {
-                    Some(file) => file?,
-                    None => {
-                        println!("{:<40} MISSING ({})", id.name(), path.display());
-                        failures += 1;
-                        continue;
-                    }
-                }
-            };
-            let check = ab_initio::verify(&problem, &file)?;
-            println!(
-                "{:<40} {} solutions (expected {}), max residual {:.1e}, min separation {:.1e}, trace {}: {}",
-                check.problem,
-                check.count,
-                check
-                    .expected
-                    .map_or("unknown".to_string(), |e| e.to_string()),
-                check.max_residual,
-                check.min_separation,
-                check
-                    .trace_residual
-                    .map_or("not run".to_string(), |t| format!("{t:.1e}")),
-                if check.passed { "ok" } else { "FAILED" }
-            );
-            failures += usize::from(!check.passed);
-            continue;
+        compute(&ids, &args)?
+    };
+    eprintln!("total {:.2} s", started.elapsed().as_secs_f64());
+    all_passed(failures)
+}
+
+/// The problem of `id`, or `None` (with a line saying why) if no metric needs it.
+fn applicable(id: ProblemId) -> Result<Option<LagrangeProblem>> {
+    match LagrangeProblem::new(id) {
+        Ok(problem) => Ok(Some(problem)),
+        Err(ProblemError::NotApplicable { reason, .. }) => {
+            println!("{:<40} not applicable: {reason}", id.name());
+            Ok(None)
         }
+        Err(error) => Err(error.into()),
+    }
+}
+
+/// `--verify`: re-checks the stored file of `problem`, or without one every stored
+/// file of the 3-RPR problems and the 3-RRR sub-problems; returns how many failed.
+fn verify_stored(problem: Option<ProblemId>, dir: &Path) -> Result<usize> {
+    let ids = problem.map_or_else(ProblemId::all, |id| vec![id]);
+    let mut problems = Vec::new();
+    for id in ids {
+        problems.extend(applicable(id)?);
+    }
+    let mut failures = check_stored(dir, &problems)?;
+    if problem.is_none() {
+        let rrr: Vec<RrrProblem> = RrrSubProblem::ALL
+            .into_iter()
+            .map(RrrProblem::new)
+            .collect::<Result<_, _>>()?;
+        failures += check_stored(dir, &rrr)?;
+    }
+    Ok(failures)
+}
+
+/// Computes, prints and writes the start solutions of `ids` into `--dir`; returns how
+/// many failed their checks.
+fn compute(ids: &[ProblemId], args: &AbInitioArgs) -> Result<usize> {
+    check_output_folder("--dir", &args.dir, true)?;
+    let mut failures = 0;
+    for &id in ids {
+        let Some(problem) = applicable(id)? else {
+            continue;
+        };
         let clock = Instant::now();
         let options = AbInitioOptions {
             seed: args.seed,
@@ -122,11 +140,8 @@ pub fn run(args: AbInitioArgs) -> anyhow::Result<()> {
         );
         failures += usize::from(!ok);
         std::fs::create_dir_all(&args.dir).with_context(|| format!("{}", args.dir.display()))?;
+        let path = args.dir.join(format!("{}.json", id.file_stem()));
         write_file("--dir", &path, serde_json::to_string_pretty(&file)?)?;
     }
-    eprintln!("total {:.2} s", started.elapsed().as_secs_f64());
-    if failures > 0 {
-        bail!("{failures} problem(s) failed their checks");
-    }
-    Ok(())
+    Ok(failures)
 }

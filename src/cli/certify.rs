@@ -15,9 +15,11 @@
 //!   certified real critical value (a closer singular configuration exists), or below a
 //!   certified global minimum. Any contradiction gives exit code 3.
 
-use super::curve::{load_inputs, parse_metrics};
+use super::args::ThreadsArg;
+use super::curve::load_inputs;
 use super::outcome::Outcome;
 use super::resources::with_threads;
+use super::values::parse_metrics;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use serde_json::Value;
@@ -45,9 +47,8 @@ pub struct CertifyArgs {
     /// Seed of the re-solve (default: the file's seed + 7,919; must differ from it).
     #[arg(long, value_name = "S")]
     seed: Option<u64>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
+    #[command(flatten)]
+    threads: ThreadsArg,
     /// Print only the contradictions and the summary.
     #[arg(long)]
     quiet: bool,
@@ -75,7 +76,7 @@ fn field<'a>(value: &'a Value, name: &str, at: &str) -> Result<&'a Value> {
         .ok_or_else(|| anyhow!("{at}: missing field `{name}`"))
 }
 
-fn parse_pose(value: &Value, at: &str) -> Result<SavedPose> {
+fn saved_pose(value: &Value, at: &str) -> Result<SavedPose> {
     let index = field(value, "index", at)?
         .as_u64()
         .ok_or_else(|| anyhow!("{at}.index: not a non-negative integer"))? as usize;
@@ -129,7 +130,7 @@ fn read_document(text: &str) -> Result<SavedRun> {
         .ok_or_else(|| anyhow!("poses: not a list"))?
         .iter()
         .enumerate()
-        .map(|(i, p)| parse_pose(p, &format!("poses[{i}]")))
+        .map(|(i, p)| saved_pose(p, &format!("poses[{i}]")))
         .collect::<Result<_>>()?;
     Ok(SavedRun {
         design: None,
@@ -173,7 +174,7 @@ fn read_log(text: &str) -> Result<SavedRun> {
     for (number, line) in lines {
         let value = parse(number, line)?;
         if value.get("record").is_none() {
-            poses.push(parse_pose(&value, &format!("line {}", number + 1))?);
+            poses.push(saved_pose(&value, &format!("line {}", number + 1))?);
         }
     }
     Ok(SavedRun {

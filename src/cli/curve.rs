@@ -2,6 +2,7 @@
 //! nine extrinsic metrics (docs/theory.md §8): JSON / CSV table, SVG plot, compact table on
 //! stdout. Exit code 3 when paths were lost (listed in the output and on stderr).
 
+use super::args::{HtmlReportArg, MetricsArg, MotionRunArgs};
 use super::curve_log::{PoseLines, RunLog};
 use super::failures::warn_failures;
 use super::outcome::Outcome;
@@ -20,50 +21,17 @@ use singdist::pipeline::curve::{
     CurveOptions, CurveResult, CurveRun, PathFailure, PoseResult, collect_curve,
     default_start_solutions, sample_motion, singular_parameters,
 };
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Arguments of `singdist curve`.
 #[derive(Args, Debug)]
 pub struct CurveArgs {
-    /// Design file (JSON `{"base": [[x,y],…], "platform": [[x,y],…]}`); default: the
-    /// built-in example.
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// Motion file (analytic motion or explicit pose list); default: the built-in example.
-    #[arg(long, value_name = "FILE")]
-    motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given). Streamed
-    /// outputs (`.csv`, `.jsonl`, the table on stdout) hold one window of poses at a
-    /// time, up to 1,000,000 poses; a `.json` document, `--plot` and `--html` hold every
-    /// pose, poses × metrics at most 100,000.
-    #[arg(long, value_name = "N", default_value_t = 90)]
-    poses: usize,
-    /// Metrics: `all`, or names like `plate/plate bars/rigid` (or comma separated).
-    #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
-    metric: Vec<String>,
-    /// Output table: `.csv` (signed distance per metric, and `lost_paths` per pose:
-    /// paths lost there plus those lost at the seed, which affect every pose), `.jsonl`
-    /// (JSON Lines, full detail: a header record, one object per pose, a record per
-    /// window, a closing summary with every failure) or `.json` (one document, full
-    /// detail). Checked, like `--plot`, before the computation. While running, every
-    /// window of poses is appended to `FILE.partial` (JSON Lines) as soon as it is
-    /// final; `--resume` continues from it.
-    #[arg(long, value_name = "FILE")]
-    out: Option<PathBuf>,
-    /// SVG plot of the signed distance curves against τ, singular poses marked.
-    #[arg(long, value_name = "FILE.svg")]
-    plot: Option<PathBuf>,
-    /// Self-contained HTML report: the curves against τ with a slider on τ, and the
-    /// drawing of the manipulator K and each metric's closest singular configuration K′
-    /// at the chosen τ (no network access needed to view it).
-    #[arg(long, value_name = "FILE.html")]
-    html: Option<PathBuf>,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Seed of every random choice (results are identical for any thread count).
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    seed: u64,
+    #[command(flatten)]
+    motion_run: MotionRunArgs,
+    #[command(flatten)]
+    metrics: MetricsArg,
+    #[command(flatten)]
+    report: HtmlReportArg,
     /// Poses per chain: one pose of every block of N is solved from the seed (the
     /// one nearest Re τ*; the first for pose lists), the others forwards and
     /// backwards from it, each from its predecessors (Newton's method from extrapolated critical
@@ -96,9 +64,6 @@ pub struct CurveArgs {
     /// the thread count.
     #[arg(long, value_name = "N", default_value_t = CurveOptions::default().window_poses)]
     window: usize,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
 }
 
 /// Loads the design and motion (built-in example by default).
@@ -112,22 +77,6 @@ pub fn load_inputs(design: Option<&Path>, motion: Option<&Path>) -> Result<(Desi
         None => example_motion(),
     };
     Ok((design, motion))
-}
-
-/// Parses `--metric` values (each `all` or a comma-separated list).
-pub fn parse_metrics(values: &[String]) -> Result<Vec<Metric>> {
-    let mut metrics: Vec<Metric> = Vec::new();
-    for value in values {
-        for metric in Metric::parse_list(value).context("--metric")? {
-            if !metrics.contains(&metric) {
-                metrics.push(metric);
-            }
-        }
-    }
-    if metrics.is_empty() {
-        bail!("--metric: no metric given");
-    }
-    Ok(metrics)
 }
 
 /// Number of poses a run of `motion` with `--poses poses` has (pose lists: their length).
@@ -198,12 +147,14 @@ fn run_arguments(
 
 /// Runs `singdist curve`.
 pub fn run(args: CurveArgs) -> Result<Outcome> {
-    let (design, motion) = load_inputs(args.design.as_deref(), args.motion.as_deref())?;
-    let metrics = parse_metrics(&args.metric)?;
-    let kind = OutputKind::of(args.out.as_deref());
-    let count = pose_count(&motion, args.poses);
+    let (design, motion) = load_inputs(args.motion_run.design(), args.motion_run.motion())?;
+    let metrics = args.metrics.parse()?;
+    let kind = OutputKind::of(args.motion_run.output.out.as_deref());
+    let count = pose_count(&motion, args.motion_run.poses);
     // Only a `.json` document, a plot or a report holds every pose until the end.
-    let in_memory = kind == OutputKind::Json || args.plot.is_some() || args.html.is_some();
+    let in_memory = kind == OutputKind::Json
+        || args.motion_run.output.plot.is_some()
+        || args.report.html.is_some();
     if in_memory {
         check_metric_pose_count(count, metrics.len()).map_err(|e| {
             anyhow!(
@@ -213,15 +164,15 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = sample_motion(&motion, args.poses).context("--poses")?;
-    check_samples(args.motion.as_deref(), &samples)?;
+    let samples = sample_motion(&motion, args.motion_run.poses).context("--poses")?;
+    check_samples(args.motion_run.motion(), &samples)?;
     if args.chain == 0 {
         bail!("--chain: must be at least 1");
     }
     if args.window == 0 {
         bail!("--window: must be at least 1");
     }
-    if let Some(out) = &args.out {
+    if let Some(out) = &args.motion_run.output.out {
         check_output_file("--out", out, &["json", "jsonl", "csv"])?;
     }
     if args.resume && !matches!(kind, OutputKind::Csv | OutputKind::JsonLines) {
@@ -229,20 +180,20 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
             "--resume: continues a streamed run: needs --out FILE.csv or FILE.jsonl (the run to continue is FILE.partial)"
         );
     }
-    if args.resume && (args.plot.is_some() || args.html.is_some()) {
+    if args.resume && (args.motion_run.output.plot.is_some() || args.report.html.is_some()) {
         bail!("--resume: --plot and --html need every pose in memory; resume without them");
     }
-    if let Some(plot) = &args.plot {
+    if let Some(plot) = &args.motion_run.output.plot {
         check_output_file("--plot", plot, &["svg"])?;
         if samples.len() < 2 {
             bail!("--plot: need at least 2 poses, got {}", samples.len());
         }
     }
-    if let Some(html) = &args.html {
+    if let Some(html) = &args.report.html {
         check_output_file("--html", html, &["html"])?;
     }
     let options = CurveOptions {
-        seed: args.seed,
+        seed: args.motion_run.run.seed,
         chain_length: args.chain,
         self_check: !args.no_self_check,
         window_poses: args.window,
@@ -250,7 +201,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         ..CurveOptions::default()
     };
     let arguments = run_arguments((&design, &motion, &metrics), samples.len(), &options)?;
-    let progress = if args.quiet {
+    let progress = if args.motion_run.quiet {
         ProgressBar::hidden()
     } else {
         let bar = ProgressBar::new(samples.len() as u64);
@@ -269,8 +220,8 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     };
     let started = std::time::Instant::now();
     let context = (&design, &motion, &metrics[..]);
-    let streamed = with_threads(args.threads, || -> Result<Streamed> {
-        let run = CurveRun::new(context, args.poses, &options, &default_start_solutions)?;
+    let streamed = with_threads(args.motion_run.run.threads, || -> Result<Streamed> {
+        let run = CurveRun::new(context, args.motion_run.poses, &options, &default_start_solutions)?;
         let header = run.header();
         let lines = match kind {
             OutputKind::Csv => PoseLines::Csv,
@@ -279,7 +230,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         let log_header = (arguments, header.clone());
         let samples = run.samples();
         let tau_of = |j: usize| samples.get(j).map(|s| s.tau);
-        let mut log = match &args.out {
+        let mut log = match &args.motion_run.output.out {
             None => None,
             Some(out) if args.resume && PartialFile::path_for(out).exists() => {
                 let log = RunLog::resume(out, log_header, (lines, &metrics[..]), &tau_of)?;
@@ -338,7 +289,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
     let streamed = streamed?;
     let elapsed = started.elapsed().as_secs_f64();
     let singular = singular_parameters(&design, &motion, &samples);
-    if let (Some(path), Some(log)) = (&args.out, streamed.log) {
+    if let (Some(path), Some(log)) = (&args.motion_run.output.out, streamed.log) {
         match kind {
             OutputKind::JsonLines => log.finish_jsonl(path)?,
             OutputKind::Csv => log.finish_csv(path)?,
@@ -364,15 +315,15 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
             );
         }
     }
-    if let (Some(path), Some(result)) = (&args.plot, &streamed.curve) {
+    if let (Some(path), Some(result)) = (&args.motion_run.output.plot, &streamed.curve) {
         plot(path, result, &metrics, &singular)?;
     }
-    if let (Some(path), Some(result)) = (&args.html, &streamed.curve) {
+    if let (Some(path), Some(result)) = (&args.report.html, &streamed.curve) {
         let names: Vec<String> = metrics.iter().map(Metric::name).collect();
         let report = rpr_report(&design, result, &names, &singular);
         write_file("--html", path, report_html(&report))?;
     }
-    if !args.quiet {
+    if !args.motion_run.quiet {
         eprintln!(
             "singdist: {} poses, {} metrics, {} paths in {:.3} s ({:.0} paths/s)",
             samples.len(),

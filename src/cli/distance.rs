@@ -3,44 +3,28 @@
 //! signed distance, attaining sub-problem, closest configuration K′, cut-locus flag and
 //! every sub-problem's own minimum.
 
-use super::curve::{load_inputs, parse_metrics};
+use super::args::{DesignArg, MetricsArg, PoseArg, RunArgs};
+use super::curve::load_inputs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
 use super::resources::with_threads;
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
-use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, check_input_number};
+use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList};
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
     CurveOptions, CurveResult, PoseResult, compute_curve, default_start_solutions,
 };
-use std::path::PathBuf;
 
 /// The pose problem `distance` solves and `draw` draws: design, pose and metrics.
 #[derive(Args, Debug)]
 pub struct PoseMetricArgs {
-    /// Design file; default: the built-in example. Lengths are in its unit.
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// The pose `x,y,phi`: platform position (design length unit) and orientation φ
-    /// (radians).
-    #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
-    pose: String,
-    /// Metrics: `all`, or names `PLATFORM/BASE` with each part `plate`, `bars` or
-    /// `rigid` (space or comma separated).
-    #[arg(long, value_name = "NAME", num_args = 1.., default_value = "all")]
-    metric: Vec<String>,
-}
-
-/// Worker threads and seed, the last options of the one-pose commands.
-#[derive(Args, Debug)]
-pub struct RunArgs {
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-    /// Seed of every random choice.
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    pub seed: u64,
+    #[command(flatten)]
+    design: DesignArg,
+    #[command(flatten)]
+    pose: PoseArg,
+    #[command(flatten)]
+    metrics: MetricsArg,
 }
 
 /// Arguments of `singdist distance`.
@@ -76,10 +60,10 @@ impl SolvedPose {
 impl PoseMetricArgs {
     /// Parses the pose, loads the design and metrics, and solves the pose.
     pub fn solve(&self, run: &RunArgs) -> Result<SolvedPose> {
-        let pose = parse_pose(&self.pose)?;
-        let (design, _) = load_inputs(self.design.as_deref(), None)?;
-        let metrics = parse_metrics(&self.metric)?;
-        let result = solve_pose(&design, pose, &metrics, run.seed, run.threads)?;
+        let pose = self.pose.parse()?;
+        let (design, _) = load_inputs(self.design.path(), None)?;
+        let metrics = self.metrics.parse()?;
+        let result = solve_pose(&design, pose, &metrics, run)?;
         Ok(SolvedPose {
             design,
             metrics,
@@ -88,41 +72,20 @@ impl PoseMetricArgs {
     }
 }
 
-/// Parses `x,y,phi` into a pose; each number must be finite and within ±1e12
-/// ([`singdist::mechanism::MAX_INPUT_MAGNITUDE`]); errors name the option and the
-/// component (`--pose: x: 1e308 is outside ±1e12`).
-pub fn parse_pose(text: &str) -> Result<Pose> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
-        bail!("--pose: expected x,y,phi (three numbers), got `{text}`");
-    }
-    let mut values = [0.0; 3];
-    for (k, (part, name)) in parts.iter().zip(["x", "y", "phi"]).enumerate() {
-        let v: f64 = part
-            .parse()
-            .ok()
-            .with_context(|| format!("--pose: {name}: `{part}` is not a number"))?;
-        check_input_number(|| name.to_string(), v).context("--pose")?;
-        values[k] = v;
-    }
-    Ok(Pose::new(values[0], values[1], values[2]))
-}
-
 /// The curve pipeline on the single pose `pose` (what `distance` prints and `draw`
 /// draws): one [`PoseResult`](singdist::pipeline::curve::PoseResult) in `poses`.
 pub fn solve_pose(
     design: &Design,
     pose: Pose,
     metrics: &[Metric],
-    seed: u64,
-    threads: Option<usize>,
+    run: &RunArgs,
 ) -> Result<CurveResult> {
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
     let options = CurveOptions {
-        seed,
+        seed: run.seed,
         ..CurveOptions::default()
     };
-    with_threads(threads, || {
+    with_threads(run.threads, || {
         compute_curve(
             design,
             &motion,

@@ -2,7 +2,8 @@
 //! configuration K′ of each chosen metric overlaid (computed as `singdist distance`
 //! computes it).
 
-use super::distance::{PoseMetricArgs, RunArgs};
+use super::args::RunArgs;
+use super::distance::PoseMetricArgs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};

@@ -10,14 +10,15 @@
 //! dropped. Lost homotopy paths of the metric computation are reported on stderr, in the
 //! output, and by exit code 3 (as `curve`).
 
-use super::curve::{check_samples, parse_metrics, pose_count};
-use super::distance::parse_pose;
+use super::args::MotionRunArgs;
+use super::curve::{check_samples, pose_count};
 use super::failures::warn_failures;
 use super::indices_plot::{plot, scaled_curves, write_plot_data};
 use super::indices_stream::{RowSink, TableFormat};
 use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
 use super::resources::{MAX_POSES, check_metric_pose_count, check_pose_count, with_threads};
+use super::values::{parse_metrics, parse_pose};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -42,28 +43,8 @@ use std::path::{Path, PathBuf};
 /// Arguments of `singdist indices`.
 #[derive(Args, Debug)]
 pub struct IndicesArgs {
-    /// Design file (JSON `{"base": [[x,y],…], "platform": [[x,y],…]}`); default: the
-    /// built-in example (systems/rpr_example_design.json).
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// Motion file (poses or analytic motion); default: the built-in example.
-    #[arg(long, value_name = "FILE")]
-    motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (analytic motions; pose lists are used as given);
-    /// at most 1,000,000. Streamed outputs (CSV on stdout, `.csv`, `.jsonl`) hold one
-    /// window of 1000 poses at a time; a `.json` document, `--plot` and `--plot-data`
-    /// hold every row, poses × metrics at most 100,000 with metric distances.
-    #[arg(long, value_name = "N", default_value_t = 90)]
-    poses: usize,
-    /// Table of every index along the motion: `.csv`, `.jsonl` (JSON Lines: a header
-    /// record, one object per pose, a closing summary with every lost path) or `.json`
-    /// (one document); default: CSV on stdout. Streamed outputs are written window by
-    /// window (files to `FILE.partial`, renamed to `FILE` at the end).
-    #[arg(long, value_name = "FILE")]
-    out: Option<PathBuf>,
-    /// SVG plot of the indices along the motion, each scaled to [0, 1] by its maximum.
-    #[arg(long, value_name = "FILE.svg")]
-    plot: Option<PathBuf>,
+    #[command(flatten)]
+    motion_run: MotionRunArgs,
     /// One pose `x,y,phi` instead of a motion.
     #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
     pose: Option<String>,
@@ -88,20 +69,10 @@ pub struct IndicesArgs {
     /// object per pose; the plot shows them next to the indices.
     #[arg(long, value_name = "NAME", num_args = 0.., default_missing_value = "all")]
     with_metrics: Option<Vec<String>>,
-    /// Seed of every random choice of the metric computation (as `curve --seed`).
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    seed: u64,
-    /// Worker threads of the metric computation (default: all cores; more than the
-    /// cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
     /// CSV of the plotted data: τ and every curve divided by its maximum along the
     /// motion (the divisor is in the column header).
     #[arg(long, value_name = "FILE.csv")]
     plot_data: Option<PathBuf>,
-    /// No progress bar for the metric computation.
-    #[arg(long)]
-    quiet: bool,
 }
 
 /// Runs `singdist compare`: `indices` with the metric distances (all nine unless
@@ -132,12 +103,15 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
         Some(values) => parse_metrics(values).context("--with-metrics")?,
         None => Vec::new(),
     };
-    let design = match &args.design {
+    let design = match args.motion_run.design() {
         Some(path) => load_design(path)?,
         None => example_design(),
     };
     if let Some(text) = &args.pose {
-        if args.plot.is_some() || args.plot_data.is_some() || args.out.is_some() {
+        if args.motion_run.output.plot.is_some()
+            || args.plot_data.is_some()
+            || args.motion_run.output.out.is_some()
+        {
             bail!("--pose: --out, --plot and --plot-data apply to a motion, not to one pose");
         }
         let pose = parse_pose(text)?;
@@ -160,17 +134,19 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     if args.json {
         bail!("--json applies to a single pose (--pose x,y,phi); use --out FILE.json for a motion");
     }
-    let motion = match &args.motion {
+    let motion = match args.motion_run.motion() {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
-    if args.poses == 0 {
+    if args.motion_run.poses == 0 {
         bail!("--poses: expected at least 1");
     }
-    let count = pose_count(&motion, args.poses);
-    let format = TableFormat::of(args.out.as_deref());
+    let count = pose_count(&motion, args.motion_run.poses);
+    let format = TableFormat::of(args.motion_run.output.out.as_deref());
     // Only a `.json` document or a plot holds every row until the end.
-    let keep = format == TableFormat::Json || args.plot.is_some() || args.plot_data.is_some();
+    let keep = format == TableFormat::Json
+        || args.motion_run.output.plot.is_some()
+        || args.plot_data.is_some();
     if keep {
         let why = "a .json document, --plot and --plot-data hold every row: stream long runs with --out FILE.csv or FILE.jsonl";
         check_pose_count(count, MAX_POSES, why)?;
@@ -178,12 +154,12 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = sample_motion(&motion, args.poses).context("--poses")?;
-    check_samples(args.motion.as_deref(), &samples)?;
-    if let Some(path) = &args.out {
+    let samples = sample_motion(&motion, args.motion_run.poses).context("--poses")?;
+    check_samples(args.motion_run.motion(), &samples)?;
+    if let Some(path) = &args.motion_run.output.out {
         check_output_file("--out", path, &["csv", "jsonl", "json"])?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.motion_run.output.plot {
         check_output_file("--plot", path, &["svg"])?;
         if samples.len() < 2 {
             bail!("--plot: need at least 2 poses, got {}", samples.len());
@@ -194,7 +170,7 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     }
     let metric_names: Vec<String> = metrics.iter().map(Metric::name).collect();
     let sink = RowSink::new(
-        (format, args.out.as_deref()),
+        (format, args.motion_run.output.out.as_deref()),
         (&options, &metric_names),
         keep,
     );
@@ -215,12 +191,12 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
                 failures: s.failures.clone(),
             }),
         };
-        if let (Some(path), TableFormat::Json) = (&args.out, format) {
+        if let (Some(path), TableFormat::Json) = (&args.motion_run.output.out, format) {
             write_json_document(path, &table, &options)?;
         }
-        if args.plot.is_some() || args.plot_data.is_some() {
+        if args.motion_run.output.plot.is_some() || args.plot_data.is_some() {
             let curves = scaled_curves(&table);
-            if let Some(path) = &args.plot {
+            if let Some(path) = &args.motion_run.output.plot {
                 let singular = singular_parameters(&design, &motion, &samples);
                 plot(path, &table, &curves, &singular)?;
             }
@@ -247,10 +223,10 @@ fn metric_curve(
         return Ok(None);
     }
     let options = CurveOptions {
-        seed: args.seed,
+        seed: args.motion_run.run.seed,
         ..CurveOptions::default()
     };
-    let result = with_threads(args.threads, || {
+    let result = with_threads(args.motion_run.run.threads, || {
         compute_curve(
             design,
             motion,
@@ -304,11 +280,11 @@ fn stream_table(
             .collect()
     };
     let curve_options = CurveOptions {
-        seed: args.seed,
+        seed: args.motion_run.run.seed,
         ..CurveOptions::default()
     };
     if metrics.is_empty() {
-        let result = with_threads(args.threads, || -> Result<()> {
+        let result = with_threads(args.motion_run.run.threads, || -> Result<()> {
             sink.start(None)?;
             for range in window_ranges(samples.len(), curve_options.window_poses) {
                 sink.write(index_rows(range))?;
@@ -321,16 +297,16 @@ fn stream_table(
             Err(error) => Err(sink.fail(error)),
         };
     }
-    let progress = progress_bar(args.quiet, samples.len());
+    let progress = progress_bar(args.motion_run.quiet, samples.len());
     let on_pose = |_: &PoseResult| {
         progress.set_message("metric distances");
         progress.inc(1);
     };
     let mut summary: Option<CurveSummary> = None;
-    let result = with_threads(args.threads, || -> Result<()> {
+    let result = with_threads(args.motion_run.run.threads, || -> Result<()> {
         let run = CurveRun::new(
             (design, motion, metrics),
-            args.poses,
+            args.motion_run.poses,
             &curve_options,
             &default_start_solutions,
         )

@@ -2,13 +2,14 @@
 //! "The impact of kinematic redundancies on the conditioning of a planar parallel
 //! manipulator").
 
+use super::outcome::Outcome;
 use super::output::check_output_file;
+use super::values::parse_numbers;
 use anyhow::{Context, bail};
 use clap::Args;
 use singdist::index::map::{MapOptions, ModeSelection, conditioning_map};
 use singdist::index::prrr::LciVariant;
 use singdist::mechanism::prrr::{PrrrDesign, Robot, parse_modes};
-use singdist::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use std::path::PathBuf;
 
 /// Arguments of `singdist map`.
@@ -54,32 +55,21 @@ pub struct MapArgs {
     json: bool,
 }
 
-/// Parse `lo,hi` with `lo < hi`, both finite.
+/// Parses `lo,hi` (finite, within ±1e12, `lo < hi`), the value of `option`.
 fn parse_range(text: &str, option: &str) -> anyhow::Result<(f64, f64)> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    let [lo, hi] = parts.as_slice() else {
-        bail!("--{option}: expected `lo,hi`, got `{text}`");
-    };
-    let lo: f64 = lo
-        .parse()
-        .with_context(|| format!("--{option}: lower bound `{lo}`"))?;
-    let hi: f64 = hi
-        .parse()
-        .with_context(|| format!("--{option}: upper bound `{hi}`"))?;
-    if !(within_input_range(lo) && within_input_range(hi) && lo < hi) {
-        bail!(
-            "--{option}: [{lo}, {hi}] must be finite, within ±{MAX_INPUT_MAGNITUDE:e}, with lo < hi"
-        );
+    let [lo, hi] = parse_numbers(text, option, ["lo", "hi"])?;
+    if lo >= hi {
+        bail!("{option}: [{lo}, {hi}] must have lo < hi");
     }
     Ok((lo, hi))
 }
 
 /// Runs `singdist map`.
-pub fn run(args: MapArgs) -> anyhow::Result<()> {
+pub fn run(args: MapArgs) -> anyhow::Result<Outcome> {
     let design = PrrrDesign::preset(&args.preset).context("--preset")?;
     let robot: Robot = args.robot.parse().context("--robot")?;
-    let x_range = parse_range(&args.x_range, "x-range")?;
-    let y_range = parse_range(&args.y_range, "y-range")?;
+    let x_range = parse_range(&args.x_range, "--x-range")?;
+    let y_range = parse_range(&args.y_range, "--y-range")?;
     if !(args.step.is_finite() && args.step > 0.0) {
         bail!("--step: {} must be a positive length", args.step);
     }
@@ -154,5 +144,5 @@ pub fn run(args: MapArgs) -> anyhow::Result<()> {
             println!("{key}: {value}");
         }
     }
-    Ok(())
+    Ok(Outcome::Complete)
 }

@@ -1,9 +1,13 @@
-//! One file per command, plus the checks and reports they share (`outcome`: exit codes
-//! and the one-line error message; `output`: output files; `resources`: threads and
-//! pose limits; `failures`: lost paths). Every `run` returns `anyhow::Result`; errors
-//! become a one-line message on stderr naming the file and field at fault.
+//! One file per command, plus the checks and reports they share (`args`: the option
+//! groups several commands flatten in; `values`: list values such as a pose `x,y,phi`;
+//! `outcome`: exit codes and the one-line error message; `output`: output files;
+//! `resources`: threads and pose limits; `failures`: lost paths; `start_check`: the
+//! re-check of stored start-solution files). Every `run` returns
+//! `anyhow::Result<Outcome>`, which `main` turns into the exit code; errors become a
+//! one-line message on stderr naming the file and field at fault.
 
 pub mod ab_initio;
+pub mod args;
 pub mod certify;
 pub mod curve;
 pub mod curve_log;
@@ -23,4 +27,6 @@ pub mod rrr;
 pub mod rrr_draw;
 pub mod schemes;
 pub mod solve;
+pub mod start_check;
 pub mod system;
+pub mod values;

@@ -1,16 +1,20 @@
 //! How a command ends: its exit code and, for an error, the one-line message on stderr.
+//! The one place that decides exit codes: commands return an [`Outcome`] or an error,
+//! and `main` turns that into the process's [`ExitCode`].
 //!
-//! Exit codes: 0 = complete; 1 = error (bad input, unwritable output, …; nothing
-//! computed is claimed); 2 = invalid command line (from the argument parser);
-//! 3 = the run finished but some homotopy paths were lost (warning on stderr, the
-//! failures listed in the output), or `certify` found a distance of the file
-//! contradicted by a certified critical point.
+//! Exit codes: 0 = complete; 1 = error (bad input, unwritable output, a stored file
+//! failing its checks, …; nothing computed is claimed); 2 = invalid command line (from
+//! the argument parser, which exits by itself); 3 = the run finished but some homotopy
+//! paths were lost (warning on stderr, the failures listed in the output), or
+//! `certify` found a distance of the file contradicted by a certified critical point.
+
+use std::process::ExitCode;
 
 /// Exit code of an error.
-pub const EXIT_ERROR: i32 = 1;
+pub const EXIT_ERROR: u8 = 1;
 
 /// Exit code of a run that completed but lost paths (results may miss critical points).
-pub const EXIT_PATH_FAILURES: i32 = 3;
+pub const EXIT_PATH_FAILURES: u8 = 3;
 
 /// What a completed command reports through its exit code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,10 +38,22 @@ impl Outcome {
     }
 
     /// The process exit code.
-    pub fn exit_code(self) -> i32 {
+    pub fn exit_code(self) -> ExitCode {
         match self {
-            Outcome::Complete => 0,
-            Outcome::PathsLost | Outcome::Contradicted => EXIT_PATH_FAILURES,
+            Outcome::Complete => ExitCode::SUCCESS,
+            Outcome::PathsLost | Outcome::Contradicted => ExitCode::from(EXIT_PATH_FAILURES),
+        }
+    }
+}
+
+/// The exit code of a command's result; an error is printed first, as one line on
+/// stderr (`singdist: error: …`).
+pub fn exit_code_of(result: anyhow::Result<Outcome>) -> ExitCode {
+    match result {
+        Ok(outcome) => outcome.exit_code(),
+        Err(error) => {
+            eprintln!("singdist: error: {}", one_line_message(&error));
+            ExitCode::from(EXIT_ERROR)
         }
     }
 }

@@ -1,12 +1,13 @@
 //! `singdist prrr`: 3-PRRR indices at one pose (docs/theory.md §11.2) and redundancy
 //! resolution (docs/theory.md §11.3).
 
+use super::outcome::Outcome;
 use super::output::{check_writable, write_file};
+use super::values::parse_numbers;
 use anyhow::{Context, bail};
 use clap::{Args, Subcommand};
 use singdist::index::prrr::{LciVariant, all_indices};
 use singdist::mechanism::prrr::{Pose, PrrrDesign, Robot, parse_modes};
-use singdist::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
 use singdist::optimize::redundancy::{
     Aggregate, RedundancyProblem, Resolution, Scheme, TaskIndex, Trajectory, resolve,
 };
@@ -92,36 +93,19 @@ pub struct ResolveArgs {
     json: bool,
 }
 
-/// Parse `a,b,c` into three finite numbers; errors name the option.
-pub fn parse_triple(text: &str, option: &str) -> anyhow::Result<[f64; 3]> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
-        bail!("--{option}: expected three comma-separated numbers, got `{text}`");
-    }
-    let mut out = [0.0; 3];
-    for (value, part) in out.iter_mut().zip(&parts) {
-        *value = part
-            .parse::<f64>()
-            .with_context(|| format!("--{option}: `{part}` is not a number"))?;
-        if !within_input_range(*value) {
-            bail!("--{option}: `{part}` must be finite and within ±{MAX_INPUT_MAGNITUDE:e}");
-        }
-    }
-    Ok(out)
-}
-
 /// Runs `singdist prrr`.
-pub fn run(command: PrrrCommand) -> anyhow::Result<()> {
+pub fn run(command: PrrrCommand) -> anyhow::Result<Outcome> {
     match command {
-        PrrrCommand::Index(args) => run_index(args),
-        PrrrCommand::Resolve(args) => run_resolve(args),
+        PrrrCommand::Index(args) => run_index(args)?,
+        PrrrCommand::Resolve(args) => run_resolve(args)?,
     }
+    Ok(Outcome::Complete)
 }
 
 fn run_index(args: IndexArgs) -> anyhow::Result<()> {
     let design = PrrrDesign::preset(&args.preset).context("--preset")?;
-    let [x, y, alpha] = parse_triple(&args.pose, "pose")?;
-    let delta = parse_triple(&args.delta, "delta")?;
+    let [x, y, alpha] = parse_numbers(&args.pose, "--pose", ["x", "y", "alpha"])?;
+    let delta = parse_numbers(&args.delta, "--delta", ["d1", "d2", "d3"])?;
     let modes = parse_modes(&args.modes).context("--modes")?;
     let robot: Robot = args.robot.parse().context("--robot")?;
     if robot == Robot::ThreeRrr && delta != [0.0; 3] {

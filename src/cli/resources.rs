@@ -1,6 +1,7 @@
 //! Resource bounds checked before any work: the worker-thread count and the number of
 //! poses a command may hold in memory.
 
+use super::args::ThreadsArg;
 use anyhow::{Context, Result, bail};
 
 /// Most poses of one motion: streamed runs (`curve`, `indices`, `compare`, `rrr
@@ -30,8 +31,8 @@ pub fn available_cores() -> usize {
 /// than the machine's cores is clamped to the cores with a one-line warning (more
 /// workers than cores only add contention: `curve --threads 2000` took 265 s instead
 /// of 1.4 s).
-pub fn thread_count(requested: Option<usize>) -> Result<Option<usize>> {
-    match requested {
+pub fn thread_count(threads: ThreadsArg) -> Result<Option<usize>> {
+    match threads.requested() {
         None => Ok(None),
         Some(0) => bail!("--threads: must be at least 1"),
         Some(n) => {
@@ -48,9 +49,9 @@ pub fn thread_count(requested: Option<usize>) -> Result<Option<usize>> {
     }
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (checked by [`thread_count`]) or on
-/// the global pool.
-pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T> {
+/// Runs `f` on a rayon pool of the `--threads` workers (checked by [`thread_count`])
+/// or on the global pool.
+pub fn with_threads<T: Send>(threads: ThreadsArg, f: impl FnOnce() -> T + Send) -> Result<T> {
     match thread_count(threads)? {
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()

@@ -8,11 +8,13 @@
 //! - `rrr ab-initio`: computes, certifies and writes the start-solution files
 //!   `rrr-parallel.json`, `rrr-leg1.json` … (or verifies the embedded ones).
 
+use super::args::{HtmlReportArg, ModesArg, MotionRunArgs};
 use super::curve::{check_samples, pose_count};
 use super::failures::{lost_paths, warn_failures};
 use super::outcome::Outcome;
 use super::output::{PartialFile, check_output_file, check_output_folder, is_csv, write_file};
 use super::resources::{MAX_POSES, MAX_RRR_POSES, check_pose_count, with_threads};
+use super::start_check::{all_passed, verify_rrr};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
@@ -26,7 +28,7 @@ use singdist::mechanism::rrr::{
 use singdist::pipeline::curve::window_ranges;
 use singdist::pipeline::rrr_ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
-    trace_certificate, verify_rrr_start_solutions,
+    trace_certificate,
 };
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, RrrCurveResult, RrrCurveRun, RrrPathFailure, RrrPoseResult, compute_rrr_curve,
@@ -40,55 +42,29 @@ use std::path::{Path, PathBuf};
 #[derive(Subcommand, Debug)]
 pub enum RrrCommand {
     /// Signed distance curves to the parallel and leg singularities along a motion.
+    ///
+    /// Outputs: `--out FILE.json` (full detail) or `FILE.csv` (the curves); without
+    /// `--out` a table on stdout. `--plot`: the four signed curves and the scaled
+    /// parallel determinant.
     Curve(RrrCurveArgs),
     /// Compute (or verify) the generic start solutions of the four 3-RRR sub-problems.
     AbInitio(RrrAbInitioArgs),
     /// SVG drawing of the 3-RRR at a pose with its closest parallel-singular and
     /// leg-singular configurations.
+    ///
+    /// The design's working modes (or `--modes`) choose the elbows at the pose.
     Draw(super::rrr_draw::RrrDrawArgs),
 }
 
 /// Arguments of `singdist rrr curve`.
 #[derive(Args, Debug)]
 pub struct RrrCurveArgs {
-    /// Design file (JSON `{"base", "proximal", "distal", "platform", "working_modes"}`);
-    /// default: the built-in example (`systems/rrr_example_design.json`).
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// Motion file (analytic motion or explicit pose list); default: the built-in
-    /// circular translation (`systems/rrr_example_motion.json`).
-    #[arg(long, value_name = "FILE")]
-    motion: Option<PathBuf>,
-    /// Number of poses evenly spaced in τ (pose lists are used as given). Streamed
-    /// outputs (`.csv`, the table on stdout) hold one window of 1000 poses at a time, up
-    /// to 1,000,000 poses; a `.json` document, `--plot` and `--html` hold every pose, at
-    /// most 100,000.
-    #[arg(long, value_name = "N", default_value_t = 90)]
-    poses: usize,
-    /// Output table: `.json` (full detail) or `.csv` (the curves).
-    #[arg(long, value_name = "FILE")]
-    out: Option<PathBuf>,
-    /// SVG plot of the four signed curves and the scaled parallel determinant.
-    #[arg(long, value_name = "FILE.svg")]
-    plot: Option<PathBuf>,
-    /// Self-contained HTML report: the four signed distances against τ with a slider
-    /// on τ, and the drawing of the 3-RRR and its closest singular configurations at
-    /// the chosen τ (no network access needed).
-    #[arg(long, value_name = "FILE.html")]
-    html: Option<PathBuf>,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Seed of every random choice (results are identical for any thread count).
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    seed: u64,
-    /// No timing line on stderr.
-    #[arg(long)]
-    quiet: bool,
-    /// Working modes of the three legs at the start of the motion, e.g. `+,-,+` (or
-    /// `1,-1,1`); overrides the design file's `working_modes`.
-    #[arg(long, value_name = "S1,S2,S3", allow_hyphen_values = true)]
-    modes: Option<String>,
+    #[command(flatten)]
+    motion_run: MotionRunArgs,
+    #[command(flatten)]
+    report: HtmlReportArg,
+    #[command(flatten)]
+    modes: ModesArg,
     /// Hold the working modes along the whole motion instead of continuing the
     /// configuration through leg singularities.
     #[arg(long)]
@@ -127,19 +103,19 @@ pub struct RrrAbInitioArgs {
 pub fn run(command: RrrCommand) -> Result<Outcome> {
     match command {
         RrrCommand::Curve(args) => run_curve(args),
-        RrrCommand::AbInitio(args) => run_ab_initio(args).map(|()| Outcome::Complete),
+        RrrCommand::AbInitio(args) => run_ab_initio(args),
         RrrCommand::Draw(args) => super::rrr_draw::run(args),
     }
 }
 
 fn load_trajectory(args: &RrrCurveArgs) -> Result<RrrTrajectory> {
-    let motion = match &args.motion {
+    let motion = match args.motion_run.motion() {
         Some(path) => load_motion(path)?,
         None => example_motion(),
     };
     let trajectory = trajectory_of(
-        args.design.as_deref(),
-        args.modes.as_deref(),
+        args.motion_run.design(),
+        args.modes.text(),
         motion,
         "--motion",
     )?;
@@ -191,11 +167,16 @@ pub(super) fn trajectory_of(
 
 fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let trajectory = load_trajectory(&args)?;
-    let count = pose_count(trajectory.motion(), args.poses);
+    let count = pose_count(trajectory.motion(), args.motion_run.poses);
     // Only a `.json` document, a plot or a report holds every pose until the end.
-    let in_memory = args.plot.is_some()
-        || args.html.is_some()
-        || args.out.as_deref().is_some_and(|p| !is_csv(p));
+    let in_memory = args.motion_run.output.plot.is_some()
+        || args.report.html.is_some()
+        || args
+            .motion_run
+            .output
+            .out
+            .as_deref()
+            .is_some_and(|p| !is_csv(p));
     if in_memory {
         check_pose_count(
             count,
@@ -205,22 +186,22 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     } else {
         check_pose_count(count, MAX_POSES, "its pose list is sampled in memory")?;
     }
-    let samples = trajectory.motion().sample(args.poses);
-    check_samples(args.motion.as_deref(), &samples)?;
-    if let Some(out) = &args.out {
+    let samples = trajectory.motion().sample(args.motion_run.poses);
+    check_samples(args.motion_run.motion(), &samples)?;
+    if let Some(out) = &args.motion_run.output.out {
         check_output_file("--out", out, &["json", "csv"])?;
     }
-    if let Some(plot) = &args.plot {
+    if let Some(plot) = &args.motion_run.output.plot {
         check_output_file("--plot", plot, &["svg"])?;
         if count < 2 {
             bail!("--plot: need at least 2 poses, got {}", count);
         }
     }
-    if let Some(html) = &args.html {
+    if let Some(html) = &args.report.html {
         check_output_file("--html", html, &["html"])?;
     }
     let options = RrrCurveOptions {
-        seed: args.seed,
+        seed: args.motion_run.run.seed,
         ..RrrCurveOptions::default()
     };
     let taus: Vec<f64> = samples.iter().map(|s| s.tau).collect();
@@ -228,22 +209,22 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let started = std::time::Instant::now();
     if !in_memory {
         let (poses, paths_tracked, failures) = stream_curve(&trajectory, &taus, &options, &args)?;
-        if args.out.is_none() {
+        if args.motion_run.output.out.is_none() {
             let parallel = parallel_singular_parameters(&trajectory, &taus);
             print_table_footer(&parallel, trajectory.leg_crossings());
         }
         report_speed(&args, poses, paths_tracked, started);
         return Ok(Outcome::paths_lost_if(warn_failures(&failures)));
     }
-    let result = with_threads(args.threads, || {
+    let result = with_threads(args.motion_run.run.threads, || {
         compute_rrr_curve(
             &trajectory,
-            args.poses,
+            args.motion_run.poses,
             &options,
             &default_rrr_start_solutions,
         )
     })??;
-    match &args.out {
+    match &args.motion_run.output.out {
         Some(path) => {
             let text = serde_json::to_string_pretty(&result).context("serialising the curve")?;
             write_file("--out", path, text)?;
@@ -258,10 +239,10 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
         }
     }
     report_speed(&args, result.poses.len(), result.paths_tracked, started);
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.motion_run.output.plot {
         plot(path, &result)?;
     }
-    if let Some(path) = &args.html {
+    if let Some(path) = &args.report.html {
         let taus: Vec<f64> = result.poses.iter().map(|p| p.tau).collect();
         let configurations: Vec<_> = configurations_at(&trajectory, &taus)?
             .into_iter()
@@ -278,7 +259,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
 
 /// The closing line on stderr: poses, paths, time.
 fn report_speed(args: &RrrCurveArgs, poses: usize, paths: usize, started: std::time::Instant) {
-    if !args.quiet {
+    if !args.motion_run.quiet {
         let elapsed = started.elapsed().as_secs_f64();
         eprintln!(
             "singdist: {poses} poses, 4 sub-problems, {paths} paths in {elapsed:.3} s ({:.0} paths/s)",
@@ -299,7 +280,7 @@ fn stream_curve(
 ) -> Result<(usize, usize, Vec<RrrPathFailure>)> {
     let mut partial: Option<PartialFile> = None;
     let result = with_threads(
-        args.threads,
+        args.motion_run.run.threads,
         || -> Result<(usize, usize, Vec<RrrPathFailure>)> {
             let run = RrrCurveRun::new(trajectory, taus, options, &default_rrr_start_solutions)?;
             let write = |partial: &Option<PartialFile>, text: &str| -> Result<()> {
@@ -313,7 +294,7 @@ fn stream_curve(
                     }
                 }
             };
-            match &args.out {
+            match &args.motion_run.output.out {
                 Some(out) => {
                     let file = partial.insert(PartialFile::create("--out", out)?);
                     file.append(&csv_header()?)?;
@@ -324,7 +305,7 @@ fn stream_curve(
             let mut paths_tracked = run.seed_paths_tracked();
             for range in window_ranges(taus.len(), WINDOW_POSES) {
                 let poses = run.solve_poses(range)?;
-                let text = match &args.out {
+                let text = match &args.motion_run.output.out {
                     Some(_) => csv_rows(&poses, run.seed_failures())?,
                     None => table_rows(&poses),
                 };
@@ -336,7 +317,7 @@ fn stream_curve(
         },
     )
     .and_then(|r| r);
-    match (result, partial, &args.out) {
+    match (result, partial, &args.motion_run.output.out) {
         (Ok(done), Some(file), Some(out)) => match std::fs::rename(file.path(), out) {
             Ok(()) => Ok(done),
             Err(e) => {
@@ -536,7 +517,7 @@ fn plot(path: &Path, result: &RrrCurveResult) -> Result<()> {
     super::plot::write_chart(path, &chart)
 }
 
-fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
+fn run_ab_initio(args: RrrAbInitioArgs) -> Result<Outcome> {
     let kinds: Vec<RrrSubProblem> = if args.problem.is_empty() {
         RrrSubProblem::ALL.to_vec()
     } else {
@@ -554,6 +535,7 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
     if let Some(dir) = &args.out_dir {
         check_output_folder("--out-dir", dir, false)?;
     }
+    let mut failures = 0;
     for kind in kinds {
         let problem = RrrProblem::new(kind)?;
         if args.verify {
@@ -569,16 +551,7 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
                     write_start_file(dir, kind, &file)?;
                 }
             }
-            let report = verify_rrr_start_solutions(&problem, &file)?;
-            println!(
-                "{}: {} solutions, max residual {:.2e}, min separation {:.2e}, min σ ratio {:.2e}: {}",
-                report.problem,
-                report.count,
-                report.max_residual,
-                report.min_separation,
-                report.min_relative_singular_value,
-                if report.passed { "ok" } else { "FAILED" }
-            );
+            failures += usize::from(!verify_rrr(&problem, &file)?);
             continue;
         }
         let started = std::time::Instant::now();
@@ -588,7 +561,7 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<()> {
             write_start_file(dir, kind, &file)?;
         }
     }
-    Ok(())
+    all_passed(failures)
 }
 
 /// One line: count, residual, certificate, time.

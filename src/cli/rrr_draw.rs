@@ -2,7 +2,7 @@
 //! parallel-singular and leg-singular configurations overlaid (computed as
 //! `singdist rrr curve` computes them, on the one-pose motion).
 
-use super::distance::parse_pose;
+use super::args::{DesignArg, ModesArg, PoseArg};
 use super::draw::DrawingOutputArgs;
 use super::failures::warn_failures;
 use super::outcome::Outcome;
@@ -16,23 +16,16 @@ use singdist::mechanism::rpr::{Motion, PoseList};
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, compute_rrr_curve_at, default_rrr_start_solutions,
 };
-use std::path::PathBuf;
 
 /// Arguments of `singdist rrr draw`.
 #[derive(Args, Debug)]
 pub struct RrrDrawArgs {
-    /// Design file (as for `rrr curve`); default: the built-in example. Lengths are
-    /// drawn in its unit.
-    #[arg(long, value_name = "FILE")]
-    design: Option<PathBuf>,
-    /// The pose `x,y,phi`: platform position (design length unit) and orientation φ
-    /// (radians); the design's working modes (or `--modes`) choose the elbows.
-    #[arg(long, value_name = "X,Y,PHI", allow_hyphen_values = true)]
-    pose: String,
-    /// Working modes of the three legs, e.g. `+,-,+`; overrides the design file's
-    /// `working_modes`.
-    #[arg(long, value_name = "S1,S2,S3", allow_hyphen_values = true)]
-    modes: Option<String>,
+    #[command(flatten)]
+    design: DesignArg,
+    #[command(flatten)]
+    pose: PoseArg,
+    #[command(flatten)]
+    modes: ModesArg,
     #[command(flatten)]
     output: DrawingOutputArgs,
 }
@@ -41,14 +34,9 @@ pub struct RrrDrawArgs {
 pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
     let output = &args.output;
     check_output_file("--out", &output.out, &["svg"])?;
-    let pose = parse_pose(&args.pose)?;
+    let pose = args.pose.parse()?;
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
-    let trajectory = trajectory_of(
-        args.design.as_deref(),
-        args.modes.as_deref(),
-        motion,
-        "--pose",
-    )?;
+    let trajectory = trajectory_of(args.design.path(), args.modes.text(), motion, "--pose")?;
     let configuration = trajectory.configuration(0.0).context("--pose")?;
     let options = RrrCurveOptions {
         seed: output.run.seed,

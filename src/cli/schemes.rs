@@ -6,6 +6,8 @@
 //! [`singdist::index::actuation::ExampleGeometry`]: base radius 5, `(a, b, c) = (1.5, 3.0, 3.5)`,
 //! grid `[−5, 5]²`, positive working modes, no joint limits.
 
+use super::args::TableOutputArgs;
+use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
 use anyhow::{Context, bail};
 use clap::Args;
@@ -16,7 +18,6 @@ use singdist::index::actuation::{
 };
 use singdist::mechanism::rrr::{ElbowMode, WorkingModes};
 use singdist::optimize::GeneticOptions;
-use std::path::PathBuf;
 
 /// Arguments of `singdist schemes` (boxed: the option set is large).
 #[derive(Args, Debug)]
@@ -37,12 +38,8 @@ struct SchemesOptions {
     /// Scheme number 1..8, name (θθψ / ttp) or `all`.
     #[arg(long, default_value = "all")]
     scheme: String,
-    /// Write the table to a .csv or .json file.
-    #[arg(long, value_name = "F.csv|F.json")]
-    out: Option<PathBuf>,
-    /// Write the singularity-loci plot (SVG; rows = orientations, columns = schemes).
-    #[arg(long, value_name = "F.svg")]
-    plot: Option<PathBuf>,
+    #[command(flatten)]
+    output: TableOutputArgs,
     /// Seed of the GA.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -137,7 +134,7 @@ fn parse_modes(text: &str) -> anyhow::Result<WorkingModes> {
 }
 
 /// Runs `singdist schemes`.
-pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
+pub fn run(args: SchemesArgs) -> anyhow::Result<Outcome> {
     let args = *args.options;
     let schemes: Vec<Scheme> = if args.scheme.eq_ignore_ascii_case("all") {
         Scheme::all().to_vec()
@@ -183,10 +180,10 @@ pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
         hw = half_width,
     );
 
-    if let Some(path) = &args.out {
+    if let Some(path) = &args.output.out {
         check_output_file("--out", path, &["csv", "json"])?;
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         check_output_file("--plot", path, &["svg"])?;
     }
     let mut rows = Vec::new();
@@ -252,18 +249,18 @@ pub fn run(args: SchemesArgs) -> anyhow::Result<()> {
         });
     }
 
-    if let Some(path) = &args.out {
+    if let Some(path) = &args.output.out {
         write_table(path, &rows)?;
         eprintln!("table written to {}", path.display());
     }
-    if let Some(path) = &args.plot {
+    if let Some(path) = &args.output.plot {
         plot_loci_svg(path, &maps, schemes.len())?;
         eprintln!(
             "loci plot written to {} (grey reachable, blue Type I, red Type II)",
             path.display()
         );
     }
-    Ok(())
+    Ok(Outcome::Complete)
 }
 
 fn print_table(rows: &[Row], optimized: bool, optimize_domain: GciDomain) {

@@ -3,12 +3,13 @@
 //! on the constant-term family (`--monodromy`). Exit code 3 when paths failed (listed
 //! with their reasons on stderr).
 
+use super::args::ThreadsArg;
 use super::outcome::Outcome;
 use super::resources::thread_count;
+use super::values::parse_assignment;
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
-use singdist::C64;
 use singdist::homotopy::{
     FailureReason, MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary,
     solve_by_monodromy, solve_total_degree,
@@ -26,9 +27,8 @@ pub struct SolveArgs {
     /// Print `{"summary": …, "solutions": […]}` as JSON instead of the text summary.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores; more than the cores is clamped to them).
-    #[arg(long)]
-    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub threads: ThreadsArg,
     /// Seed of every random choice; the same seed gives the same result on any
     /// number of threads.
     #[arg(long, default_value_t = 0x5eed)]
@@ -126,15 +126,6 @@ fn warn_failed_paths(result: &SolveResult) -> bool {
         paths.join(", ")
     );
     true
-}
-
-fn parse_assignment(text: &str) -> anyhow::Result<(String, C64)> {
-    let (name, value) = text
-        .split_once('=')
-        .with_context(|| format!("--set `{text}`: expected NAME=VALUE"))?;
-    let value = bertini::read_constant(value.trim())
-        .with_context(|| format!("--set `{text}`: cannot read the value"))?;
-    Ok((name.trim().to_string(), value))
 }
 
 /// Runs `singdist solve`.

@@ -1,6 +1,8 @@
 //! `singdist system`: inspect and convert polynomial system files.
 
+use super::outcome::Outcome;
 use super::output::{check_writable, write_file};
+use super::values::parse_assignment;
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
 use singdist::system::{System, bertini, phc};
@@ -80,12 +82,12 @@ pub fn summary(system: &System) -> String {
 }
 
 /// Runs `singdist system`.
-pub fn run(command: SystemCommand) -> anyhow::Result<()> {
+pub fn run(command: SystemCommand) -> anyhow::Result<Outcome> {
     match command {
         SystemCommand::Show { file, from } => {
             let system = read_system(&file, from)?;
             print!("{}", summary(&system));
-            Ok(())
+            Ok(Outcome::Complete)
         }
         SystemCommand::Export {
             file,
@@ -98,15 +100,10 @@ pub fn run(command: SystemCommand) -> anyhow::Result<()> {
                 check_writable("--out", path)?;
             }
             let system = read_system(&file, from)?;
-            let mut values = Vec::new();
-            for assignment in &set {
-                let (name, value) = assignment
-                    .split_once('=')
-                    .with_context(|| format!("--set `{assignment}`: expected NAME=VALUE"))?;
-                let value = bertini::read_constant(value)
-                    .with_context(|| format!("--set `{assignment}`: invalid value"))?;
-                values.push((name.trim().to_string(), value));
-            }
+            let values = set
+                .iter()
+                .map(|assignment| parse_assignment(assignment))
+                .collect::<anyhow::Result<Vec<_>>>()?;
             let text = match to {
                 Format::Bertini => {
                     let system = if values.is_empty() {
@@ -122,7 +119,7 @@ pub fn run(command: SystemCommand) -> anyhow::Result<()> {
                 Some(path) => write_file("--out", &path, text)?,
                 None => print!("{text}"),
             }
-            Ok(())
+            Ok(Outcome::Complete)
         }
     }
 }
