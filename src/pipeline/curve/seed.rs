@@ -228,17 +228,14 @@ fn seed_problem(
 ) -> (SeededProblem, Option<PathFailure>, usize) {
     let design = &design;
     let generic = starts.len();
-    // A seed point after the first confirms (or not) a count: its detours re-track
-    // only its own lost paths (the first point's whole detours try to reach the
-    // generic count outright).
-    let plan = |point: usize| {
-        let plan = TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker);
-        if point == 0 {
-            plan
-        } else {
-            plan.lost_paths_only()
-        }
-    };
+    // A seed point after the first confirms (or not) a count: its detours first
+    // re-track only its own lost paths; only where that does not confirm an earlier
+    // point's count are they repeated with whole detours (the first point's whole
+    // detours try to reach the generic count outright).
+    let plans = [
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker).lost_paths_only(),
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
+    ];
     let mut runs: Vec<SeedRun> = Vec::new();
     let mut tracked = 0;
     for point in 0..SEED_POINTS {
@@ -251,23 +248,37 @@ fn seed_problem(
         let k_star = seed_configuration(design, motion, &seed, normalization);
         let parameters = normalized_parameters(&problem, design, &k_star, normalization);
         let stream = ((index as u64) << 32) + ((point as u64) << 24);
-        let retried = track_with_retries(
-            problem.evaluator(),
-            &starts,
-            |attempt| {
-                let mut points = vec![source.clone()];
-                if attempt > 0 {
-                    let mut rng = random::stream(options.seed, stream + attempt as u64);
-                    points.push(detour_point(&parameters, &mut rng));
-                }
-                points.push(parameters.clone());
-                PolylinePath::new(points)
-            },
-            options.seed_retry_attempts,
-            plan(point),
-        );
+        let track = |plan: &TrackingPlan<'_>| {
+            track_with_retries(
+                problem.evaluator(),
+                &starts,
+                |attempt| {
+                    let mut points = vec![source.clone()];
+                    if attempt > 0 {
+                        let mut rng = random::stream(options.seed, stream + attempt as u64);
+                        points.push(detour_point(&parameters, &mut rng));
+                    }
+                    points.push(parameters.clone());
+                    PolylinePath::new(points)
+                },
+                options.seed_retry_attempts,
+                *plan,
+            )
+        };
+        // Whether `count` would end the search: the generic count, or the largest
+        // count so far, found by an earlier point too.
+        let confirms = |count: usize| {
+            let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+            count == generic || (count >= most && runs.iter().any(|r| r.solutions.len() == count))
+        };
+        let mut retried = track(&plans[if point == 0 { 1 } else { 0 }]);
         tracked += retried.tracked;
-        let solutions = distinct_seed_solutions(retried.endpoints, generic);
+        let mut solutions = distinct_seed_solutions(retried.endpoints, generic);
+        if point > 0 && retried.accounted < generic && !confirms(solutions.len()) {
+            retried = track(&plans[1]);
+            tracked += retried.tracked;
+            solutions = distinct_seed_solutions(retried.endpoints, generic);
+        }
         let count = solutions.len();
         runs.push(SeedRun {
             seed,
