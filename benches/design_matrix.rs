@@ -77,9 +77,11 @@ fn constraint_of(name: &str) -> Option<Constraint> {
 /// constraint set, and their ratio means nothing.
 const ZERO: f64 = 1e-8;
 
-/// `(h − r)/r`, with `r` floored at [`ZERO`]` · ℓ`.
+/// `(h − r)/r`, with `r` floored at [`ZERO`]` · ℓ`; 0 when both are below that floor
+/// (the configuration is on the constraint set: both distances are rounding).
 fn relative(homotopy: Option<f64>, reference: Option<f64>, size: f64) -> f64 {
     match (homotopy, reference) {
+        (Some(h), Some(r)) if h.max(r) <= ZERO * size => 0.0,
         (Some(h), Some(r)) => (h - r) / r.max(ZERO * size),
         (None, Some(_)) => f64::INFINITY,
         (Some(_), None) => f64::NEG_INFINITY,
@@ -523,6 +525,7 @@ fn main() {
                         let mut worst: f64 = 0.0;
                         for (name, m) in &result.poses[j].metrics {
                             let d = match one.poses[0].metrics.get(name) {
+                                Some(n) if n.distance.max(m.distance) <= floor => 0.0,
                                 Some(n) => (n.distance - m.distance) / m.distance.max(floor),
                                 None => f64::INFINITY,
                             };
