@@ -4,8 +4,9 @@
 //! `--optimize`).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use singdist::analysis::actuation_design::DesignProblem;
 use singdist::index::actuation::{
-    DesignProblem, ExampleGeometry, GciOptions, Scheme, WorkspaceGrid, gci, local_inverse_condition,
+    ExampleGeometry, GciOptions, Scheme, WorkspaceGrid, gci, local_inverse_condition,
 };
 use singdist::mechanism::rrr::RrrPose;
 use std::hint::black_box;

@@ -16,14 +16,17 @@
 //! 6. [`pipeline`]: ab-initio, user homotopy, parameter homotopy, post-processing.
 //! 7. [`index`]: classic kinematic performance indices (for comparison).
 //! 8. [`optimize`]: genetic algorithm and local constrained refinement.
-//! 9. [`io`]: serde types of input and output files, CSV/JSON/SVG writers.
-//! 10. [`reference`](mod@reference): an independent yardstick for the pipeline: many-start local
+//! 9. [`analysis`]: mechanism studies combining indices and optimisers (3-PRRR redundancy
+//!    resolution, 3-RRR actuation-scheme design optimisation).
+//! 10. [`io`]: serde types of input and output files, CSV/JSON/SVG writers.
+//! 11. [`reference`](mod@reference): an independent yardstick for the pipeline: many-start local
 //!     minimisation of the singularity distances, and a matrix of test designs.
-//! 11. [`certify`]: Krawczyk certificates in interval arithmetic that critical points
+//! 12. [`certify`]: Krawczyk certificates in interval arithmetic that critical points
 //!     are exact, distinct and real, and that a sub-problem's set of them is complete.
 //!
 //! Arrows point one way: `pipeline → problem → {metric, mechanism, system}`,
-//! `pipeline → homotopy → system`. Nothing numerical depends on [`io`].
+//! `pipeline → homotopy → system`, `analysis → {index, optimize}`. Nothing numerical
+//! depends on [`io`].
 //!
 //! # References
 //!
@@ -152,6 +155,7 @@
 //!   colours).
 
 pub mod algebra;
+pub mod analysis;
 pub mod certify;
 pub mod homotopy;
 pub mod index;

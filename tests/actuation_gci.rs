@@ -5,9 +5,10 @@
 #![allow(clippy::needless_range_loop)] // matrix loops read best with indices
 
 use nalgebra::{Matrix3, SymmetricEigen};
+use singdist::analysis::actuation_design::{DesignProblem, optimize_design};
 use singdist::index::actuation::{
-    ConditionNorm, DesignProblem, GciDomain, GciOptions, PsiModel, Scheme, WorkspaceGrid,
-    active_joints, gci, local_inverse_condition, optimize_design, plot_loci_svg, singularity_loci,
+    ConditionNorm, GciDomain, GciOptions, PsiModel, Scheme, WorkspaceGrid, active_joints, gci,
+    local_inverse_condition, plot_loci_svg, singularity_loci,
 };
 use singdist::mechanism::rrr::{POSITIVE_MODES, RrrDesign, RrrPose};
 use singdist::optimize::GeneticOptions;

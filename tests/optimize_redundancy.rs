@@ -1,10 +1,10 @@
 //! docs/theory.md §11.3 redundancy resolution: trajectories, quintic profile, objective,
 //! optimiser.
 
-use singdist::mechanism::prrr::{PrrrDesign, WorkingMode};
-use singdist::optimize::redundancy::{
+use singdist::analysis::redundancy::{
     Aggregate, RedundancyProblem, Scheme, TaskIndex, Trajectory, quintic, resolve,
 };
+use singdist::mechanism::prrr::{PrrrDesign, WorkingMode};
 use singdist::optimize::{GeneticOptions, LocalOptions};
 
 fn problem(

@@ -6,11 +6,11 @@ use super::output::{check_writable, write_file};
 use super::values::parse_numbers;
 use anyhow::{Context, bail};
 use clap::{Args, Subcommand};
-use singdist::index::prrr::{LciVariant, all_indices};
-use singdist::mechanism::prrr::{Pose, PrrrDesign, Robot, parse_modes};
-use singdist::optimize::redundancy::{
+use singdist::analysis::redundancy::{
     Aggregate, RedundancyProblem, Resolution, Scheme, TaskIndex, Trajectory, resolve,
 };
+use singdist::index::prrr::{LciVariant, all_indices};
+use singdist::mechanism::prrr::{Pose, PrrrDesign, Robot, parse_modes};
 use singdist::optimize::{GeneticOptions, LocalOptions};
 use std::path::PathBuf;
 

@@ -11,10 +11,10 @@ use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
 use anyhow::{Context, bail};
 use clap::Args;
+use singdist::analysis::actuation_design::{DesignOptimum, DesignProblem, optimize_design};
 use singdist::index::actuation::{
-    ConditionNorm, DesignOptimum, DesignProblem, ExampleGeometry, GciDomain, GciOptions, GciResult,
-    LociMap, PsiModel, Scheme, WorkspaceGrid, gci, optimize_design, plot_loci_svg,
-    singularity_loci,
+    ConditionNorm, ExampleGeometry, GciDomain, GciOptions, GciResult, LociMap, PsiModel, Scheme,
+    WorkspaceGrid, gci, plot_loci_svg, singularity_loci,
 };
 use singdist::mechanism::rrr::{ElbowMode, WorkingModes};
 use singdist::optimize::GeneticOptions;

@@ -1,5 +1,6 @@
-//! Seeded genetic algorithm and local constrained refinement, for redundancy resolution and
-//! design optimisation (docs/theory.md §11.3, §11.5).
+//! Seeded genetic algorithm and local constrained refinement: generic box-constrained
+//! solvers (docs/theory.md §11.3, §11.5). The mechanism studies that use them (redundancy
+//! resolution, design optimisation) live in the `analysis` layer above.
 //!
 //! Both optimisers *maximise* a real objective over a box `lo_j ≤ x_j ≤ hi_j`:
 //!
@@ -11,15 +12,12 @@
 //! * [`local`]: a projected quasi-Newton (BFGS) ascent with central finite-difference
 //!   gradients and box bounds, a compact SQP-like method for bound constraints (the
 //!   quadratic model is maximised over the free variables, the step projected on the box).
-//! * [`redundancy`]: redundancy resolution of the 3-PRRR along a task (docs/theory.md
-//!   §11.3).
 //! * [`maximize`]: the hybrid of Farias Filho et al. (2021) §4: the GA's best individual seeds the local solver.
 //!
 //! Objective values that are NaN are treated as `−∞` (never selected, never accepted).
 
 pub mod genetic;
 pub mod local;
-pub mod redundancy;
 
 pub use genetic::{GaResult, GeneticOptions, genetic_maximize};
 pub use local::{LocalOptions, LocalResult, local_maximize};

@@ -13,12 +13,14 @@
 //! with bounds `δ_min ≤ δ ≤ δ_max` on every variable. The index is LCI `1/κ(Ā⁻¹B̄)` or NSIR
 //! (docs/theory.md §11.2); the aggregate is the mean (default, **Choice**) or the minimum
 //! along the samples; an unreachable sample contributes 0. The optimiser is
-//! [`super::maximize`]: GA, then the local projected quasi-Newton refinement from the
+//! [`maximize`]: GA, then the local projected quasi-Newton refinement from the
 //! GA's best.
 
-use super::{GaResult, GeneticOptions, LocalOptions, LocalResult, OptimizeError, maximize};
 use crate::index::prrr::{LciVariant, lci, nsir};
 use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
+use crate::optimize::{
+    GaResult, GeneticOptions, LocalOptions, LocalResult, OptimizeError, maximize,
+};
 use std::f64::consts::TAU;
 use std::time::Instant;
 use thiserror::Error;
