@@ -3,5 +3,6 @@
 
 pub mod actuation;
 pub mod map;
+pub mod polynomial;
 pub mod prrr;
 pub mod rpr;
