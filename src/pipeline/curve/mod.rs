@@ -642,6 +642,30 @@ fn track_problem(
             whole_detours: true,
         },
     );
+    let (endpoints, best, tracked, reasons) =
+        if best < seeded.start_count && matches!(route, Route::Seed) {
+            let generic = generic_route(seeded, &parameters, stream, options);
+            let tracked = tracked + generic.tracked;
+            // Complete on its own terms: every path of the generic route accounted for (a
+            // finite endpoint or one at infinity) and exactly the seed's count of distinct
+            // finite ones. (Not the union with the seed route's endpoints: where the
+            // points are ill-conditioned, one point reached by both routes can differ by
+            // more than the same-point tolerance and would hide a missed one.)
+            if generic.accounted == seeded.generic_count
+                && generic.endpoints.len() == seeded.start_count
+            {
+                (
+                    generic.endpoints,
+                    seeded.start_count,
+                    tracked,
+                    BTreeMap::new(),
+                )
+            } else {
+                (endpoints, best, tracked, reasons)
+            }
+        } else {
+            (endpoints, best, tracked, reasons)
+        };
     let failure = (best < seeded.start_count).then(|| PathFailure {
         pose_index: Some(index),
         tau: Some(sample.tau),
@@ -659,6 +683,45 @@ fn track_problem(
         (best, failure, tracked),
         options,
     )
+}
+
+/// The generic route to a pose: the user homotopy from the start file's generic
+/// parameters straight to the pose's (with the endgame, detours on retries), as the
+/// seed stage tracks to the seed. Where the design is close to a degenerate one (two
+/// anchors of a rigid part 1e-4 apart), critical points come in clusters at every
+/// parameter of the design, and a seed → pose path must stay inside its cluster along
+/// the whole route; from the generic point the cluster forms only as `t → 1`, where
+/// the step size shrinks geometrically. Returns the route's distinct finite
+/// endpoints.
+fn generic_route(
+    seeded: &SeededProblem,
+    parameters: &[C64],
+    stream: u64,
+    options: &CurveOptions,
+) -> Retried {
+    let (source, starts) = &seeded.generic_start;
+    let retried = track_with_retries(
+        seeded.problem.evaluator(),
+        starts,
+        |attempt| {
+            let mut points = vec![source.clone()];
+            if attempt > 0 {
+                let mut rng = random::stream(
+                    options.seed,
+                    (stream.wrapping_mul(16) + 12 + attempt as u64) ^ 0x9e37_79b9,
+                );
+                points.push(detour_point(parameters, &mut rng));
+            }
+            points.push(parameters.to_vec());
+            PolylinePath::new(points)
+        },
+        options.seed_retry_attempts,
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker).lost_paths_only(),
+    );
+    Retried {
+        endpoints: distinct_seed_solutions(retried.endpoints, seeded.generic_count),
+        ..retried
+    }
 }
 
 /// A sub-problem's result at a pose from its finite endpoints (normalised frame) at

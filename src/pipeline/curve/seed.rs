@@ -34,6 +34,10 @@ pub struct SeededProblem {
     /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding
     /// angle), or where the shortfall is reported as a seed-stage [`PathFailure`].
     pub start_count: usize,
+    /// The start file's generic parameter point and its solutions (the start of the
+    /// user homotopy): the origin of the generic route, a pose's last resort where the
+    /// seed route loses paths.
+    pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
 }
 
 impl SeededProblem {
@@ -190,7 +194,7 @@ fn seed_configuration(
 /// The distinct finite endpoints of a seed solve, at most `limit` of them (a
 /// generic parameter has no more isolated solutions; endpoints reached with winding
 /// are kept once: a parameter homotopy can only start from simple points).
-fn distinct_seed_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
+pub(super) fn distinct_seed_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
     let mut out: Vec<Vec<C64>> = Vec::new();
     for x in endpoints {
         if out.len() < limit && !out.iter().any(|y| same_endpoint(y, &x)) {
@@ -228,6 +232,7 @@ fn seed_problem(
 ) -> (SeededProblem, Option<PathFailure>, usize) {
     let design = &design;
     let generic = starts.len();
+    let generic_start = (source.clone(), starts.clone());
     // A seed point after the first confirms (or not) a count: its detours first
     // re-track only its own lost paths; only where that does not confirm an earlier
     // point's count are they repeated with whole detours (the first point's whole
@@ -327,6 +332,7 @@ fn seed_problem(
             start_count: chosen.solutions.len(),
             seed_solutions: chosen.solutions,
             generic_count: generic,
+            generic_start,
         },
         failure,
         tracked,
