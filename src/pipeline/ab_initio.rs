@@ -11,7 +11,6 @@ use super::start_file::StartSolutions;
 use crate::homotopy::{MonodromyOptions, TrackerOptions};
 use crate::metric::Part;
 use crate::problem::{LagrangeProblem, ProblemId, SubProblem};
-use crate::system::CompiledSystem;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -112,15 +111,6 @@ impl AbInitioProblem for LagrangeProblem {
     }
     fn file_stem(&self) -> String {
         self.id().file_stem()
-    }
-    fn system(&self) -> &CompiledSystem {
-        self.evaluator()
-    }
-    fn unknowns(&self) -> &[String] {
-        self.variable_names()
-    }
-    fn parameters(&self) -> &[String] {
-        self.parameter_names()
     }
     fn expected_count(&self) -> Option<usize> {
         expected_count(self.id())

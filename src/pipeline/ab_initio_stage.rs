@@ -27,7 +27,8 @@ use crate::homotopy::{
     solve_parameter_homotopy, trace_test,
 };
 use crate::problem::ProblemError;
-use crate::system::{CompiledSystem, Evaluator};
+use crate::system::{Evaluator, ParametricSystem};
+use std::ops::Deref;
 
 /// Errors of the ab-initio stage.
 #[derive(Debug, thiserror::Error)]
@@ -71,8 +72,10 @@ pub struct AbInitioOptions {
     pub monodromy: MonodromyOptions,
 }
 
-/// A mechanism's sub-problem as the ab-initio stage sees it.
-pub trait AbInitioProblem {
+/// A mechanism's sub-problem as the ab-initio stage sees it: its square parametric
+/// system `F(x; p) = 0` with the names of unknowns and parameters (the [`Deref`]
+/// target), its names in the start-solution file, its generic count and settings.
+pub trait AbInitioProblem: Deref<Target = ParametricSystem> {
     /// Source points tried (seeds `seed, seed + 1, …`) until one gives a certified set.
     const SOURCE_ATTEMPTS: u64;
     /// The final Newton refinement ([`refine_solutions`]).
@@ -89,18 +92,12 @@ pub trait AbInitioProblem {
     fn subproblem_name(&self) -> String;
     /// The file's name in the start folder, without `.json`.
     fn file_stem(&self) -> String;
-    /// The square parametric system `F(x; p) = 0`.
-    fn system(&self) -> &CompiledSystem;
-    /// Its unknowns, in the order of a solution vector.
-    fn unknowns(&self) -> &[String];
-    /// Its parameters, in the system's order.
-    fn parameters(&self) -> &[String];
     /// The generic number of finite critical points, where it is known.
     fn expected_count(&self) -> Option<usize>;
 
     /// A start pair on the solution variety, seeded.
     fn start_pair(&self, seed: u64) -> Result<StartPair, StartPairError> {
-        find_start_pair(self.system(), seed)
+        find_start_pair(self.evaluator(), seed)
     }
 
     /// The start-solution file of this problem embedded in the binary
@@ -175,7 +172,7 @@ fn compute_at_source<P: AbInitioProblem>(
     seed: u64,
 ) -> Result<StartSolutions, AbInitioError> {
     let name = problem.name();
-    let system = problem.system();
+    let system = problem.evaluator();
     let expected = problem.expected_count();
     let pair = problem
         .start_pair(seed)
@@ -271,9 +268,9 @@ fn compute_at_source<P: AbInitioProblem>(
         problem: name,
         metric: problem.metric_name(),
         subproblem: problem.subproblem_name(),
-        variables: problem.unknowns().to_vec(),
+        variables: problem.variable_names().to_vec(),
         parameters: problem
-            .parameters()
+            .parameter_names()
             .iter()
             .cloned()
             .zip(source.iter().copied())
@@ -306,7 +303,7 @@ fn carried_start<P: AbInitioProblem>(problem: &P, source: &[C64], seed: u64) -> 
         ..SolveOptions::default()
     };
     let carried =
-        solve_parameter_homotopy(problem.system(), &[other.x], &other.p, source, &carry).ok()?;
+        solve_parameter_homotopy(problem.evaluator(), &[other.x], &other.p, source, &carry).ok()?;
     carried.nonsingular_solutions().into_iter().next()
 }
 
@@ -440,9 +437,9 @@ fn measure<P: AbInitioProblem>(
 ) -> Result<StoredMeasures, AbInitioError> {
     file.measure(
         &problem.name(),
-        problem.unknowns(),
-        problem.parameters(),
-        problem.system(),
+        problem.variable_names(),
+        problem.parameter_names(),
+        problem.evaluator(),
     )
     .map_err(|message| AbInitioError::File {
         problem: problem.name(),
@@ -457,7 +454,7 @@ pub fn verify<P: AbInitioProblem>(
     problem: &P,
     file: &StartSolutions,
 ) -> Result<Verification, AbInitioError> {
-    let system = problem.system();
+    let system = problem.evaluator();
     let StoredMeasures {
         parameters: p,
         max_residual,
@@ -526,7 +523,7 @@ pub fn retrace_certificate<P: AbInitioProblem>(
     let mut monodromy = options.monodromy.clone();
     for _attempt in 0..TRACE_ATTEMPTS {
         if let Some(trace) = trace_test(
-            problem.system(),
+            problem.evaluator(),
             &measured.parameters,
             &file.solutions,
             &monodromy,

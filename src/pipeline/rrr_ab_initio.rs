@@ -22,7 +22,6 @@ use super::start_file::{Certificate, StartSolutions};
 use crate::homotopy::MonodromyOptions;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
 use crate::problem::rrr::{RRR_METRIC_NAME, RrrProblem, RrrSubProblem};
-use crate::system::CompiledSystem;
 
 pub use super::ab_initio_stage::TRACE_ATTEMPTS;
 
@@ -93,15 +92,6 @@ impl AbInitioProblem for RrrProblem {
     }
     fn file_stem(&self) -> String {
         self.kind().file_stem()
-    }
-    fn system(&self) -> &CompiledSystem {
-        self.evaluator()
-    }
-    fn unknowns(&self) -> &[String] {
-        self.variable_names()
-    }
-    fn parameters(&self) -> &[String] {
-        self.parameter_names()
     }
     fn expected_count(&self) -> Option<usize> {
         None
