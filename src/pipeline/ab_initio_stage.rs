@@ -325,6 +325,36 @@ fn lexicographic(a: &[C64], b: &[C64]) -> std::cmp::Ordering {
         .unwrap_or(std::cmp::Ordering::Equal)
 }
 
+/// Buffers of one evaluation of `F(x; p)` and `∂F/∂x` (workspace, values, Jacobian).
+struct Scratch {
+    work: Vec<C64>,
+    f: Vec<C64>,
+    jac: Vec<C64>,
+}
+
+impl Scratch {
+    fn new<E: Evaluator + ?Sized>(system: &E) -> Self {
+        let n = system.num_variables();
+        Scratch {
+            work: vec![C64::new(0.0, 0.0); system.workspace_len()],
+            f: vec![C64::new(0.0, 0.0); n],
+            jac: vec![C64::new(0.0, 0.0); n * n],
+        }
+    }
+
+    /// Evaluates `F(x; p)` into `self.f` and returns `∂F/∂x` as a matrix.
+    fn jacobian<E: Evaluator + ?Sized>(
+        &mut self,
+        system: &E,
+        x: &[C64],
+        p: &[C64],
+    ) -> nalgebra::DMatrix<C64> {
+        system.evaluate_with_jacobian(x, p, &mut self.work, &mut self.f, &mut self.jac);
+        let n = self.f.len();
+        nalgebra::DMatrix::from_row_slice(n, n, &self.jac)
+    }
+}
+
 /// The final Newton refinement of a stage ([`refine_solutions`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Polish {
@@ -343,33 +373,30 @@ pub fn refine_solutions<E: Evaluator + ?Sized>(
     solutions: &mut [Vec<C64>],
     polish: Polish,
 ) -> f64 {
-    let n = system.num_variables();
-    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-    let mut f = vec![C64::new(0.0, 0.0); n];
-    let mut jac = vec![C64::new(0.0, 0.0); n * n];
+    let mut scratch = Scratch::new(system);
     let mut worst: f64 = 0.0;
     let max_norm = |v: &[C64]| v.iter().map(|z| z.norm()).fold(0.0, f64::max);
     for x in solutions.iter_mut() {
         let mut best = polish.keep_best.then(|| (x.clone(), f64::INFINITY));
         for _ in 0..polish.steps {
-            system.evaluate_with_jacobian(x, p, &mut work, &mut f, &mut jac);
+            let matrix = scratch.jacobian(system, x, p);
             if let Some((point, smallest)) = best.as_mut() {
-                let residual = max_norm(&f);
+                let residual = max_norm(&scratch.f);
                 if residual < *smallest {
                     *smallest = residual;
                     point.copy_from_slice(x);
                 }
             }
-            let matrix = nalgebra::DMatrix::from_row_slice(n, n, &jac);
-            let Some(step) = matrix.lu().solve(&nalgebra::DVector::from_column_slice(&f)) else {
+            let f = nalgebra::DVector::from_column_slice(&scratch.f);
+            let Some(step) = matrix.lu().solve(&f) else {
                 break;
             };
             for (xi, si) in x.iter_mut().zip(step.iter()) {
                 *xi -= si;
             }
         }
-        system.evaluate(x, p, &mut work, &mut f);
-        let mut residual = max_norm(&f);
+        system.evaluate(x, p, &mut scratch.work, &mut scratch.f);
+        let mut residual = max_norm(&scratch.f);
         if let Some((point, smallest)) = &best {
             if residual > *smallest {
                 x.copy_from_slice(point);
@@ -387,14 +414,10 @@ pub fn smallest_relative_singular_value<E: Evaluator + ?Sized>(
     p: &[C64],
     solutions: &[Vec<C64>],
 ) -> f64 {
-    let n = system.num_variables();
-    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-    let mut f = vec![C64::new(0.0, 0.0); n];
-    let mut jac = vec![C64::new(0.0, 0.0); n * n];
+    let mut scratch = Scratch::new(system);
     let mut smallest: f64 = 1.0;
     for x in solutions {
-        system.evaluate_with_jacobian(x, p, &mut work, &mut f, &mut jac);
-        let singular = nalgebra::DMatrix::from_row_slice(n, n, &jac).singular_values();
+        let singular = scratch.jacobian(system, x, p).singular_values();
         let ratio = if singular.max() > 0.0 {
             singular.min() / singular.max()
         } else {
