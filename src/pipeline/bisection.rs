@@ -46,11 +46,12 @@ mod tests {
     }
 
     /// An exact zero at a midpoint is returned as it is; an undefined value stops the
-    /// halving at the current bracket.
+    /// halving at the current bracket (here: [0, 1] → [0.5, 1], then τ = 0.75 is
+    /// undefined, so the midpoint of [0.5, 1]).
     #[test]
     fn stops_at_an_exact_zero_or_an_undefined_value() {
         assert_eq!(bisect_sign_change((0.0, 1.0), -1.0, |t| Some(t - 0.5)), 0.5);
         let undefined = |t: f64| if t < 0.75 { Some(t - 0.6) } else { None };
-        assert_eq!(bisect_sign_change((0.0, 1.0), -0.6, undefined), 0.5);
+        assert_eq!(bisect_sign_change((0.0, 1.0), -0.6, undefined), 0.75);
     }
 }
