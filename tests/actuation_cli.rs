@@ -1,16 +1,10 @@
 //! `singdist schemes` end to end on tiny grids: table files, plot, errors, GA reproducibility.
 
-use std::process::Command;
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("run singdist")
-}
+mod cli_support;
+use cli_support::{assert_success, singdist, temp_dir};
 
 fn temp(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("singdist_schemes_{}_{name}", std::process::id()))
+    temp_dir("schemes-cli").join(name)
 }
 
 #[test]
@@ -27,11 +21,7 @@ fn table_json_csv_and_plot_are_written() {
         "--plot",
         svg.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("Ramana Babu et al.'s claim"), "{stdout}");
     let rows: Vec<serde_json::Value> =
@@ -54,11 +44,7 @@ fn table_json_csv_and_plot_are_written() {
         "--out",
         csv.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(text.lines().count(), 2, "{text}");
     assert!(
@@ -112,11 +98,7 @@ fn optimisation_is_reproducible_for_a_seed() {
     ];
     let first = singdist(&args);
     let second = singdist(&args);
-    assert!(
-        first.status.success(),
-        "{}",
-        String::from_utf8_lossy(&first.stderr)
-    );
+    assert_success(&first);
     assert_eq!(first.stdout, second.stdout);
     assert!(String::from_utf8_lossy(&first.stdout).contains("optimised objective"));
 }

@@ -3,20 +3,12 @@
 //! one-line error naming the field.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+mod cli_support;
+use cli_support::{assert_success, fresh_dir, singdist};
 
 fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist-certify-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp folder");
-    dir
-}
-
-fn singdist(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("run singdist")
+    fresh_dir(&format!("certify-{name}"))
 }
 
 /// A three-pose `plate/plate` run of the built-in example written to `out`.
@@ -31,11 +23,7 @@ fn small_run(out: &Path) {
         "plate/plate",
     ];
     let run = singdist(&[&args[..], &["--threads", "1", "--out", out]].concat());
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_success(&run);
 }
 
 fn certify(file: &Path) -> (i32, String, String) {

@@ -2,22 +2,17 @@
 //! of poses, `--resume` after a kill equal byte for byte to an uninterrupted run, and
 //! resumes with other arguments refused.
 
+mod cli_support;
 mod process_support;
-use process_support::peak_rss_kb;
+use cli_support::{binary, fresh_dir, read};
+use process_support::{memory_is_measurable, peak_rss_kb};
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn binary() -> &'static str {
-    env!("CARGO_BIN_EXE_singdist")
-}
-
 fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist-stream-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp folder");
-    dir
+    fresh_dir(&format!("stream-{name}"))
 }
 
 /// `curve --quiet --metric plate/plate --threads 1` with `extra` arguments.
@@ -41,8 +36,7 @@ fn curve(extra: &[&str]) -> Command {
 /// poses of `plate/plate` against 14 MB now.
 #[test]
 fn peak_memory_does_not_grow_with_the_number_of_poses() {
-    if !Path::new("/proc/self/status").exists() {
-        eprintln!("no /proc: skipped");
+    if !memory_is_measurable() {
         return;
     }
     let dir = folder("memory");
@@ -60,10 +54,6 @@ fn peak_memory_does_not_grow_with_the_number_of_poses() {
 }
 
 /// Lines of `path`, which must exist.
-fn read(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
 /// Windows recorded in a run log.
 fn windows_in(path: &Path) -> usize {
     std::fs::read_to_string(path)

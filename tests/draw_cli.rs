@@ -2,19 +2,11 @@
 //! labelled anchors) and one closest singular configuration per metric, with the
 //! distances `singdist distance --json` reports; degenerate K′ are marked as such.
 
-use std::process::Command;
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod cli_support;
+use cli_support::{assert_success, singdist, temp_dir};
 
 fn temp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("singdist-draw-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name).display().to_string()
+    temp_dir("draw-cli").join(name).display().to_string()
 }
 
 /// The text of the element group `<g id="K" …> … </g>` (no nested groups inside).
@@ -28,11 +20,7 @@ fn group_of_k(svg: &str) -> &str {
 fn drawing_shows_the_robot_and_each_metrics_closest_configuration() {
     let out = temp("all.svg");
     let run = singdist(&["draw", "--pose", "4,3,0.3", "--out", &out]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_success(&run);
     let svg = std::fs::read_to_string(&out).expect("the SVG is written");
     let k = group_of_k(&svg);
     assert_eq!(k.matches(r#"class="leg""#).count(), 3);
@@ -87,11 +75,7 @@ fn collinear_closest_configuration_is_drawn_with_its_line() {
         "--out",
         &out,
     ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_success(&run);
     let svg = std::fs::read_to_string(&out).expect("the SVG is written");
     assert_eq!(svg.matches(r#"<g class="closest""#).count(), 2);
     assert!(svg.contains(r#"data-metric="bars/bars" data-subproblem="collinear-platform""#));

@@ -1,20 +1,12 @@
 //! `singdist solve` end to end: text summary, JSON schema, monodromy, bad input.
 
-use std::process::Command;
+mod cli_support;
+use cli_support::{assert_success, singdist, temp_dir};
 
 fn write(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist_homotopy_cli_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
+    let path = temp_dir("homotopy-cli").join(name);
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 const CIRCLE_HYPERBOLA: &str =
@@ -24,11 +16,7 @@ const CIRCLE_HYPERBOLA: &str =
 fn text_summary_counts_the_four_real_intersections() {
     let file = write("ch.input", CIRCLE_HYPERBOLA);
     let out = singdist(&["solve", file.to_str().unwrap(), "--threads", "1"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = String::from_utf8(out.stdout).unwrap();
     for line in [
         "paths         4",
@@ -88,11 +76,7 @@ fn bad_files_and_unset_parameters_are_errors() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--set"));
     let out = singdist(&["solve", param.to_str().unwrap(), "--set", "a=4", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["summary"]["nonsingular"], 2);
 }

@@ -6,19 +6,13 @@
 
 use singdist::mechanism::rpr::{example_design, example_motion};
 use std::collections::HashMap;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn singdist(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("run singdist")
-}
+mod cli_support;
+use cli_support::{singdist, temp_dir};
 
 fn temp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("singdist-compare-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name).display().to_string()
+    temp_dir("compare-cli").join(name).display().to_string()
 }
 
 /// Exit code 0, or 3 (lost paths) with the warning on stderr.

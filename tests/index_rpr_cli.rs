@@ -1,28 +1,16 @@
 //! `singdist indices` end to end: single-pose JSON, motion table, plot, errors.
 
-use std::process::Command;
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("run singdist")
-}
+mod cli_support;
+use cli_support::{assert_success, singdist, temp_dir};
 
 fn temp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist-indices-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    temp_dir("indices-cli").join(name)
 }
 
 #[test]
 fn single_pose_json_has_every_key_and_the_test_vector_values() {
     let out = singdist(&["indices", "--pose", "4,3,0.3", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let expected = [
         ("M", 1.781467),
@@ -68,11 +56,7 @@ fn motion_table_plot_and_errors() {
         "--plot",
         svg_path.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = std::fs::read_to_string(&csv_path).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 41);

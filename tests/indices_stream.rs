@@ -2,21 +2,16 @@
 //! the number of poses, the CSV unchanged (a stored table and the `curve` command's
 //! distances across a window boundary), JSON Lines and the JSON document agreeing.
 
+mod cli_support;
 mod process_support;
-use process_support::peak_rss_kb;
+use cli_support::{binary, fresh_dir, read};
+use process_support::{memory_is_measurable, peak_rss_kb};
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-fn binary() -> &'static str {
-    env!("CARGO_BIN_EXE_singdist")
-}
-
 fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist-istream-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp folder");
-    dir
+    fresh_dir(&format!("istream-{name}"))
 }
 
 fn singdist(args: &[&str]) -> Command {
@@ -37,17 +32,12 @@ fn run(args: &[&str]) {
     );
 }
 
-fn read(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
 /// 10 × the poses need (almost) no more memory. Before streaming, every row stayed in
 /// memory to the end: 7.5 MB peak for 1,000 poses, 14 MB for 10,000, 82 MB for
 /// 100,000.
 #[test]
 fn peak_memory_does_not_grow_with_the_number_of_poses() {
-    if !Path::new("/proc/self/status").exists() {
-        eprintln!("no /proc: skipped");
+    if !memory_is_measurable() {
         return;
     }
     let dir = folder("memory");

@@ -151,41 +151,31 @@ fn outputs_and_bad_options() {
     assert!(svg.contains("<svg") && svg.contains("<rect"));
     std::fs::remove_dir_all(&dir).ok();
 
-    let bad = MapOptions { nx: 1, ..o.clone() };
-    assert!(
-        conditioning_map(&design, &bad)
-            .unwrap_err()
-            .to_string()
-            .contains("nx")
-    );
-    let bad = MapOptions {
-        x_range: (0.1, -0.1),
-        ..o.clone()
+    let refused = |bad: MapOptions, field: &str| {
+        let message = conditioning_map(&design, &bad).unwrap_err().to_string();
+        assert!(message.contains(field), "{field}: {message}");
     };
-    assert!(
-        conditioning_map(&design, &bad)
-            .unwrap_err()
-            .to_string()
-            .contains("x_range")
+    refused(MapOptions { nx: 1, ..o.clone() }, "nx");
+    let x_range = (0.1, -0.1);
+    refused(
+        MapOptions {
+            x_range,
+            ..o.clone()
+        },
+        "x_range",
     );
-    let bad = MapOptions {
-        delta_levels: 0,
-        ..o.clone()
-    };
-    assert!(
-        conditioning_map(&design, &bad)
-            .unwrap_err()
-            .to_string()
-            .contains("delta_levels")
+    refused(
+        MapOptions {
+            delta_levels: 0,
+            ..o.clone()
+        },
+        "delta_levels",
     );
-    let bad = MapOptions {
-        alpha: f64::NAN,
-        ..o
-    };
-    assert!(
-        conditioning_map(&design, &bad)
-            .unwrap_err()
-            .to_string()
-            .contains("alpha")
+    refused(
+        MapOptions {
+            alpha: f64::NAN,
+            ..o
+        },
+        "alpha",
     );
 }

@@ -1,24 +1,14 @@
 //! The `singdist prrr` and `singdist map` commands end to end (small sizes).
 
-use std::process::Command;
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("run singdist")
-}
+mod cli_support;
+use cli_support::{assert_success, singdist, temp_dir};
 
 #[test]
 fn prrr_index_json_reports_spec_test_vector() {
     let out = singdist(&[
         "prrr", "index", "--pose", "0,0,0", "--delta", "0,0,0", "--modes", "+,-,+", "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!((v["lci"].as_f64().unwrap() - 0.253256).abs() < 1e-6);
     assert!((v["nsir"].as_f64().unwrap() - 0.305006).abs() < 1e-6);
@@ -44,8 +34,7 @@ fn prrr_index_errors_are_one_line_and_named() {
 
 #[test]
 fn resolve_writes_table_and_map_writes_files() {
-    let dir = std::env::temp_dir().join(format!("singdist_prrr_cli_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("prrr-cli");
     let csv = dir.join("r.csv");
     let out = singdist(&[
         "prrr",
@@ -69,11 +58,7 @@ fn resolve_writes_table_and_map_writes_files() {
         "--out",
         csv.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(text.lines().count(), 3, "{text}");
     assert_eq!(String::from_utf8_lossy(&out.stdout), text);
@@ -100,11 +85,7 @@ fn resolve_writes_table_and_map_writes_files() {
         map_csv.to_str().unwrap(),
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["nodes"], 121);
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));

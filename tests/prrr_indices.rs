@@ -38,6 +38,22 @@ fn spec_d2_test_vector() {
     assert!((idx.nsir - 0.305006).abs() < 1e-6, "{}", idx.nsir);
 }
 
+/// Random inverse-kinematics inputs, drawn in this order: a pose with `x, y` uniform in
+/// `[−r, r]` and `φ` in `[−φ_max, φ_max]`, actuator offsets uniform in `[−d, d]`, and
+/// each leg's working mode `+` or `−` with probability ½.
+fn random_inputs(
+    rng: &mut singdist::random::SeededRng,
+    r: f64,
+    phi_max: f64,
+    d: f64,
+) -> (Pose, [f64; 3], [WorkingMode; 3]) {
+    let mut u = |lo: f64, hi: f64| singdist::random::uniform(rng, lo, hi);
+    let pose = Pose::new(u(-r, r), u(-r, r), u(-phi_max, phi_max));
+    let delta = [u(-d, d), u(-d, d), u(-d, d)];
+    let modes = [0, 1, 2].map(|_| if u(0.0, 1.0) < 0.5 { PLUS } else { MINUS });
+    (pose, delta, modes)
+}
+
 fn wrap(angle: f64) -> f64 {
     let t = angle.rem_euclid(std::f64::consts::TAU);
     if t > std::f64::consts::PI {
@@ -54,24 +70,7 @@ fn a_and_b_agree_with_finite_differences_of_inverse_kinematics() {
     let mut checked = 0;
     for design in [PrrrDesign::farias2021(), PrrrDesign::fontes2017()] {
         for _ in 0..200 {
-            let u = |rng: &mut _, lo, hi| singdist::random::uniform(rng, lo, hi);
-            let pose = Pose::new(
-                u(&mut rng, -0.1, 0.1),
-                u(&mut rng, -0.1, 0.1),
-                u(&mut rng, -0.6, 0.6),
-            );
-            let delta = [
-                u(&mut rng, -0.2, 0.2),
-                u(&mut rng, -0.2, 0.2),
-                u(&mut rng, -0.2, 0.2),
-            ];
-            let modes = [0, 1, 2].map(|_| {
-                if u(&mut rng, 0.0, 1.0) < 0.5 {
-                    PLUS
-                } else {
-                    MINUS
-                }
-            });
+            let (pose, delta, modes) = random_inputs(&mut rng, 0.1, 0.6, 0.2);
             let Ok(c) = design.inverse_kinematics(&pose, &delta, &modes) else {
                 continue;
             };
@@ -402,27 +401,10 @@ fn fast_lci_equals_reference_formula() {
     };
     let design = PrrrDesign::fontes2017();
     let mut rng = singdist::random::seeded(5);
-    let u = |rng: &mut _, lo, hi| singdist::random::uniform(rng, lo, hi);
     let mut checked = 0;
     let mut worst: f64 = 0.0;
     for _ in 0..3000 {
-        let pose = Pose::new(
-            u(&mut rng, -0.2, 0.2),
-            u(&mut rng, -0.2, 0.2),
-            u(&mut rng, -1.0, 1.0),
-        );
-        let delta = [
-            u(&mut rng, -0.3, 0.3),
-            u(&mut rng, -0.3, 0.3),
-            u(&mut rng, -0.3, 0.3),
-        ];
-        let modes = [0, 1, 2].map(|_| {
-            if u(&mut rng, 0.0, 1.0) < 0.5 {
-                PLUS
-            } else {
-                MINUS
-            }
-        });
+        let (pose, delta, modes) = random_inputs(&mut rng, 0.2, 1.0, 0.3);
         let Ok(c) = design.inverse_kinematics(&pose, &delta, &modes) else {
             continue;
         };

@@ -6,50 +6,36 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod cli_support;
+use cli_support::{assert_success, binary, temp_dir};
+
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("singdist-report-html-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
+    temp_dir("report-html").join(name)
 }
 
+/// `curve --poses 6 --quiet --html path --metric METRICS…`.
 fn write_report(path: &Path, metrics: &[&str]) {
-    let mut args: Vec<&str> = vec![
-        "curve",
-        "--poses",
-        "6",
-        "--quiet",
-        "--html",
-        path.to_str().expect("utf-8 path"),
-        "--metric",
-    ];
-    args.extend_from_slice(metrics);
-    run_singdist(&args);
+    run_html_report(&[], path, &[&["--metric"], metrics].concat());
 }
 
-/// `rrr curve --poses 6 --html path`.
+/// `rrr curve --poses 6 --quiet --html path`.
 fn write_rrr_report(path: &Path) {
-    run_singdist(&[
-        "rrr",
-        "curve",
-        "--poses",
-        "6",
-        "--quiet",
-        "--html",
-        path.to_str().expect("utf-8 path"),
-    ]);
+    run_html_report(&["rrr"], path, &[]);
 }
 
-fn run_singdist(args: &[&str]) {
-    let run = Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
+/// `singdist COMMAND… curve --poses 6 --quiet --html path EXTRA…`, which must succeed
+/// (its stdout discarded).
+fn run_html_report(command: &[&str], path: &Path, extra: &[&str]) {
+    let html = ["curve", "--poses", "6", "--quiet", "--html"];
+    let run = Command::new(binary())
+        .args(command)
+        .args(html)
+        .arg(path)
+        .args(extra)
         .stdout(Stdio::null())
         .output()
         .expect("the binary runs");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_success(&run);
 }
 
 fn chromium() -> Option<PathBuf> {

@@ -7,9 +7,9 @@
 
 use super::args::ThreadsArg;
 use super::outcome::Outcome;
-use super::output::{check_output_folder, write_file};
+use super::output::check_output_folder;
 use super::resources::thread_count;
-use super::start_check::{all_passed, check_stored};
+use super::start_check::{all_passed, check_stored, trace_text, write_start_file};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use singdist::pipeline::ab_initio::{self, AbInitioOptions};
@@ -130,9 +130,7 @@ fn compute(ids: &[ProblemId], args: &AbInitioArgs) -> Result<usize> {
             expected.map_or("unknown".to_string(), |e| e.to_string()),
             file.max_residual,
             file.certificate.kind,
-            file.certificate
-                .trace_residual
-                .map_or("not run".to_string(), |t| format!("{t:.1e}")),
+            trace_text(file.certificate.trace_residual),
             file.certificate.loops,
             file.certificate.failed_paths,
             clock.elapsed().as_secs_f64(),
@@ -140,8 +138,7 @@ fn compute(ids: &[ProblemId], args: &AbInitioArgs) -> Result<usize> {
         );
         failures += usize::from(!ok);
         std::fs::create_dir_all(&args.dir).with_context(|| format!("{}", args.dir.display()))?;
-        let path = args.dir.join(format!("{}.json", id.file_stem()));
-        write_file("--dir", &path, serde_json::to_string_pretty(&file)?)?;
+        write_start_file("--dir", &args.dir, &problem, &file, true)?;
     }
     Ok(failures)
 }

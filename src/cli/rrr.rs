@@ -14,7 +14,7 @@ use super::failures::{lost_paths, warn_failures};
 use super::outcome::Outcome;
 use super::output::{PartialFile, check_output_file, check_output_folder, is_csv, write_file};
 use super::resources::{MAX_POSES, MAX_RRR_POSES, check_pose_count, with_threads};
-use super::start_check::{all_passed, verify_rrr};
+use super::start_check::{all_passed, trace_text, verify_stored_file, write_start_file};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Subcommand};
 use singdist::io::chart::{Chart, Marker, Panel};
@@ -25,10 +25,10 @@ use singdist::mechanism::rrr::{
     EXAMPLE_MODES, ElbowMode, RrrMotion, RrrTrajectory, WorkingModes, example_design,
     example_motion,
 };
+use singdist::pipeline::ab_initio_stage::AbInitioProblem;
 use singdist::pipeline::curve::window_ranges;
 use singdist::pipeline::rrr_ab_initio::{
-    RrrAbInitioOptions, compute_rrr_start_solutions, embedded_rrr_start_solutions,
-    trace_certificate,
+    RrrAbInitioOptions, compute_rrr_start_solutions, trace_certificate,
 };
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, RrrCurveResult, RrrCurveRun, RrrPathFailure, RrrPoseResult, compute_rrr_curve,
@@ -539,7 +539,7 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<Outcome> {
     for kind in kinds {
         let problem = RrrProblem::new(kind)?;
         if args.verify {
-            let Some(file) = embedded_rrr_start_solutions(kind) else {
+            let Some(file) = problem.embedded() else {
                 bail!("{}: no embedded start-solution file", kind.name());
             };
             let mut file = file?;
@@ -548,17 +548,17 @@ fn run_ab_initio(args: RrrAbInitioArgs) -> Result<Outcome> {
                 file.certificate = trace_certificate(&problem, &file, &options)?;
                 print_summary(&file, started);
                 if let Some(dir) = &args.out_dir {
-                    write_start_file(dir, kind, &file)?;
+                    write_start_file("--out-dir", dir, &problem, &file, false)?;
                 }
             }
-            failures += usize::from(!verify_rrr(&problem, &file)?);
+            failures += usize::from(!verify_stored_file(&problem, &file)?);
             continue;
         }
         let started = std::time::Instant::now();
         let file = compute_rrr_start_solutions(&problem, &options)?;
         print_summary(&file, started);
         if let Some(dir) = &args.out_dir {
-            write_start_file(dir, kind, &file)?;
+            write_start_file("--out-dir", dir, &problem, &file, false)?;
         }
     }
     all_passed(failures)
@@ -575,22 +575,10 @@ fn print_summary(
         file.solutions.len(),
         file.max_residual,
         file.certificate.kind,
-        file.certificate
-            .trace_residual
-            .map_or("not run".to_string(), |t| format!("{t:.1e}")),
+        trace_text(file.certificate.trace_residual),
         file.certificate.loops,
         file.certificate.failed_paths,
         file.certificate.passed,
         started.elapsed().as_secs_f64()
     );
-}
-
-fn write_start_file(
-    dir: &Path,
-    kind: RrrSubProblem,
-    file: &singdist::pipeline::start_file::StartSolutions,
-) -> Result<()> {
-    let path = dir.join(format!("{}.json", kind.file_stem()));
-    let text = serde_json::to_string(file).context("serialising start solutions")?;
-    write_file("--out-dir", &path, text)
 }

@@ -4,53 +4,56 @@
 
 use super::outcome::Outcome;
 use anyhow::{Context, Result, bail};
-use singdist::pipeline::ab_initio::{self, embedded_start_solutions};
-use singdist::pipeline::rrr_ab_initio::{embedded_rrr_start_solutions, verify_rrr_start_solutions};
+use singdist::pipeline::ab_initio_stage::{AbInitioProblem, Verification, verify};
 use singdist::pipeline::start_file::StartSolutions;
 use singdist::problem::LagrangeProblem;
 use singdist::problem::rrr::RrrProblem;
 use std::path::Path;
 
-/// A problem with a stored start file.
-pub trait StoredProblem {
-    /// Its name in the output (`bars/rigid:collinear-platform`, `rrr:leg1`).
-    fn name(&self) -> String;
-    /// The file's name in the start folder without `.json`.
-    fn file_stem(&self) -> String;
-    /// The copy embedded in the binary, if the build had one.
-    fn embedded(&self) -> Option<Result<StartSolutions>>;
-    /// Re-checks `file` and prints its line; `true` if it passes.
-    fn verify(&self, file: &StartSolutions) -> Result<bool>;
+/// A problem with a stored start file, and how its `--verify` line reads.
+pub trait StoredProblem: AbInitioProblem {
+    /// The line of a checked file.
+    fn line(check: &Verification) -> String;
 }
 
 impl StoredProblem for LagrangeProblem {
-    fn name(&self) -> String {
-        self.id().name()
-    }
-    fn file_stem(&self) -> String {
-        self.id().file_stem()
-    }
-    fn embedded(&self) -> Option<Result<StartSolutions>> {
-        embedded_start_solutions(self.id()).map(|file| file.map_err(Into::into))
-    }
-    fn verify(&self, file: &StartSolutions) -> Result<bool> {
-        verify_rpr(self, file)
+    fn line(check: &Verification) -> String {
+        format!(
+            "{:<40} {} solutions (expected {}), max residual {:.1e}, min separation {:.1e}, trace {}: {}",
+            check.problem,
+            check.count,
+            check
+                .expected
+                .map_or("unknown".to_string(), |e| e.to_string()),
+            check.max_residual,
+            check.min_separation,
+            trace_text(check.trace_residual),
+            verdict(check.passed)
+        )
     }
 }
 
 impl StoredProblem for RrrProblem {
-    fn name(&self) -> String {
-        self.kind().name()
+    fn line(check: &Verification) -> String {
+        format!(
+            "{}: {} solutions, max residual {:.2e}, min separation {:.2e}, min σ ratio {:.2e}: {}",
+            check.problem,
+            check.count,
+            check.max_residual,
+            check.min_separation,
+            check.min_relative_singular_value,
+            verdict(check.passed)
+        )
     }
-    fn file_stem(&self) -> String {
-        self.kind().file_stem()
-    }
-    fn embedded(&self) -> Option<Result<StartSolutions>> {
-        embedded_rrr_start_solutions(self.kind()).map(|file| file.map_err(Into::into))
-    }
-    fn verify(&self, file: &StartSolutions) -> Result<bool> {
-        verify_rrr(self, file)
-    }
+}
+
+/// Re-checks `file` ([`verify`]: names, residuals, distinctness, nonsingularity, the
+/// count or trace test where the mechanism has one, stored certificate) and prints its
+/// line; `true` if it passes.
+pub fn verify_stored_file<P: StoredProblem>(problem: &P, file: &StartSolutions) -> Result<bool> {
+    let check = verify(problem, file)?;
+    println!("{}", P::line(&check));
+    Ok(check.passed)
 }
 
 /// Re-checks the stored start file of every problem: `dir/STEM.json` where it exists,
@@ -61,7 +64,7 @@ pub fn check_stored<P: StoredProblem>(dir: &Path, problems: &[P]) -> Result<usiz
     for problem in problems {
         let path = dir.join(format!("{}.json", problem.file_stem()));
         let passed = match read_stored(&path, problem)? {
-            Some(file) => problem.verify(&file)?,
+            Some(file) => verify_stored_file(problem, &file)?,
             None => {
                 println!("{:<40} MISSING ({})", problem.name(), path.display());
                 false
@@ -80,45 +83,32 @@ fn read_stored(path: &Path, problem: &impl StoredProblem) -> Result<Option<Start
         let file = serde_json::from_str(&text).with_context(|| path.display().to_string())?;
         return Ok(Some(file));
     }
-    problem.embedded().transpose()
+    Ok(problem.embedded().transpose()?)
 }
 
-/// Re-checks a 3-RPR start file ([`ab_initio::verify`]: residuals, count, distinctness,
-/// trace test where no count is known) and prints its line; `true` if it passes.
-pub fn verify_rpr(problem: &LagrangeProblem, file: &StartSolutions) -> Result<bool> {
-    let check = ab_initio::verify(problem, file)?;
-    println!(
-        "{:<40} {} solutions (expected {}), max residual {:.1e}, min separation {:.1e}, trace {}: {}",
-        check.problem,
-        check.count,
-        check
-            .expected
-            .map_or("unknown".to_string(), |e| e.to_string()),
-        check.max_residual,
-        check.min_separation,
-        check
-            .trace_residual
-            .map_or("not run".to_string(), |t| format!("{t:.1e}")),
-        verdict(check.passed)
-    );
-    Ok(check.passed)
+/// Writes `file` as `dir/STEM.json` of `problem` (`pretty`: indented JSON, as the 3-RPR
+/// files are stored; otherwise one line, as the 3-RRR files are); `flag` names the
+/// folder's option in errors.
+pub fn write_start_file<P: AbInitioProblem>(
+    flag: &str,
+    dir: &Path,
+    problem: &P,
+    file: &StartSolutions,
+    pretty: bool,
+) -> Result<()> {
+    let path = dir.join(format!("{}.json", problem.file_stem()));
+    let text = if pretty {
+        serde_json::to_string_pretty(file)
+    } else {
+        serde_json::to_string(file)
+    }
+    .context("serialising start solutions")?;
+    super::output::write_file(flag, &path, text)
 }
 
-/// Re-checks a 3-RRR start file ([`verify_rrr_start_solutions`]: residuals,
-/// distinctness, nonsingularity, stored certificate) and prints its line; `true` if it
-/// passes.
-pub fn verify_rrr(problem: &RrrProblem, file: &StartSolutions) -> Result<bool> {
-    let report = verify_rrr_start_solutions(problem, file)?;
-    println!(
-        "{}: {} solutions, max residual {:.2e}, min separation {:.2e}, min σ ratio {:.2e}: {}",
-        report.problem,
-        report.count,
-        report.max_residual,
-        report.min_separation,
-        report.min_relative_singular_value,
-        verdict(report.passed)
-    );
-    Ok(report.passed)
+/// A trace residual as printed (`not run` when the test was not run).
+pub fn trace_text(residual: Option<f64>) -> String {
+    residual.map_or("not run".to_string(), |t| format!("{t:.1e}"))
 }
 
 fn verdict(passed: bool) -> &'static str {

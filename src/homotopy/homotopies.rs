@@ -131,6 +131,45 @@ impl<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> StraightLineHomotopy<'a, 
     pub fn gamma(&self) -> C64 {
         self.gamma
     }
+
+    /// `g ← G(x)` (returned, at the head of `work`) and `f ← F(x; p)`.
+    fn start_and_target<'w>(&self, x: &[C64], work: &'w mut [C64], f: &mut [C64]) -> &'w [C64] {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let rest = &mut rest[n * n..];
+        self.start.evaluate(x, &[], rest, g);
+        self.target.evaluate(x, &self.target_parameters, rest, f);
+        g
+    }
+
+    /// `(g, ∂G/∂x)` (returned, at the head of `work`), `f ← F(x; p)`, `jac ← ∂F/∂x`.
+    fn start_and_target_with_jacobians<'w>(
+        &self,
+        x: &[C64],
+        work: &'w mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) -> (&'w [C64], &'w [C64]) {
+        let n = self.n;
+        let (g, rest) = work.split_at_mut(n);
+        let (g_jac, rest) = rest.split_at_mut(n * n);
+        self.start.evaluate_with_jacobian(x, &[], rest, g, g_jac);
+        self.target
+            .evaluate_with_jacobian(x, &self.target_parameters, rest, f, jac);
+        (g, g_jac)
+    }
+
+    /// `(1 − t)·γ`, the start system's weight at `t`.
+    fn start_weight(&self, t: C64) -> C64 {
+        (C64::new(1.0, 0.0) - t) * self.gamma
+    }
+}
+
+/// `target ← t·target + a·start` entrywise (the blend of target and start values).
+fn blend(t: C64, a: C64, target: &mut [C64], start: &[C64]) {
+    for (v, s) in target.iter_mut().zip(start) {
+        *v = t * *v + a * s;
+    }
 }
 
 impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomotopy<'_, G, F> {
@@ -143,15 +182,8 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let n = self.n;
-        let (g, rest) = work.split_at_mut(n);
-        let rest = &mut rest[n * n..];
-        self.start.evaluate(x, &[], rest, g);
-        self.target.evaluate(x, &self.target_parameters, rest, h);
-        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
-        for (hi, gi) in h.iter_mut().zip(g.iter()) {
-            *hi = t * *hi + a * gi;
-        }
+        let g = self.start_and_target(x, work, h);
+        blend(t, self.start_weight(t), h, g);
     }
 
     fn evaluate_with_jacobian(
@@ -162,19 +194,10 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
         h: &mut [C64],
         jac: &mut [C64],
     ) {
-        let n = self.n;
-        let (g, rest) = work.split_at_mut(n);
-        let (g_jac, rest) = rest.split_at_mut(n * n);
-        self.start.evaluate_with_jacobian(x, &[], rest, g, g_jac);
-        self.target
-            .evaluate_with_jacobian(x, &self.target_parameters, rest, h, jac);
-        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
-        for (hi, gi) in h.iter_mut().zip(g.iter()) {
-            *hi = t * *hi + a * gi;
-        }
-        for (ji, gi) in jac.iter_mut().zip(g_jac.iter()) {
-            *ji = t * *ji + a * gi;
-        }
+        let (g, g_jac) = self.start_and_target_with_jacobians(x, work, h, jac);
+        let a = self.start_weight(t);
+        blend(t, a, h, g);
+        blend(t, a, jac, g_jac);
     }
 
     fn evaluate_with_jacobian_and_time_derivative(
@@ -186,29 +209,18 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
         jac: &mut [C64],
         dh: &mut [C64],
     ) {
-        let n = self.n;
-        let (g, rest) = work.split_at_mut(n);
-        let (g_jac, rest) = rest.split_at_mut(n * n);
-        self.start.evaluate_with_jacobian(x, &[], rest, g, g_jac);
-        self.target
-            .evaluate_with_jacobian(x, &self.target_parameters, rest, h, jac);
-        let a = (C64::new(1.0, 0.0) - t) * self.gamma;
-        for ((hi, di), gi) in h.iter_mut().zip(dh.iter_mut()).zip(g.iter()) {
+        let (g, g_jac) = self.start_and_target_with_jacobians(x, work, h, jac);
+        for ((di, hi), gi) in dh.iter_mut().zip(h.iter()).zip(g) {
             *di = *hi - self.gamma * gi;
-            *hi = t * *hi + a * gi;
         }
-        for (ji, gi) in jac.iter_mut().zip(g_jac.iter()) {
-            *ji = t * *ji + a * gi;
-        }
+        let a = self.start_weight(t);
+        blend(t, a, h, g);
+        blend(t, a, jac, g_jac);
     }
 
     fn evaluate_time_derivative(&self, x: &[C64], _t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let n = self.n;
-        let (g, rest) = work.split_at_mut(n);
-        let rest = &mut rest[n * n..];
-        self.start.evaluate(x, &[], rest, g);
-        self.target.evaluate(x, &self.target_parameters, rest, dh);
-        for (di, gi) in dh.iter_mut().zip(g.iter()) {
+        let g = self.start_and_target(x, work, dh);
+        for (di, gi) in dh.iter_mut().zip(g) {
             *di -= self.gamma * gi;
         }
     }
@@ -340,6 +352,29 @@ impl<'a, F: Evaluator + ?Sized, P: ParameterPath> PathParameterHomotopy<'a, F, P
     }
 }
 
+impl<F: Evaluator + ?Sized, P: ParameterPath> PathParameterHomotopy<'_, F, P> {
+    /// `p ← p(t)` at the head of `work`; returns `p` and the system's scratch.
+    fn parameters_at<'w>(&self, t: C64, work: &'w mut [C64]) -> (&'w [C64], &'w mut [C64]) {
+        let m = self.path.len();
+        let (p, rest) = work.split_at_mut(m);
+        self.path.point(t, p);
+        (p, &mut rest[m..])
+    }
+
+    /// `p ← p(t)`, `dp ← p′(t)` at the head of `work`; returns both and the scratch.
+    fn parameters_and_velocity_at<'w>(
+        &self,
+        t: C64,
+        work: &'w mut [C64],
+    ) -> (&'w [C64], &'w [C64], &'w mut [C64]) {
+        let m = self.path.len();
+        let (p, rest) = work.split_at_mut(m);
+        let (dp, rest) = rest.split_at_mut(m);
+        self.path.point_and_velocity(t, p, dp);
+        (p, dp, rest)
+    }
+}
+
 impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy<'_, F, P> {
     fn dimension(&self) -> usize {
         self.n
@@ -350,17 +385,13 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        self.path.point(t, p);
-        self.system.evaluate(x, p, &mut rest[m..], h);
+        let (p, rest) = self.parameters_at(t, work);
+        self.system.evaluate(x, p, rest, h);
     }
 
     fn evaluate_extended(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        self.path.point(t, p);
-        self.system.evaluate_extended(x, p, &mut rest[m..], h);
+        let (p, rest) = self.parameters_at(t, work);
+        self.system.evaluate_extended(x, p, rest, h);
     }
 
     fn evaluate_with_jacobian(
@@ -371,18 +402,12 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
         h: &mut [C64],
         jac: &mut [C64],
     ) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        self.path.point(t, p);
-        self.system
-            .evaluate_with_jacobian(x, p, &mut rest[m..], h, jac);
+        let (p, rest) = self.parameters_at(t, work);
+        self.system.evaluate_with_jacobian(x, p, rest, h, jac);
     }
 
     fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        let (dp, rest) = rest.split_at_mut(m);
-        self.path.point_and_velocity(t, p, dp);
+        let (p, dp, rest) = self.parameters_and_velocity_at(t, work);
         self.system
             .evaluate_parameter_derivative(x, p, dp, rest, dh);
     }
@@ -395,11 +420,9 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
         h: &mut [C64],
         (jac, jac_low): (&mut [C64], &mut [C64]),
     ) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        self.path.point(t, p);
+        let (p, rest) = self.parameters_at(t, work);
         self.system
-            .evaluate_with_jacobian_extended(x, p, &mut rest[m..], h, jac, jac_low);
+            .evaluate_with_jacobian_extended(x, p, rest, h, jac, jac_low);
     }
 
     fn evaluate_with_jacobian_and_time_derivative_extended(
@@ -411,10 +434,7 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
         (jac, jac_low): (&mut [C64], &mut [C64]),
         dh: &mut [C64],
     ) {
-        let m = self.path.len();
-        let (p, rest) = work.split_at_mut(m);
-        let (dp, rest) = rest.split_at_mut(m);
-        self.path.point_and_velocity(t, p, dp);
+        let (p, dp, rest) = self.parameters_and_velocity_at(t, work);
         self.system
             .evaluate_with_jacobian_extended(x, p, rest, h, jac, jac_low);
         self.system

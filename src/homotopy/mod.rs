@@ -25,7 +25,7 @@ pub use monodromy::{
     ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
     monodromy_solve, solve_by_monodromy, trace_test,
 };
-pub use refine::{Refinement, group_roots, newton_refine, same_root};
+pub use refine::{Refinement, contains_point, group_roots, newton_refine, same_point, same_root};
 pub use solve::{
     HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,
     solve_total_degree, solve_with_homotopy,

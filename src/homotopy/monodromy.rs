@@ -25,6 +25,7 @@
 //! would have a rational, not linear, trace there).
 
 use super::homotopies::{ParameterHomotopy, PolylineParameterHomotopy};
+use super::refine::contains_point;
 use super::solve::HomotopyError;
 use super::tracker::{PathStatus, Tracker, TrackerOptions};
 use crate::C64;
@@ -101,16 +102,6 @@ pub struct MonodromyResult {
     pub failed_paths: usize,
 }
 
-/// Whether `x` is within `tolerance · (1 + ‖x‖∞)` of a point of `set`.
-fn contains(set: &[Vec<C64>], x: &[C64], tolerance: f64) -> bool {
-    let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-    set.iter().any(|y| {
-        y.iter()
-            .zip(x)
-            .all(|(a, b)| (a - b).norm() <= tolerance * scale)
-    })
-}
-
 fn random_point(rng: &mut SeededRng, m: usize, scale: f64) -> Vec<C64> {
     (0..m).map(|_| complex_normal(rng) * scale).collect()
 }
@@ -165,7 +156,7 @@ fn populate<F: Evaluator + ?Sized>(
         let mut new = 0;
         for r in results {
             if r.status == PathStatus::Nonsingular {
-                if !contains(solutions, &r.solution, options.duplicate_tolerance) {
+                if !contains_point(solutions, &r.solution, options.duplicate_tolerance) {
                     solutions.push(r.solution);
                     new += 1;
                 }
@@ -347,7 +338,7 @@ pub fn trace_test<F: Evaluator + ?Sized>(
     let mut witness: Vec<Vec<C64>> = Vec::new();
     for r in track(&special, &generic, &lifted, false) {
         if r.status == PathStatus::Nonsingular
-            && !contains(&witness, &r.solution, options.duplicate_tolerance)
+            && !contains_point(&witness, &r.solution, options.duplicate_tolerance)
         {
             witness.push(r.solution);
         } else {
@@ -396,7 +387,8 @@ pub fn trace_test<F: Evaluator + ?Sized>(
         for r in track(&generic, &special, &witness, true) {
             if r.status.is_finite() {
                 let x = &r.solution[..n];
-                if !contains(solutions, x, 1e-6) && !contains(&added_solutions, x, 1e-6) {
+                if !contains_point(solutions, x, 1e-6) && !contains_point(&added_solutions, x, 1e-6)
+                {
                     added_solutions.push(x.to_vec());
                 }
             }

@@ -121,6 +121,21 @@ pub fn same_root(a: &[C64], b: &[C64], condition: f64, tolerance: f64) -> bool {
         .all(|(u, v)| (u - v).norm() <= accuracy * scale)
 }
 
+/// Whether `b` is within `tolerance · (1 + ‖a‖∞)` of `a` in every coordinate: the
+/// fixed relative distance test for points known far more accurately than they are
+/// apart (the Newton-limit test [`same_root`] is for points of unknown conditioning).
+pub fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
+    let scale = 1.0 + max_norm(a);
+    a.iter()
+        .zip(b)
+        .all(|(u, v)| (u - v).norm() <= tolerance * scale)
+}
+
+/// Whether some point of `set` is the [`same_point`] as `x` (distance relative to `x`).
+pub fn contains_point(set: &[Vec<C64>], x: &[C64], tolerance: f64) -> bool {
+    set.iter().any(|y| same_point(x, y, tolerance))
+}
+
 /// Groups refined nonsingular roots into distinct roots: `roots[i]` is a point with its
 /// condition number; returns for every root the index of its group's first member.
 /// Sorting by the real part of the first coordinate keeps the comparison near-linear.

@@ -165,14 +165,19 @@ pub(crate) fn line(
     q: [f64; 2],
     attributes: &str,
 ) {
-    let _ = writeln!(
-        out,
-        r#"<line class="{class}" x1="{}" y1="{}" x2="{}" y2="{}"{attributes}/>"#,
+    let ends = line_ends(canvas, p, q);
+    let _ = writeln!(out, r#"<line class="{class}" {ends}{attributes}/>"#);
+}
+
+/// The attributes `x1="…" y1="…" x2="…" y2="…"` of a line from world point `p` to `q`.
+fn line_ends(canvas: &Canvas, p: [f64; 2], q: [f64; 2]) -> String {
+    format!(
+        r#"x1="{}" y1="{}" x2="{}" y2="{}""#,
         px(canvas.x(p[0])),
         px(canvas.y(p[1])),
         px(canvas.x(q[0])),
         px(canvas.y(q[1]))
-    );
+    )
 }
 
 /// A `<line>` of class `class` and leg number `leg` (`data-leg`) from `p` to `q`.
@@ -184,13 +189,10 @@ pub(crate) fn leg_line(
     (p, q): ([f64; 2], [f64; 2]),
     attributes: &str,
 ) {
+    let ends = line_ends(canvas, p, q);
     let _ = writeln!(
         out,
-        r#"<line class="{class}" data-leg="{leg}" x1="{}" y1="{}" x2="{}" y2="{}"{attributes}/>"#,
-        px(canvas.x(p[0])),
-        px(canvas.y(p[1])),
-        px(canvas.x(q[0])),
-        px(canvas.y(q[1]))
+        r#"<line class="{class}" data-leg="{leg}" {ends}{attributes}/>"#
     );
 }
 

@@ -1,69 +1,26 @@
-//! Ab-initio stage (docs/theory.md §8.1): all finite critical points of a sub-problem at a
-//! random complex source configuration, computed once, certified, and stored as the
-//! project's generic start solutions in `supplementary/start/`.
+//! The ab-initio stage of the 3-RPR sub-problems (docs/theory.md §8.1): the
+//! [`AbInitioProblem`] instance of [`super::ab_initio_stage`] for a [`LagrangeProblem`],
+//! the generic counts of docs/theory.md §6 ([`expected_count`]) and the stored files of
+//! `supplementary/start/PLATFORM-BASE-SUBPROBLEM.json`.
 //!
-//! Method: a start pair from minimum-norm Gauss–Newton ([`super::start_pair`]), then
-//! monodromy loops through random complex parameter points until stagnation, then the
-//! trace test of [`crate::homotopy::monodromy`] as the certificate of completeness.
-//! The counts are checked against docs/theory.md §6 ([`expected_count`]).
+//! Every sub-problem's generic count is known, so reaching it with distinct nonsingular
+//! solutions is the certificate (the trace test is not run); further start pairs cover
+//! the reducible solution varieties of the rigid/rigid problems.
 
-use super::start_file::{Certificate, StartSolutions, StoredMeasures};
-use super::start_pair::{StartPairError, find_start_pair};
-use crate::C64;
-use crate::homotopy::{
-    HomotopyError, MonodromyOptions, SolveOptions, TrackerOptions, monodromy_solve,
-    solve_parameter_homotopy,
-};
+use super::start_file::StartSolutions;
+use crate::homotopy::{MonodromyOptions, TrackerOptions};
 use crate::metric::Part;
-use crate::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem};
-use crate::system::Evaluator;
+use crate::problem::{LagrangeProblem, ProblemId, SubProblem};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// Further start pairs tried when monodromy from the first stays below the generic count.
-const EXTRA_START_PAIRS: usize = 4;
-
-/// Whether `x` is within 1e-6 (relative) of a point of `set`.
-fn contains(set: &[Vec<C64>], x: &[C64]) -> bool {
-    let scale = 1.0 + x.iter().map(|v| v.norm()).fold(0.0, f64::max);
-    set.iter()
-        .any(|y| y.iter().zip(x).all(|(a, b)| (a - b).norm() <= 1e-6 * scale))
-}
+pub use super::ab_initio_stage::{
+    AbInitioError, AbInitioOptions, AbInitioProblem, MAX_STORED_RESIDUAL, NONSINGULAR_THRESHOLD,
+    Polish, Verification, smallest_relative_singular_value,
+};
 
 /// Default seed of the ab-initio stage (the stored files were made with it).
 pub const DEFAULT_SEED: u64 = 20_260_101;
-
-/// Errors of the ab-initio stage.
-#[derive(Debug, thiserror::Error)]
-pub enum AbInitioError {
-    /// The problem could not be built.
-    #[error(transparent)]
-    Problem(#[from] ProblemError),
-    /// No start pair.
-    #[error("{problem}: {source}")]
-    StartPair {
-        /// Problem name.
-        problem: String,
-        /// Cause.
-        source: StartPairError,
-    },
-    /// The monodromy solver failed.
-    #[error("{problem}: {source}")]
-    Homotopy {
-        /// Problem name.
-        problem: String,
-        /// Cause.
-        source: HomotopyError,
-    },
-    /// A start-solution file is unreadable or does not belong to its problem.
-    #[error("start-solution file of {problem}: {message}")]
-    File {
-        /// Problem name.
-        problem: String,
-        /// What is wrong, naming the field.
-        message: String,
-    },
-}
 
 /// Generic number of finite critical points (docs/theory.md §6 table; the counts of
 /// sub-problems whose counts are not in the text of Kapilavai and Nawratil available to us
@@ -114,19 +71,10 @@ const ALL_COLLINEAR_RIGID: usize = 4;
 /// `rigid/bars:coincident-base`.
 const MEASURED_COINCIDENT: Option<usize> = Some(2);
 
-/// Options of the ab-initio stage.
-#[derive(Clone, Debug)]
-pub struct AbInitioOptions {
-    /// Seed of the start pair and of the monodromy loops.
-    pub seed: u64,
-    /// Monodromy options.
-    pub monodromy: MonodromyOptions,
-}
-
 impl Default for AbInitioOptions {
     fn default() -> Self {
         // Monodromy stops as soon as the generic count is reached; a source point that
-        // stalls for 10 loops is abandoned for the next one (see compute_start_solutions).
+        // stalls is abandoned for the next one (see compute_start_solutions).
         AbInitioOptions {
             seed: DEFAULT_SEED,
             monodromy: MonodromyOptions {
@@ -144,349 +92,53 @@ impl Default for AbInitioOptions {
     }
 }
 
-/// Source points tried (seeds `seed, seed+1, …`) before giving up on a complete set.
-const SOURCE_ATTEMPTS: u64 = 8;
+impl AbInitioProblem for LagrangeProblem {
+    const SOURCE_ATTEMPTS: u64 = 8;
+    const POLISH: Polish = Polish {
+        steps: 8,
+        keep_best: true,
+    };
+    const VERIFY_RETRACES: bool = true;
 
-/// Computes the generic start solutions of `problem` (see the module documentation).
-///
-/// Some random source points are badly scaled for the rigid-part systems (solutions of
-/// norm ~10³, many failed loop paths, monodromy stalling below the generic count);
-/// the next seeds are then tried, and the first certified set is returned (its `seed`
-/// field records the seed that produced it). If none is certified, the largest set is
-/// returned with `certificate.passed = false`.
+    fn name(&self) -> String {
+        self.id().name()
+    }
+    fn metric_name(&self) -> String {
+        self.id().metric.name()
+    }
+    fn subproblem_name(&self) -> String {
+        self.id().subproblem.name().to_string()
+    }
+    fn file_stem(&self) -> String {
+        self.id().file_stem()
+    }
+    fn expected_count(&self) -> Option<usize> {
+        expected_count(self.id())
+    }
+}
+
+/// Computes the generic start solutions of `problem`: up to eight source points (seeds
+/// `seed, seed+1, …`), the first certified set ([`super::ab_initio_stage::compute_start_solutions`]).
 pub fn compute_start_solutions(
     problem: &LagrangeProblem,
     options: &AbInitioOptions,
 ) -> Result<StartSolutions, AbInitioError> {
-    let mut best: Option<StartSolutions> = None;
-    for attempt in 0..SOURCE_ATTEMPTS {
-        let mut at_source = options.clone();
-        at_source.seed = options.seed.wrapping_add(attempt);
-        let file = compute_at_source(problem, &at_source)?;
-        if file.certificate.passed {
-            return Ok(file);
-        }
-        if best
-            .as_ref()
-            .is_none_or(|b| file.solutions.len() > b.solutions.len())
-        {
-            best = Some(file);
-        }
-    }
-    Ok(best.expect("at least one source attempt"))
-}
-
-/// One source point: start pair, monodromy, orbit union, certificate.
-fn compute_at_source(
-    problem: &LagrangeProblem,
-    options: &AbInitioOptions,
-) -> Result<StartSolutions, AbInitioError> {
-    let id = problem.id();
-    let system = problem.evaluator();
-    let pair =
-        find_start_pair(system, options.seed).map_err(|source| AbInitioError::StartPair {
-            problem: id.name(),
-            source,
-        })?;
-    let mut monodromy = options.monodromy.clone();
-    if monodromy.target_solution_count.is_none() {
-        monodromy.target_solution_count = expected_count(id);
-    }
-    // Where the generic count is known exactly (docs/theory.md §6), reaching it with
-    // distinct nonsingular solutions is the certificate; the trace test (whose witness
-    // set on the incidence curve is far larger than the fiber) is run only where it is not.
-    if expected_count(id).is_some() {
-        monodromy.trace_test = false;
-    }
-    let result =
-        monodromy_solve(system, &pair.x, &pair.p, &monodromy, options.seed).map_err(|source| {
-            AbInitioError::Homotopy {
-                problem: id.name(),
-                source,
-            }
-        })?;
-    let mut solutions = result.solutions;
-    let mut loops = result.loops + result.witness_loops;
-    let mut failed_paths = result.failed_paths;
-    // The solution variety may be reducible: monodromy only permutes the fiber of the
-    // component through its start pair. Further random start pairs, carried to the
-    // source parameters by a parameter homotopy, seed the orbits of other components.
-    let expected = expected_count(id);
-    let mut extra_pair = 1;
-    while expected.is_some_and(|e| solutions.len() < e) && extra_pair <= EXTRA_START_PAIRS {
-        let seed = options.seed.wrapping_add(1_000 * extra_pair as u64);
-        extra_pair += 1;
-        let Ok(other) = find_start_pair(system, seed) else {
-            continue;
-        };
-        let carry = SolveOptions {
-            seed,
-            ..SolveOptions::default()
-        };
-        let Ok(carried) =
-            solve_parameter_homotopy(system, &[other.x], &other.p, &result.parameters, &carry)
-        else {
-            continue;
-        };
-        let Some(x) = carried.nonsingular_solutions().into_iter().next() else {
-            continue;
-        };
-        if contains(&solutions, &x) {
-            continue;
-        }
-        let mut orbit_options = monodromy.clone();
-        orbit_options.target_solution_count = expected.map(|e| e - solutions.len());
-        let Ok(orbit) = monodromy_solve(system, &x, &result.parameters, &orbit_options, seed)
-        else {
-            continue;
-        };
-        loops += orbit.loops;
-        failed_paths += orbit.failed_paths;
-        for y in orbit.solutions {
-            if !contains(&solutions, &y) {
-                solutions.push(y);
-            }
-        }
-    }
-    let mut trace_residual = result.trace_residual;
-    let mut certified = result.certified;
-    // A single failed path on the trace slices voids the test: retry on fresh random
-    // slices with conservative tracking (paths added there join the solution set).
-    let mut careful = monodromy.clone();
-    careful.tracker = crate::homotopy::TrackerOptions::conservative();
-    let mut rng = crate::random::stream(options.seed, 1);
-    let count_matches = |solutions: &[Vec<C64>]| expected == Some(solutions.len());
-    for _attempt in 0..3 {
-        if certified || expected.is_some() {
-            break;
-        }
-        if let Some(trace) =
-            crate::homotopy::trace_test(system, &result.parameters, &solutions, &careful, &mut rng)
-        {
-            loops += trace.witness_loops;
-            solutions.extend(trace.added_solutions);
-            trace_residual = Some(trace.residual);
-            certified = trace.residual < careful.trace_tolerance;
-        }
-    }
-    let max_residual = refine_all(system, &result.parameters, &mut solutions);
-    let found = solutions.len();
-    let min_relative_singular_value =
-        smallest_relative_singular_value(system, &result.parameters, &solutions);
-    let kind = if certified {
-        "trace-test".to_string()
-    } else if count_matches(&solutions) && min_relative_singular_value > NONSINGULAR_THRESHOLD {
-        // The generic fiber has exactly `expected` points (docs/theory.md §6, exact
-        // Gröbner-basis counts), so that many distinct nonsingular solutions at a generic
-        // point are all.
-        certified = true;
-        "verified-count (generic count of docs/theory.md §6 reached with distinct nonsingular solutions)"
-            .to_string()
-    } else {
-        "none".to_string()
-    };
-    solutions.sort_by(|a, b| lexicographic(a, b));
-    let parameters = problem
-        .parameter_names()
-        .iter()
-        .cloned()
-        .zip(result.parameters.iter().copied())
-        .collect();
-    Ok(StartSolutions {
-        problem: id.name(),
-        metric: id.metric.name(),
-        subproblem: id.subproblem.name().to_string(),
-        variables: problem.variable_names().to_vec(),
-        parameters,
-        solutions,
-        max_residual,
-        method: "monodromy (minimum-norm Gauss-Newton start pair) + trace test".to_string(),
-        seed: options.seed,
-        certificate: Certificate {
-            kind,
-            trace_residual,
-            tolerance: monodromy.trace_tolerance,
-            // A set whose residuals cannot be refined below the storage bound comes from a
-            // badly scaled source point: not accepted, the next source point is tried.
-            passed: certified && max_residual < MAX_STORED_RESIDUAL,
-            loops,
-            failed_paths,
-            found_count: found,
-            expected_count: expected,
-        },
-    })
-}
-
-fn lexicographic(a: &[C64], b: &[C64]) -> std::cmp::Ordering {
-    for (x, y) in a.iter().zip(b) {
-        let order = x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im));
-        if order != std::cmp::Ordering::Equal {
-            return order;
-        }
-    }
-    std::cmp::Ordering::Equal
-}
-
-/// Newton-refines every solution in place (up to eight steps, keeping the iterate of
-/// smallest residual: at rounding level the updates only add noise) and returns the
-/// largest residual `‖F(x; p)‖_∞` afterwards.
-fn refine_all<E: Evaluator + ?Sized>(system: &E, p: &[C64], solutions: &mut [Vec<C64>]) -> f64 {
-    let n = system.num_variables();
-    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-    let mut f = vec![C64::new(0.0, 0.0); n];
-    let mut jac = vec![C64::new(0.0, 0.0); n * n];
-    let mut worst: f64 = 0.0;
-    let max_norm = |v: &[C64]| v.iter().map(|z| z.norm()).fold(0.0, f64::max);
-    for x in solutions.iter_mut() {
-        let mut best = x.clone();
-        let mut best_residual = f64::INFINITY;
-        for _ in 0..8 {
-            system.evaluate_with_jacobian(x, p, &mut work, &mut f, &mut jac);
-            let residual = max_norm(&f);
-            if residual < best_residual {
-                best_residual = residual;
-                best.copy_from_slice(x);
-            }
-            let matrix = nalgebra::DMatrix::from_row_slice(n, n, &jac);
-            let Some(step) = matrix.lu().solve(&nalgebra::DVector::from_column_slice(&f)) else {
-                break;
-            };
-            for (xi, si) in x.iter_mut().zip(step.iter()) {
-                *xi -= si;
-            }
-        }
-        system.evaluate(x, p, &mut work, &mut f);
-        if max_norm(&f) > best_residual {
-            x.copy_from_slice(&best);
-        }
-        worst = worst.max(max_norm(&f).min(best_residual));
-    }
-    worst
-}
-
-/// Largest residual `‖F(x; p)‖_∞` a stored start solution may have (checked by [`verify`]).
-pub const MAX_STORED_RESIDUAL: f64 = 1e-10;
-
-/// Solutions whose `σ_min/σ_max(∂F/∂x)` is below this are treated as singular.
-pub const NONSINGULAR_THRESHOLD: f64 = 1e-10;
-
-/// Smallest `σ_min/σ_max` of `∂F/∂x` over the solutions (1 for an empty set).
-pub fn smallest_relative_singular_value<E: Evaluator + ?Sized>(
-    system: &E,
-    p: &[C64],
-    solutions: &[Vec<C64>],
-) -> f64 {
-    let n = system.num_variables();
-    let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-    let mut f = vec![C64::new(0.0, 0.0); n];
-    let mut jac = vec![C64::new(0.0, 0.0); n * n];
-    let mut smallest: f64 = 1.0;
-    for x in solutions {
-        system.evaluate_with_jacobian(x, p, &mut work, &mut f, &mut jac);
-        let singular = nalgebra::DMatrix::from_row_slice(n, n, &jac).singular_values();
-        let ratio = if singular.max() > 0.0 {
-            singular.min() / singular.max()
-        } else {
-            0.0
-        };
-        smallest = smallest.min(ratio);
-    }
-    smallest
-}
-
-/// Outcome of re-checking one start-solution file ([`verify`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Verification {
-    /// Problem name.
-    pub problem: String,
-    /// Number of stored solutions.
-    pub count: usize,
-    /// The count docs/theory.md §6 expects, if known.
-    pub expected: Option<usize>,
-    /// Largest residual recomputed at the stored parameters.
-    pub max_residual: f64,
-    /// Smallest distance between two stored solutions (relative to their size).
-    pub min_separation: f64,
-    /// Trace test re-run from the stored data (only where no generic count is known).
-    pub trace_residual: Option<f64>,
-    /// All checks pass: completeness (count or trace test), nonsingular, residual
-    /// < 1e-10, separation > 1e-6, stored certificate passed.
-    pub passed: bool,
+    super::ab_initio_stage::compute_start_solutions(problem, options)
 }
 
 /// Re-checks a start-solution file: its variables and parameters match the problem,
-/// residuals, distinctness, count (docs/theory.md §6) and the trace test (re-run, seeded).
+/// residuals, distinctness, nonsingularity and the count of docs/theory.md §6
+/// ([`super::ab_initio_stage::verify`]).
 pub fn verify(
     problem: &LagrangeProblem,
     file: &StartSolutions,
 ) -> Result<Verification, AbInitioError> {
-    let id = problem.id();
-    let file_error = |message: String| AbInitioError::File {
-        problem: id.name(),
-        message,
-    };
-    let system = problem.evaluator();
-    let StoredMeasures {
-        parameters: p,
-        max_residual,
-        min_separation,
-    } = file
-        .measure(
-            &id.name(),
-            problem.variable_names(),
-            problem.parameter_names(),
-            system,
-        )
-        .map_err(file_error)?;
-    let expected = expected_count(id);
-    let nonsingular =
-        smallest_relative_singular_value(system, &p, &file.solutions) > NONSINGULAR_THRESHOLD;
-    // Completeness: the known generic count (docs/theory.md §6) or, where none is known,
-    // the trace test re-run on fresh random slices.
-    let (complete, trace_residual) = match expected {
-        Some(count) => (count == file.solutions.len(), None),
-        None => {
-            let mut rng = crate::random::seeded(file.seed ^ 0x5eed);
-            let options = MonodromyOptions {
-                max_stagnant_loops: 2,
-                ..MonodromyOptions::default()
-            };
-            let trace =
-                crate::homotopy::trace_test(system, &p, &file.solutions, &options, &mut rng);
-            let passed = trace.as_ref().is_some_and(|t| {
-                t.residual < options.trace_tolerance && t.added_solutions.is_empty()
-            });
-            (passed, trace.map(|t| t.residual))
-        }
-    };
-    let passed = complete
-        && nonsingular
-        && max_residual < MAX_STORED_RESIDUAL
-        && min_separation > 1e-6
-        && file.certificate.passed;
-    Ok(Verification {
-        problem: id.name(),
-        count: file.solutions.len(),
-        expected,
-        max_residual,
-        min_separation,
-        trace_residual,
-        passed,
-    })
+    super::ab_initio_stage::verify(problem, file)
 }
 
 /// The embedded start-solution file of `id`, if the build had one.
 pub fn embedded_start_solutions(id: ProblemId) -> Option<Result<StartSolutions, AbInitioError>> {
-    let stem = id.file_stem();
-    super::embedded::EMBEDDED_START_FILES
-        .iter()
-        .find(|(s, _)| *s == stem)
-        .map(|(_, text)| {
-            serde_json::from_str(text).map_err(|e| AbInitioError::File {
-                problem: id.name(),
-                message: e.to_string(),
-            })
-        })
+    super::ab_initio_stage::embedded_file(&id.file_stem(), &id.name())
 }
 
 type Cache = Mutex<HashMap<String, Arc<StartSolutions>>>;

@@ -2,6 +2,8 @@
 //! homotopy, post-processing.
 
 pub mod ab_initio;
+pub mod ab_initio_stage;
+pub mod bisection;
 pub mod curve;
 pub mod postprocess;
 pub mod rrr_ab_initio;

@@ -30,6 +30,7 @@
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (Kapilavai and Nawratil, Remark 11).
 
+use super::bisection::bisect_sign_change;
 use super::curve::{Retried, TrackingPlan, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::rrr_seed::route;
@@ -317,7 +318,7 @@ pub fn configurations_at(
 }
 
 /// τ where the parallel determinant changes sign between consecutive samples, refined by
-/// bisection on the motion (pose lists: the midpoint).
+/// bisection on the motion ([`bisect_sign_change`]; pose lists: the midpoint).
 pub fn parallel_singular_parameters(trajectory: &RrrTrajectory, taus: &[f64]) -> Vec<f64> {
     let value = |tau: f64| {
         trajectory
@@ -341,20 +342,7 @@ pub fn parallel_singular_parameters(trajectory: &RrrTrajectory, taus: &[f64]) ->
             roots.push(0.5 * (pair[0] + pair[1]));
             continue;
         }
-        let (mut lo, mut hi) = (pair[0], pair[1]);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if (hi - lo).abs() <= 1e-14 * (1.0 + mid.abs()) {
-                break;
-            }
-            let Some(s) = value(mid) else { break };
-            if (s < 0.0) == (sa < 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        roots.push(0.5 * (lo + hi));
+        roots.push(bisect_sign_change((pair[0], pair[1]), sa, value));
     }
     roots
 }

@@ -29,7 +29,7 @@ use super::rrr_ab_initio::RrrAbInitioError;
 use super::rrr_curve::{RrrCurveError, RrrCurveOptions, RrrPathFailure};
 use super::start_file::StartSolutions;
 use crate::C64;
-use crate::homotopy::PolylinePath;
+use crate::homotopy::{PolylinePath, same_point};
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory};
 use crate::problem::rrr::{RrrProblem, RrrSubProblem};
 use crate::random;
@@ -91,15 +91,22 @@ impl RrrFrame {
 
 /// The frame of a trajectory: that of its configuration at the start of the motion.
 pub fn trajectory_frame(trajectory: &RrrTrajectory) -> Result<RrrFrame, RrrCurveError> {
+    Ok(RrrFrame::of(&first_configuration(trajectory)?))
+}
+
+/// The configuration at the start of the motion (an error of pose 0 if it is unreachable).
+fn first_configuration(
+    trajectory: &RrrTrajectory,
+) -> Result<[f64; CONFIGURATION_LEN], RrrCurveError> {
     let lo = trajectory.motion().tau_range()[0];
-    let first = trajectory
+    trajectory
         .configuration(lo)
+        .map(|k| k.to_array())
         .map_err(|e| RrrCurveError::Pose {
             index: 0,
             tau: lo,
             message: e.to_string(),
-        })?;
-    Ok(RrrFrame::of(&first.to_array()))
+        })
 }
 
 /// One sub-problem prepared at the seed.
@@ -186,14 +193,8 @@ pub fn seed_configuration(
             (Some(tau_star), frame.apply_complex(&k), 0.05)
         }
         _ => {
-            let first = trajectory
-                .configuration(lo)
-                .map_err(|e| RrrCurveError::Pose {
-                    index: 0,
-                    tau: lo,
-                    message: e.to_string(),
-                })?;
-            let k = frame.apply(&first.to_array()).map(|v| C64::new(v, 0.0));
+            let first = first_configuration(trajectory)?;
+            let k = frame.apply(&first).map(|v| C64::new(v, 0.0));
             (None, k, 0.3)
         }
     };
@@ -206,19 +207,12 @@ pub fn seed_configuration(
 /// Relative distance under which two endpoints are the same point.
 const SAME_ENDPOINT: f64 = 1e-8;
 
-fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
-    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-    a.iter()
-        .zip(b)
-        .all(|(u, v)| (u - v).norm() <= SAME_ENDPOINT * scale)
-}
-
 /// The distinct points of `endpoints`, at most `limit` of them (a parameter homotopy
 /// starts from simple points, and no parameter has more than the generic count).
 pub fn distinct_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
     let mut out: Vec<Vec<C64>> = Vec::new();
     for x in endpoints {
-        if out.len() < limit && !out.iter().any(|y| same_endpoint(y, &x)) {
+        if out.len() < limit && !out.iter().any(|y| same_point(y, &x, SAME_ENDPOINT)) {
             out.push(x);
         }
     }

@@ -6,7 +6,7 @@ use crate::algebra::{Cartesian, Isotropic, Plane, Point};
 use crate::mechanism::rpr::{self, Design};
 use crate::metric::Part;
 use crate::system::interval::ComplexInterval;
-use crate::system::{CompiledSystem, Evaluator, Expr, System};
+use crate::system::{CompiledSystem, Evaluator, Expr, ParametricSystem, System};
 
 /// Errors of the problem layer.
 #[derive(Debug, thiserror::Error)]
@@ -88,18 +88,26 @@ pub struct LagrangeProblem {
     coordinates: Coordinates,
     /// Index of the first coordinate of every point among the variables.
     point_variables: Vec<usize>,
-    system: System,
-    compiled: CompiledSystem,
+    /// `∇Λ = 0`, symbolic and compiled.
+    equations: ParametricSystem,
     /// `K′(x; p)`: twelve coordinates as functions of the unknowns and parameters.
     configuration_map: CompiledSystem,
+}
+
+/// The system `∇Λ = 0` with its names ([`ParametricSystem`]'s accessors).
+impl std::ops::Deref for LagrangeProblem {
+    type Target = ParametricSystem;
+    fn deref(&self) -> &ParametricSystem {
+        &self.equations
+    }
 }
 
 impl std::fmt::Debug for LagrangeProblem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("LagrangeProblem")
             .field("id", &self.id.name())
-            .field("variables", &self.system.variables())
-            .field("parameters", &self.system.parameters())
+            .field("variables", &self.variable_names())
+            .field("parameters", &self.parameter_names())
             .finish()
     }
 }
@@ -450,8 +458,7 @@ impl LagrangeProblem {
             id,
             coordinates,
             point_variables,
-            compiled: system.compile(),
-            system,
+            equations: ParametricSystem::new(system),
             configuration_map: configuration_map.compile(),
         })
     }
@@ -518,26 +525,6 @@ impl LagrangeProblem {
         out
     }
 
-    /// The symbolic system `∇Λ = 0`.
-    pub fn system(&self) -> &System {
-        &self.system
-    }
-
-    /// The compiled system, for the tracker.
-    pub fn evaluator(&self) -> &CompiledSystem {
-        &self.compiled
-    }
-
-    /// Names of the unknowns, in order.
-    pub fn variable_names(&self) -> &[String] {
-        self.system.variables()
-    }
-
-    /// Names of the parameters, in order.
-    pub fn parameter_names(&self) -> &[String] {
-        self.system.parameters()
-    }
-
     /// Parameter vector for the given configuration `k` (twelve coordinates, possibly
     /// complex) of `design`: `k` followed by the rigid parts' shape constants
     /// `(u, v, r²)` of docs/theory.md §4, computed from the design's base and platform
@@ -552,7 +539,7 @@ impl LagrangeProblem {
     /// curve pipeline works in a normalised frame this way.
     pub fn parameters_in_units(&self, design: &Design, k: &[C64; 12], unit: f64) -> Vec<C64> {
         let mut out: Vec<C64> = k.to_vec();
-        for name in &self.system.parameters()[12..] {
+        for name in &self.parameter_names()[12..] {
             let shape = if name.ends_with("_base") {
                 design.base_shape()
             } else {
@@ -597,7 +584,7 @@ impl LagrangeProblem {
 
     /// Scratch length sufficient for both the system and the configuration map.
     pub fn workspace_len(&self) -> usize {
-        self.compiled
+        self.evaluator()
             .workspace_len()
             .max(self.configuration_map.workspace_len())
     }

@@ -23,7 +23,7 @@ use crate::C64;
 use crate::mechanism::rrr::{
     CONFIGURATION_LEN, COORDINATE_NAMES, distance_sq, leg_polynomial, parallel_polynomial,
 };
-use crate::system::{CompiledSystem, Evaluator, Expr, System};
+use crate::system::{Evaluator, Expr, ParametricSystem, System};
 use std::fmt;
 use std::str::FromStr;
 
@@ -119,15 +119,24 @@ pub const PARAMETER_NAMES: [&str; CONFIGURATION_LEN] = COORDINATE_NAMES;
 #[derive(Clone)]
 pub struct RrrProblem {
     kind: RrrSubProblem,
-    system: System,
-    compiled: CompiledSystem,
+    /// `∇Λ = 0`, symbolic and compiled.
+    equations: ParametricSystem,
+}
+
+/// The system `∇Λ = 0` with its names ([`ParametricSystem`]'s accessors; the parameters
+/// are the 18 coordinates of K).
+impl std::ops::Deref for RrrProblem {
+    type Target = ParametricSystem;
+    fn deref(&self) -> &ParametricSystem {
+        &self.equations
+    }
 }
 
 impl fmt::Debug for RrrProblem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("RrrProblem")
             .field("kind", &self.kind.name())
-            .field("variables", &self.system.variables())
+            .field("variables", &self.variable_names())
             .finish()
     }
 }
@@ -159,34 +168,13 @@ impl RrrProblem {
         })?;
         Ok(RrrProblem {
             kind,
-            compiled: system.compile(),
-            system,
+            equations: ParametricSystem::new(system),
         })
     }
 
     /// Which sub-problem this is.
     pub fn kind(&self) -> RrrSubProblem {
         self.kind
-    }
-
-    /// The symbolic system.
-    pub fn system(&self) -> &System {
-        &self.system
-    }
-
-    /// The compiled system, for the tracker.
-    pub fn evaluator(&self) -> &CompiledSystem {
-        &self.compiled
-    }
-
-    /// Names of the unknowns, in order.
-    pub fn variable_names(&self) -> &[String] {
-        self.system.variables()
-    }
-
-    /// Names of the parameters, in order (the 18 coordinates of K).
-    pub fn parameter_names(&self) -> &[String] {
-        self.system.parameters()
     }
 
     /// `K′` of a solution `x`: its first 18 entries.
@@ -196,6 +184,6 @@ impl RrrProblem {
 
     /// Scratch length of the compiled system.
     pub fn workspace_len(&self) -> usize {
-        self.compiled.workspace_len()
+        self.evaluator().workspace_len()
     }
 }

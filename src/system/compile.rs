@@ -862,6 +862,16 @@ impl CompiledSystem {
         work[..n].copy_from_slice(x);
         work[n..n + m].copy_from_slice(p);
     }
+
+    /// [`CompiledSystem::load`] and the parameter direction `dp` after `p` (the input
+    /// registers of the parameter-derivative tape).
+    fn load_with_direction(&self, x: &[C64], p: &[C64], dp: &[C64], work: &mut [C64]) {
+        self.load(x, p, work);
+        let n = self.parts.variables.len();
+        let m = self.parts.parameters.len();
+        debug_assert_eq!(dp.len(), m);
+        work[n + m..n + 2 * m].copy_from_slice(dp);
+    }
 }
 
 /// Runs `tape` in interval arithmetic on the variables `x` and parameters `p` and
@@ -955,10 +965,7 @@ impl Evaluator for CompiledSystem {
         work: &mut [C64],
         out: &mut [C64],
     ) {
-        self.load(x, p, work);
-        let n = self.parts.variables.len();
-        let m = self.parts.parameters.len();
-        work[n + m..n + 2 * m].copy_from_slice(dp);
+        self.load_with_direction(x, p, dp, work);
         self.parts.parameter_derivative.run_extended(work, out);
     }
 
@@ -988,11 +995,7 @@ impl Evaluator for CompiledSystem {
         work: &mut [C64],
         out: &mut [C64],
     ) {
-        self.load(x, p, work);
-        let n = self.parts.variables.len();
-        let m = self.parts.parameters.len();
-        debug_assert_eq!(dp.len(), m);
-        work[n + m..n + 2 * m].copy_from_slice(dp);
+        self.load_with_direction(x, p, dp, work);
         let tape = &self.parts.parameter_derivative;
         tape.run(work);
         tape.write_outputs(work, 0, out);

@@ -40,6 +40,7 @@ pub mod compile;
 pub mod double_double;
 pub mod expr;
 pub mod interval;
+pub mod parametric;
 pub mod parse;
 pub mod phc;
 pub mod sparse;
@@ -47,6 +48,7 @@ pub mod sparse;
 pub use builder::{System, SystemError};
 pub use compile::CompiledSystem;
 pub use expr::Expr;
+pub use parametric::ParametricSystem;
 pub use parse::{ParseError, ParseErrorKind};
 pub use sparse::SparsePolynomial;
 

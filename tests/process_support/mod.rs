@@ -3,6 +3,15 @@
 use std::process::Command;
 use std::time::Duration;
 
+/// Whether peak memory can be read (Linux `/proc`); prints a note when it cannot.
+pub fn memory_is_measurable() -> bool {
+    let measurable = std::path::Path::new("/proc/self/status").exists();
+    if !measurable {
+        eprintln!("no /proc: skipped");
+    }
+    measurable
+}
+
 /// Peak resident memory (kB) of a child that ran `command` to its end: `VmHWM` read
 /// from /proc while it runs (the last value seen before it exits). Panics if the child
 /// fails.
