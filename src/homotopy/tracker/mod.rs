@@ -330,6 +330,10 @@ const DIRECT_FINISH_FLOOR: f64 = 0.1;
 /// homotopy at the same rounded `t`).
 const MIN_ABSOLUTE_STEP: f64 = 1e-15;
 
+/// Largest rise (relative) of a grown coordinate's valuation between two radii that
+/// still counts as stable; any fall does (see [`MIN_COORDINATE_GROWTH`]).
+const GROWN_VALUATION_DRIFT: f64 = 0.05;
+
 /// Below this radius `s = 1 − t` a stable negative valuation classifies a path as
 /// diverging without the growth of [`MIN_COORDINATE_GROWTH`]: `t = 1 − s` is resolved
 /// to `ε/s` relative, and the endgame cannot go much deeper.
@@ -553,6 +557,8 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     previous_loop_valuations: Vec<f64>,
     /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
     endgame_origin: Vec<f64>,
+    /// Change of each valuation between the last two radii of the endgame.
+    valuation_changes: Vec<f64>,
     /// The endgame's last valuation check found stable negative valuations.
     divergence_evidence: bool,
     step: f64,
@@ -603,6 +609,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             loop_valuations: vec![0.0; n],
             previous_loop_valuations: vec![0.0; n],
             endgame_origin: vec![1.0; n],
+            valuation_changes: vec![f64::NAN; n],
             divergence_evidence: false,
             step: 0.0,
             steps: 0,
