@@ -13,7 +13,7 @@ use singdist::homotopy::{
 use singdist::system::{CompiledSystem, System, bertini, phc};
 
 /// (file stem, verified number of distinct nonsingular roots).
-const SYSTEMS: [(&str, usize); 8] = [
+const SYSTEMS: [(&str, usize); 13] = [
     ("cyclic5", 70),
     ("katsura6", 64),
     ("caprasse", 24),
@@ -22,6 +22,15 @@ const SYSTEMS: [(&str, usize); 8] = [
     ("lorentz", 11),
     ("sendra", 46),
     ("solotarev", 2),
+    // Badly scaled systems whose large finite roots are approached like s^(-1/2) for
+    // most of the endgame (they were labelled at infinity), and paths whose step size
+    // reached the resolution of t (they failed).
+    ("chemequ", 16),
+    ("chemequs", 16),
+    ("game5two", 44),
+    ("kotsireas", 84),
+    // Paths to infinity whose norm passes 10⁸ before the endgame zone (they failed).
+    ("ku10", 2),
 ];
 
 fn load(stem: &str) -> System {

@@ -14,11 +14,20 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let mut have_estimate = false;
         let mut previous_condition = f64::INFINITY;
         let mut stable_divergence = 0;
+        // Successive radii at which a grown coordinate had a negative valuation.
+        let mut grown_divergence = 0;
         // Cauchy-loop valuations: by Jensen's formula the mean of log|x_i| over the
         // loop is exactly `log|a_i| + w_i log s` once the radius is small, so two
         // consecutive differences agreeing pin the valuation `w_i` down.
         let mut loops_done = 0;
         let mut previous_loop_radius = 0.0f64;
+        self.divergence_evidence = false;
+        self.valuation_changes
+            .iter_mut()
+            .for_each(|c| *c = f64::NAN);
+        for (o, x) in self.endgame_origin.iter_mut().zip(&self.x) {
+            *o = x.norm().max(1.0);
+        }
         loop {
             let t = C64::new(1.0 - s, 0.0);
             let scale = max_norm(&self.x);
@@ -45,16 +54,42 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 }
                 let mut stable = have_valuations;
                 let mut smallest = f64::INFINITY;
+                let mut smallest_grown = f64::INFINITY;
                 for i in 0..n {
                     if self.x[i].norm() >= 1.0 {
-                        if (self.valuations[i] - self.previous_valuations[i]).abs() > 0.01 {
+                        // A grown coordinate's valuation may still drift (the correction
+                        // terms of x_i ~ a s^v (1 + b s^{1/c}) decay slowly for large
+                        // winding numbers c): falling further is divergence, and so is a
+                        // rise that slows down geometrically (ratio q ≤ 0.6) towards a
+                        // negative limit v + Δ·q/(1 − q) (Aitken's extrapolation); a
+                        // rise towards 0 (a large finite limit being approached)
+                        // accelerates and is not stable.
+                        let change = self.valuations[i] - self.previous_valuations[i];
+                        let ratio = change / self.valuation_changes[i];
+                        let converging = have_valuations
+                            && (0.0..=0.6).contains(&ratio)
+                            && self.valuations[i] + change * ratio / (1.0 - ratio)
+                                < -self.options.valuation_threshold;
+                        if change.abs() > 0.01
+                            && !(self.has_grown(i)
+                                && (change <= GROWN_VALUATION_DRIFT * self.valuations[i].abs()
+                                    || converging))
+                        {
                             stable = false;
                         }
+                        self.valuation_changes[i] = change;
                         smallest = smallest.min(self.valuations[i]);
+                        if self.has_grown(i) {
+                            smallest_grown = smallest_grown.min(self.valuations[i]);
+                        }
                     }
                 }
                 diverging = smallest < -self.options.valuation_threshold && scale >= 10.0;
-                if stable && smallest < -self.options.valuation_threshold {
+                // Below DEEP_RADIUS the resolution of t ends the endgame soon anyway: a
+                // stable negative valuation decides without growth.
+                let deep = s <= DEEP_RADIUS;
+                let threshold = -self.options.valuation_threshold;
+                if stable && (smallest_grown < threshold || deep && smallest < threshold) {
                     stable_divergence += 1;
                     if stable_divergence >= 2 {
                         return PathStatus::AtInfinity;
@@ -62,6 +97,12 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 } else {
                     stable_divergence = 0;
                 }
+                grown_divergence = if smallest_grown < threshold {
+                    grown_divergence + 1
+                } else {
+                    0
+                };
+                self.divergence_evidence = stable && smallest < threshold || grown_divergence >= 2;
                 self.previous_valuations.copy_from_slice(&self.valuations);
                 have_valuations = true;
             }
@@ -122,10 +163,10 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                                         .abs()
                                         < 1e-3
                                 });
-                                let smallest = self
-                                    .loop_valuations
-                                    .iter()
-                                    .fold(f64::INFINITY, |a, &b| a.min(b));
+                                let deep = s <= DEEP_RADIUS;
+                                let smallest = (0..n)
+                                    .filter(|&i| deep || self.has_grown(i))
+                                    .fold(f64::INFINITY, |a, i| a.min(self.loop_valuations[i]));
                                 if stable && smallest < -self.options.valuation_threshold {
                                     return PathStatus::AtInfinity;
                                 }
@@ -172,14 +213,27 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         }
     }
 
+    /// Whether coordinate `i` has grown by [`MIN_COORDINATE_GROWTH`] since the start of
+    /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
+    /// valuation classifies a path as diverging.
+    fn has_grown(&self, i: usize) -> bool {
+        self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.endgame_origin[i]
+    }
+
     /// End of the endgame without converged estimates: the last Cauchy estimate if
-    /// there is one (singular, lower accuracy), else failure.
+    /// there is one (singular, lower accuracy); else at infinity if the last
+    /// valuations were negative and stable (agreeing at two successive radii: a slowly
+    /// diverging path whose step size reached the resolution of `t` before it grew by
+    /// [`MIN_COORDINATE_GROWTH`]) or a coordinate grown by that factor had negative
+    /// valuations at the last two radii; else failure.
     pub(super) fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
         if have_estimate && self.winding > 1 && {
             self.estimate.copy_from_slice(&self.previous_estimate);
             self.estimate_residual_small()
         } {
             self.classify_estimate(self.winding)
+        } else if self.divergence_evidence {
+            PathStatus::AtInfinity
         } else {
             PathStatus::Failed(reason)
         }

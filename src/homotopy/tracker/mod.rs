@@ -40,8 +40,11 @@
 //!
 //! **Endgame** (`t → 1`, `s = 1 − t`): at the radii `s_k = s₀ r^k` the tracker
 //! - estimates the valuations `v_i = Re(s ẋ_i(s) / x_i)` (`x_i ~ s^{v_i}`): a stable
-//!   negative valuation or a norm beyond `at_infinity_norm` means the path diverges
-//!   (solution at infinity, Huber & Verschelde's power-series test); while large
+//!   negative valuation of a coordinate that has grown by a factor 100 since the start
+//!   of the endgame (below `s = 10⁻⁸` without growth), or a norm beyond
+//!   `at_infinity_norm`, means the path diverges (solution at infinity, Huber &
+//!   Verschelde's power-series test); an endgame stopped by the step size or budget
+//!   with stable negative valuations is at infinity too; while large
 //!   coordinates (‖x‖ ≥ 10) still have negative valuations no Cauchy loop is run (it
 //!   could not close on a finite estimate, and is costly that far out);
 //! - if the Jacobian is well conditioned, tracks straight to `t = 1` and refines the
@@ -322,6 +325,29 @@ pub const CORRECT_AT_CONTRACTION: f64 = 1.0;
 /// coordinates of modulus ≥ 1.
 const DIRECT_FINISH_FLOOR: f64 = 0.1;
 
+/// Smallest step in `t` (absolute): `t` near 1 is resolved to `ε ≈ 2.2·10⁻¹⁶`, and
+/// steps below a few of its units no longer move the path (they only re-evaluate the
+/// homotopy at the same rounded `t`).
+const MIN_ABSOLUTE_STEP: f64 = 1e-15;
+
+/// Largest rise (relative) of a grown coordinate's valuation between two radii that
+/// still counts as stable; any fall does (see [`MIN_COORDINATE_GROWTH`]).
+const GROWN_VALUATION_DRIFT: f64 = 0.05;
+
+/// Below this radius `s = 1 − t` a stable negative valuation classifies a path as
+/// diverging without the growth of [`MIN_COORDINATE_GROWTH`]: `t = 1 − s` is resolved
+/// to `ε/s` relative, and the endgame cannot go much deeper.
+const DEEP_RADIUS: f64 = 1e-8;
+
+/// A stable negative valuation classifies a path as diverging only once the coordinate
+/// has grown by this factor since the start of the endgame (the criterion of
+/// Breiding & Timme's endgame, "HomotopyContinuation.jl: a package for homotopy
+/// continuation in Julia", 2018). A path to a large finite root `x* ~ a/ε` looks like
+/// `a/(s + ε)` — valuation −1, stable — until `s` reaches `ε`; badly scaled systems
+/// (chemical equilibria with roots of modulus 10⁴ reached from 10² at `s = 0.1`) have
+/// such roots.
+const MIN_COORDINATE_GROWTH: f64 = 100.0;
+
 fn max_norm(x: &[C64]) -> f64 {
     x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
 }
@@ -529,6 +555,12 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     previous_log_mean: Vec<f64>,
     loop_valuations: Vec<f64>,
     previous_loop_valuations: Vec<f64>,
+    /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
+    endgame_origin: Vec<f64>,
+    /// Change of each valuation between the last two radii of the endgame.
+    valuation_changes: Vec<f64>,
+    /// The endgame's last valuation check found stable negative valuations.
+    divergence_evidence: bool,
     step: f64,
     steps: usize,
     /// Steps taken in extended precision.
@@ -576,6 +608,9 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             previous_log_mean: vec![0.0; n],
             loop_valuations: vec![0.0; n],
             previous_loop_valuations: vec![0.0; n],
+            endgame_origin: vec![1.0; n],
+            valuation_changes: vec![f64::NAN; n],
+            divergence_evidence: false,
             step: 0.0,
             steps: 0,
             extended_steps: 0,
@@ -892,6 +927,10 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let mut u = 0.0f64;
         self.factorization_current = false;
+        let floor = self
+            .options
+            .min_step_fraction
+            .max(MIN_ABSOLUTE_STEP / length);
         while u < 1.0 {
             if self.steps >= self.options.max_steps
                 || self.extended_steps >= self.options.max_extended_steps
@@ -933,6 +972,17 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     };
                     self.step = (h * length * factor).min(self.options.max_step);
                     self.consecutive_rejections = 0;
+                    if u < 1.0 && self.step < floor * length {
+                        // Accepted steps whose predictor error stays far above the
+                        // tolerance shrink the step as surely as rejections do (noise of
+                        // the velocities at a large, ill-conditioned point); below the
+                        // floor `u + h` would no longer advance.
+                        if self.extended {
+                            return Err(SegmentError::Failure(FailureReason::StepSizeTooSmall));
+                        }
+                        self.switch_to_extended();
+                        self.step *= 4.0;
+                    }
                     if self.extended {
                         self.extended_streak += 1;
                         if self.extended_streak >= self.options.extended_accepted_steps
@@ -963,7 +1013,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         // the corrector tolerance, and rejections mean a step too long.
                         self.switch_to_extended();
                     }
-                    if h < self.options.min_step_fraction {
+                    if h < floor {
                         if !self.extended {
                             self.switch_to_extended();
                             h *= 4.0;
