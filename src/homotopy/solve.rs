@@ -10,7 +10,8 @@
 //! that still share a nonsingular root after that are reported as failed
 //! ([`FailureReason::PathJumped`]), so no root is counted twice. Paths whose norm
 //! passed `at_infinity_norm` before the endgame zone are at infinity if their last
-//! point grows like a power of `1 − t` (see `classify_early_divergence`), else they stay
+//! point grows like a power of `1 − t` (see `classify_early_divergence`; with
+//! [`TrackerOptions::growth_before_divergence`]), else they stay
 //! failed. Finite endpoints are then clustered to give multiplicities.
 
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
@@ -82,7 +83,12 @@ pub struct SolveOptions {
 impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
-            tracker: TrackerOptions::default(),
+            // The endgame for badly scaled systems (PHCpack's demo suite: chemequ,
+            // kotsireas, game5two have large finite roots approached like s^{-1/2}).
+            tracker: TrackerOptions {
+                growth_before_divergence: true,
+                ..TrackerOptions::default()
+            },
             seed: 0x5eed,
             retry_failed: true,
             real_tolerance: 1e-8,
@@ -307,13 +313,16 @@ where
             retracked = suspicious.len();
             let mut conservative = TrackerOptions::conservative();
             conservative.max_steps = conservative.max_steps.max(options.tracker.max_steps);
+            conservative.growth_before_divergence = options.tracker.growth_before_divergence;
             for redo in track_all(&suspicious, &conservative) {
                 let index = redo.path_index;
                 paths[index] = redo;
             }
         }
     }
-    classify_early_divergence(homotopy, &mut paths, options.tracker.valuation_threshold);
+    if options.tracker.growth_before_divergence {
+        classify_early_divergence(homotopy, &mut paths, options.tracker.valuation_threshold);
+    }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
     mark_jumped_paths(homotopy, &mut paths);
     let summary = summarize(&paths, options.real_tolerance, retracked);

@@ -300,6 +300,8 @@ fn carried_start<P: AbInitioProblem>(problem: &P, source: &[C64], seed: u64) -> 
     let other = problem.start_pair(seed).ok()?;
     let carry = SolveOptions {
         seed,
+        // The classic endgame the stored start files were made with.
+        tracker: TrackerOptions::default(),
         ..SolveOptions::default()
     };
     let carried =

@@ -71,7 +71,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                             && self.valuations[i] + change * ratio / (1.0 - ratio)
                                 < -self.options.valuation_threshold;
                         if change.abs() > 0.01
-                            && !(self.has_grown(i)
+                            && !(self.options.growth_before_divergence
+                                && self.has_grown(i)
                                 && (change <= GROWN_VALUATION_DRIFT * self.valuations[i].abs()
                                     || converging))
                         {
@@ -217,7 +218,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
     /// valuation classifies a path as diverging.
     fn has_grown(&self, i: usize) -> bool {
-        self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.endgame_origin[i]
+        !self.options.growth_before_divergence
+            || self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.endgame_origin[i]
     }
 
     /// End of the endgame without converged estimates: the last Cauchy estimate if
@@ -232,7 +234,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             self.estimate_residual_small()
         } {
             self.classify_estimate(self.winding)
-        } else if self.divergence_evidence {
+        } else if self.options.growth_before_divergence && self.divergence_evidence {
             PathStatus::AtInfinity
         } else {
             PathStatus::Failed(reason)

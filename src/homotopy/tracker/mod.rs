@@ -136,6 +136,17 @@ pub struct TrackerOptions {
     pub refinement_iterations: usize,
     /// A singular (Cauchy) endpoint must have `‖H(x, 1)‖∞` below this (relative).
     pub endpoint_residual: f64,
+    /// The endgame of Breiding and Timme ("HomotopyContinuation.jl: a package for
+    /// homotopy continuation in Julia", 2018) for badly scaled systems: a stable
+    /// negative valuation means divergence only for a coordinate grown by
+    /// `MIN_COORDINATE_GROWTH` since the endgame began (or below `s = DEEP_RADIUS`), a
+    /// grown coordinate's valuation may drift towards a negative limit, an endgame
+    /// stopped with stable negative valuations is at infinity, and accepted steps
+    /// below the step floor fail instead of crawling. On for `solve`
+    /// ([`crate::homotopy::SolveOptions`]); off (the classic power-series test) in the
+    /// presets, which the curve pipeline's near-degenerate designs are tuned for.
+    #[serde(default)]
+    pub growth_before_divergence: bool,
 }
 
 fn default_extended_after_rejections() -> usize {
@@ -183,6 +194,7 @@ impl Default for TrackerOptions {
             singular_condition: 1e10,
             refinement_iterations: 6,
             endpoint_residual: 1e-8,
+            growth_before_divergence: false,
         }
     }
 }
@@ -927,10 +939,13 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let mut u = 0.0f64;
         self.factorization_current = false;
-        let floor = self
-            .options
-            .min_step_fraction
-            .max(MIN_ABSOLUTE_STEP / length);
+        let floor = if self.options.growth_before_divergence {
+            self.options
+                .min_step_fraction
+                .max(MIN_ABSOLUTE_STEP / length)
+        } else {
+            self.options.min_step_fraction
+        };
         while u < 1.0 {
             if self.steps >= self.options.max_steps
                 || self.extended_steps >= self.options.max_extended_steps
@@ -972,7 +987,10 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     };
                     self.step = (h * length * factor).min(self.options.max_step);
                     self.consecutive_rejections = 0;
-                    if u < 1.0 && self.step < floor * length {
+                    if self.options.growth_before_divergence
+                        && u < 1.0
+                        && self.step < floor * length
+                    {
                         // Accepted steps whose predictor error stays far above the
                         // tolerance shrink the step as surely as rejections do (noise of
                         // the velocities at a large, ill-conditioned point); below the
