@@ -158,7 +158,7 @@ fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
         .all(|(u, v)| (u - v).norm() <= tolerance * scale)
 }
 
-fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
+pub(super) fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
     if values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
         Ok(())
     } else {
@@ -166,7 +166,11 @@ fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError
     }
 }
 
-fn check_length(field: &'static str, expected: usize, found: usize) -> Result<(), HomotopyError> {
+pub(super) fn check_length(
+    field: &'static str,
+    expected: usize,
+    found: usize,
+) -> Result<(), HomotopyError> {
     if expected == found {
         Ok(())
     } else {
@@ -178,7 +182,7 @@ fn check_length(field: &'static str, expected: usize, found: usize) -> Result<()
     }
 }
 
-fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
+pub(super) fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
     if system.num_equations() != system.num_variables() {
         return Err(HomotopyError::NotSquare {
             equations: system.num_equations(),
