@@ -77,51 +77,45 @@ struct StartOutput {
     /// Least multi-homogeneous Bézout number found, when searched.
     #[serde(skip_serializing_if = "Option::is_none")]
     multihomogeneous_paths: Option<u128>,
-    /// `exhaustive` or `local search`, when searched.
+    /// The groups as `{x, y} {z}` (text summary only).
+    #[serde(skip)]
+    described: Option<String>,
+    /// `exhaustive` or `local`. when searched.
     #[serde(skip_serializing_if = "Option::is_none")]
     partition_search: Option<&'static str>,
 }
 
 impl StartOutput {
     fn new(choice: &StartChoice, total_degree_paths: u128, variables: &[String]) -> Self {
-        let (name, search) = match choice {
-            StartChoice::TotalDegree { search, .. } => ("total-degree", search.as_ref()),
-            StartChoice::MultiHomogeneous { search, .. } => ("multi-homogeneous", Some(search)),
-        };
-        let partition = match choice {
-            StartChoice::MultiHomogeneous { search, .. } => Some(
-                search
-                    .partition
-                    .groups()
-                    .iter()
+        let (name, search, partition) = match choice {
+            StartChoice::TotalDegree { search, .. } => ("total-degree", search.as_ref(), None),
+            StartChoice::MultiHomogeneous { search, .. } => {
+                let groups = search.partition.groups().iter();
+                let named: Vec<Vec<String>> = groups
                     .map(|g| g.iter().map(|&v| variables[v].clone()).collect())
-                    .collect(),
-            ),
-            StartChoice::TotalDegree { .. } => None,
+                    .collect();
+                (
+                    "multi-homogeneous",
+                    Some(search),
+                    Some((named, search.partition.describe(variables))),
+                )
+            }
         };
         StartOutput {
             name,
-            partition,
+            described: partition.as_ref().map(|(_, d)| d.clone()),
+            partition: partition.map(|(p, _)| p),
             paths: choice.paths(),
             total_degree_paths,
             multihomogeneous_paths: search.map(|s| s.bezout_number),
-            partition_search: search.map(|s| match s.method {
-                SearchMethod::Exhaustive => "exhaustive",
-                SearchMethod::LocalSearch => "local search",
-            }),
+            partition_search: search.map(|s| search_name(s.method)),
         }
     }
 
     /// The `start system` lines of the text summary.
     fn text(&self) -> String {
-        let described = match &self.partition {
-            Some(groups) => {
-                let groups: Vec<String> = groups
-                    .iter()
-                    .map(|g| format!("{{{}}}", g.join(", ")))
-                    .collect();
-                format!("multi-homogeneous {}", groups.join(" "))
-            }
+        let described = match &self.described {
+            Some(groups) => format!("multi-homogeneous {groups}"),
             None => self.name.to_string(),
         };
         let best = match (self.partition.is_none(), self.multihomogeneous_paths) {
@@ -132,6 +126,14 @@ impl StartOutput {
             "start system  {described}\nstart paths   {} (total degree {}{best})\n",
             self.paths, self.total_degree_paths
         )
+    }
+}
+
+/// `exhaustive` or `local`.
+pub fn search_name(method: SearchMethod) -> &'static str {
+    match method {
+        SearchMethod::Exhaustive => "exhaustive",
+        SearchMethod::LocalSearch => "local",
     }
 }
 

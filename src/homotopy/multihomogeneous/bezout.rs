@@ -92,6 +92,19 @@ impl VariablePartition {
         self.groups.iter().map(Vec::len).collect()
     }
 
+    /// The groups written with the unknowns' names, `{x, y} {z}`.
+    pub fn describe(&self, names: &[String]) -> String {
+        let groups: Vec<String> = self
+            .groups
+            .iter()
+            .map(|g| {
+                let members: Vec<&str> = g.iter().map(|&v| names[v].as_str()).collect();
+                format!("{{{}}}", members.join(", "))
+            })
+            .collect();
+        groups.join(" ")
+    }
+
     /// Number of states `Π (k_j + 1)` of the Bézout table (saturating).
     pub fn table_states(&self) -> usize {
         self.groups
@@ -498,5 +511,7 @@ mod tests {
         assert_eq!(p.group_of(), &[0, 1, 0]);
         assert_eq!(p.groups(), &[vec![0, 2], vec![1]]);
         assert_eq!(p.table_states(), 6);
+        let names: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
+        assert_eq!(p.describe(&names), "{a, c} {b}");
     }
 }
