@@ -20,10 +20,9 @@ pub use bezout::{
 pub use partition::{PartitionChoice, PartitionSearchOptions, SearchMethod, best_partition};
 pub use start::MultiHomogeneousStartSystem;
 
-use super::homotopies::StraightLineHomotopy;
 use super::solve::{
-    HomotopyError, SolveOptions, SolveResult, check_finite, check_length, check_square,
-    solve_with_homotopy,
+    HomotopyError, SolveOptions, SolveResult, check_length, check_square, check_target_parameters,
+    solve_from_start_system,
 };
 use crate::C64;
 use crate::system::Evaluator;
@@ -138,12 +137,7 @@ pub fn solve_multihomogeneous<F: Evaluator + ?Sized>(
     check_length("partition", n, partition.num_variables())?;
     let m = partition.num_groups();
     check_length("degrees", n * m, degrees.len())?;
-    check_length(
-        "target_parameters",
-        system.num_parameters(),
-        target_parameters.len(),
-    )?;
-    check_finite("target_parameters", target_parameters)?;
+    check_target_parameters(system, target_parameters)?;
     if let Some(i) = (0..n).find(|&i| degrees[i * m..(i + 1) * m].iter().all(|&d| d == 0)) {
         return Err(HomotopyError::InvalidDegrees(format!(
             "equation {i} has degree 0 in every group"
@@ -157,16 +151,14 @@ pub fn solve_multihomogeneous<F: Evaluator + ?Sized>(
             "multi-homogeneous Bézout number too large".into(),
         ));
     }
-    let gamma = crate::random::unit_complex(&mut crate::random::seeded(options.seed));
-    let homotopy = StraightLineHomotopy::new(&start, system, target_parameters.to_vec(), gamma);
-    let mut result = solve_with_homotopy(
-        &homotopy,
+    Ok(solve_from_start_system(
+        &start,
+        system,
         count as usize,
         |index, x| {
             start.start_solution(index as u128, x);
         },
+        target_parameters,
         options,
-    );
-    result.gamma = gamma;
-    Ok(result)
+    ))
 }

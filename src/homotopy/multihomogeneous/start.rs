@@ -2,7 +2,11 @@
 //!
 //! For a partition `Z_1, …, Z_m` of the unknowns and degrees `d_ij` (equation i in
 //! group j), `G_i(x) = Π_j Π_{l < d_ij} L_ijl(x_{Z_j})` with random affine linear
-//! forms `L_ijl(y) = a_ijl · y + b_ijl` in the unknowns of group j. A solution makes
+//! forms `L_ijl(y) = a_ijl · y + b_ijl` in the unknowns of group j, each coefficient
+//! vector `(a_ijl, b_ijl)` complex normal scaled to unit length, so that `|G_i|` grows
+//! like `‖(x, 1)‖^{deg G_i}` as the total-degree start system does (unscaled factors
+//! make `G` dominate `F` until t is close to 1, where the endgame then meets the
+//! homotopy's branch points). A solution makes
 //! one factor of every equation vanish; choosing factor `(j_i, l_i)` for equation i,
 //! the system splits into one linear system per group j made of the `k_j` equations
 //! with `j_i = j`, so the admissible choices are exactly those giving each group as
@@ -50,7 +54,7 @@ pub struct MultiHomogeneousStartSystem {
 impl MultiHomogeneousStartSystem {
     /// The start system of `partition` with degree matrix `degrees` (row-major,
     /// equations × groups), coefficients complex normal from stream 1 of `seed`
-    /// ([`crate::random::stream`]).
+    /// ([`crate::random::stream`]), each factor's normalised to unit length.
     pub fn new(
         partition: VariablePartition,
         degrees: Vec<u32>,
@@ -72,9 +76,16 @@ impl MultiHomogeneousStartSystem {
                         group: j,
                         offset: coefficients.len(),
                     });
+                    let first = coefficients.len();
                     for _ in 0..=sizes[j] {
                         coefficients.push(crate::random::complex_normal(&mut rng));
                     }
+                    let norm = coefficients[first..]
+                        .iter()
+                        .map(|c| c.norm_sqr())
+                        .sum::<f64>()
+                        .sqrt();
+                    coefficients[first..].iter_mut().for_each(|c| *c /= norm);
                 }
             }
             max_factors = max_factors.max(factors.len() - equation_start[i]);
