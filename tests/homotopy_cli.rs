@@ -80,3 +80,63 @@ fn bad_files_and_unset_parameters_are_errors() {
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["summary"]["nonsingular"], 2);
 }
+
+/// `xy + x − 1 = 0, xy − y + 2 = 0`: roots `x = 2 ± √3, y = 3 − x`; 2-homogeneous
+/// Bézout number 2 in `{x} {y}` against the total degree 4.
+const BILINEAR: &str =
+    "INPUT\nvariable_group x, y;\nfunction f, g;\nf = x*y + x - 1;\ng = x*y - y + 2;\nEND;\n";
+
+#[test]
+fn start_option_reports_the_start_system_and_its_paths() {
+    let file = write("bilinear.input", BILINEAR);
+    let path = file.to_str().unwrap();
+    let out = singdist(&["solve", path, "--json"]);
+    assert!(out.status.success());
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let start = &value["start_system"];
+    assert_eq!(start["name"], "multi-homogeneous");
+    assert_eq!(start["partition"], serde_json::json!([["x"], ["y"]]));
+    assert_eq!(
+        (
+            start["paths"].as_u64(),
+            start["total_degree_paths"].as_u64()
+        ),
+        (Some(2), Some(4))
+    );
+    assert_eq!(value["summary"]["paths"], 2);
+    assert_eq!(value["summary"]["nonsingular"], 2);
+    let mut xs: Vec<f64> = value["solutions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["coordinates"][0][0].as_f64().unwrap())
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    let r = 3f64.sqrt();
+    assert!((xs[0] - (2.0 - r)).abs() < 1e-12 && (xs[1] - (2.0 + r)).abs() < 1e-12);
+
+    let out = singdist(&["solve", path, "--start", "total-degree", "--json"]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["start_system"]["name"], "total-degree");
+    assert_eq!(value["summary"]["paths"], 4);
+    assert_eq!(value["summary"]["nonsingular"], 2);
+
+    let out = singdist(&["solve", path, "--threads", "1"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("start system  multi-homogeneous {x} {y}\nstart paths   2 (total degree 4)"),
+        "{text}"
+    );
+    // Nothing beats the total degree 4 of the circle and the hyperbola.
+    let file = write("ch4.input", CIRCLE_HYPERBOLA);
+    let out = singdist(&["solve", file.to_str().unwrap(), "--start", "auto"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains(
+            "start system  total-degree\nstart paths   4 (total degree 4, best multi-homogeneous 4)"
+        ),
+        "{text}"
+    );
+    let out = singdist(&["solve", path, "--monodromy", "--start", "auto"]);
+    assert!(!out.status.success(), "--monodromy and --start conflict");
+}

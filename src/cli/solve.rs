@@ -1,6 +1,8 @@
 //! `singdist solve`: all isolated solutions of a square polynomial system in a Bertini
-//! input file, by the total-degree homotopy (default) or by monodromy with a trace test
-//! on the constant-term family (`--monodromy`). Exit code 3 when paths failed (listed
+//! input file, by a straight-line homotopy from a start system (`--start`: the
+//! multi-homogeneous one of the best variable grouping when it has fewer paths than the
+//! total degree, by default) or by monodromy with a trace test on the constant-term
+//! family (`--monodromy`). Exit code 3 when paths failed (listed
 //! with their reasons on stderr).
 
 use super::args::ThreadsArg;
@@ -8,11 +10,15 @@ use super::outcome::Outcome;
 use super::resources::thread_count;
 use super::values::parse_assignment;
 use anyhow::Context;
-use clap::Args;
+use clap::{Args, ValueEnum};
 use serde::Serialize;
+use singdist::homotopy::multihomogeneous::{
+    MonomialSupports, PartitionSearchOptions, SearchMethod, total_degree_paths,
+};
 use singdist::homotopy::{
     FailureReason, MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary,
-    solve_by_monodromy, solve_total_degree,
+    StartChoice, StartRequest, choose_start_system, solve_by_monodromy, solve_multihomogeneous,
+    solve_total_degree,
 };
 use singdist::system::{System, bertini};
 use std::collections::BTreeMap;
@@ -33,12 +39,102 @@ pub struct SolveArgs {
     /// number of threads.
     #[arg(long, default_value_t = 0x5eed)]
     pub seed: u64,
-    /// Solve by monodromy + trace test instead of the total-degree homotopy.
-    #[arg(long)]
+    /// Solve by monodromy + trace test instead of a start-system homotopy.
+    #[arg(long, conflicts_with = "start")]
     pub monodromy: bool,
+    /// Start system: `auto` takes the multi-homogeneous one of the variable grouping
+    /// of least Bézout number when it has strictly fewer paths than the total degree.
+    #[arg(long, value_enum)]
+    pub start: Option<StartArg>,
     /// Value of a parameter, `NAME=VALUE` (VALUE like `1.5` or `0.5+2*I`).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+}
+
+/// `--start`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StartArg {
+    /// Multi-homogeneous when it beats the total degree, else total degree.
+    Auto,
+    /// `x_i^{d_i} − 1`.
+    TotalDegree,
+    /// Products of linear forms over the best variable grouping found.
+    MultiHomogeneous,
+}
+
+/// The start system in the JSON output.
+#[derive(Serialize)]
+struct StartOutput {
+    /// `total-degree` or `multi-homogeneous`.
+    name: &'static str,
+    /// The variable groups of the multi-homogeneous start system.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    partition: Option<Vec<Vec<String>>>,
+    /// Paths of the start system (tracked).
+    paths: u128,
+    /// Π d_i.
+    total_degree_paths: u128,
+    /// Least multi-homogeneous Bézout number found, when searched.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    multihomogeneous_paths: Option<u128>,
+    /// The groups as `{x, y} {z}` (text summary only).
+    #[serde(skip)]
+    described: Option<String>,
+    /// `exhaustive` or `local`. when searched.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    partition_search: Option<&'static str>,
+}
+
+impl StartOutput {
+    fn new(choice: &StartChoice, total_degree_paths: u128, variables: &[String]) -> Self {
+        let (name, search, partition) = match choice {
+            StartChoice::TotalDegree { search, .. } => ("total-degree", search.as_ref(), None),
+            StartChoice::MultiHomogeneous { search, .. } => {
+                let groups = search.partition.groups().iter();
+                let named: Vec<Vec<String>> = groups
+                    .map(|g| g.iter().map(|&v| variables[v].clone()).collect())
+                    .collect();
+                (
+                    "multi-homogeneous",
+                    Some(search),
+                    Some((named, search.partition.describe(variables))),
+                )
+            }
+        };
+        StartOutput {
+            name,
+            described: partition.as_ref().map(|(_, d)| d.clone()),
+            partition: partition.map(|(p, _)| p),
+            paths: choice.paths(),
+            total_degree_paths,
+            multihomogeneous_paths: search.map(|s| s.bezout_number),
+            partition_search: search.map(|s| search_name(s.method)),
+        }
+    }
+
+    /// The `start system` lines of the text summary.
+    fn text(&self) -> String {
+        let described = match &self.described {
+            Some(groups) => format!("multi-homogeneous {groups}"),
+            None => self.name.to_string(),
+        };
+        let best = match (self.partition.is_none(), self.multihomogeneous_paths) {
+            (true, Some(b)) => format!(", best multi-homogeneous {b}"),
+            _ => String::new(),
+        };
+        format!(
+            "start system  {described}\nstart paths   {} (total degree {}{best})\n",
+            self.paths, self.total_degree_paths
+        )
+    }
+}
+
+/// `exhaustive` or `local`.
+pub fn search_name(method: SearchMethod) -> &'static str {
+    match method {
+        SearchMethod::Exhaustive => "exhaustive",
+        SearchMethod::LocalSearch => "local",
+    }
 }
 
 /// One solution in the JSON output.
@@ -61,6 +157,8 @@ struct JsonOutput<'a> {
     summary: &'a SolveSummary,
     variables: &'a [String],
     seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    start_system: Option<StartOutput>,
     #[serde(skip_serializing_if = "Option::is_none")]
     trace_residual: Option<f64>,
     solutions: Vec<SolutionOutput>,
@@ -168,18 +266,46 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     }
     let pool = builder.build().context("cannot start the thread pool")?;
     let started = Instant::now();
-    let (result, trace_residual): (SolveResult, Option<f64>) = pool.install(|| {
-        if args.monodromy {
+    let choice = if args.monodromy {
+        None
+    } else {
+        let request = match args.start.unwrap_or(StartArg::Auto) {
+            StartArg::Auto => StartRequest::Auto,
+            StartArg::TotalDegree => StartRequest::TotalDegree,
+            StartArg::MultiHomogeneous => StartRequest::MultiHomogeneous,
+        };
+        let supports = match request {
+            StartRequest::TotalDegree => None,
+            _ => MonomialSupports::from_system(&system).ok(),
+        };
+        Some(
+            choose_start_system(
+                &degrees,
+                supports.as_ref(),
+                request,
+                &PartitionSearchOptions::default(),
+            )
+            .with_context(|| format!("{}: --start", args.file.display()))?,
+        )
+    };
+    let (result, trace_residual): (SolveResult, Option<f64>) = pool.install(|| match &choice {
+        None => {
             let (monodromy, solved) =
                 solve_by_monodromy(&compiled, &[], &MonodromyOptions::default(), &options)?;
             Ok::<_, anyhow::Error>((solved, monodromy.trace_residual))
-        } else {
-            Ok((
-                solve_total_degree(&compiled, &degrees, &[], &options)?,
-                None,
-            ))
         }
+        Some(StartChoice::TotalDegree { .. }) => Ok((
+            solve_total_degree(&compiled, &degrees, &[], &options)?,
+            None,
+        )),
+        Some(StartChoice::MultiHomogeneous { search, degrees }) => Ok((
+            solve_multihomogeneous(&compiled, &search.partition, degrees, &[], &options)?,
+            None,
+        )),
     })?;
+    let start_output = choice
+        .as_ref()
+        .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()));
     let seconds = started.elapsed().as_secs_f64();
     let s = &result.summary;
     if args.json {
@@ -204,6 +330,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             summary: s,
             variables: system.variables(),
             seconds,
+            start_system: start_output,
             trace_residual,
             solutions,
         };
@@ -212,10 +339,14 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         let method = if args.monodromy {
             "monodromy + trace test"
         } else {
-            "total-degree homotopy"
+            "start-system homotopy"
         };
+        let start_text = start_output
+            .as_ref()
+            .map(StartOutput::text)
+            .unwrap_or_default();
         let mut text = format!(
-            "system        {}\nmethod        {method}\npaths         {}\nnonsingular   {}\nsingular      {} ({} paths)\nat infinity   {}\nfailed        {}\nreal          {}\n",
+            "system        {}\nmethod        {method}\n{start_text}paths         {}\nnonsingular   {}\nsingular      {} ({} paths)\nat infinity   {}\nfailed        {}\nreal          {}\n",
             args.file.display(),
             s.paths,
             s.nonsingular,

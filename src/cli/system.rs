@@ -2,9 +2,13 @@
 
 use super::outcome::Outcome;
 use super::output::{check_writable, write_file};
+use super::solve::search_name;
 use super::values::parse_assignment;
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
+use singdist::homotopy::multihomogeneous::{
+    MonomialSupports, PartitionSearchOptions, best_partition,
+};
 use singdist::system::{System, bertini, phc};
 use std::path::{Path, PathBuf};
 
@@ -20,7 +24,9 @@ pub enum Format {
 /// Sub-commands of `singdist system`.
 #[derive(Subcommand, Debug)]
 pub enum SystemCommand {
-    /// Print the variables, parameters, number of equations, degrees and Bézout number.
+    /// Print the variables, parameters, number of equations, degrees, Bézout number and
+    /// (square systems) the least multi-homogeneous Bézout number found with its
+    /// variable grouping.
     Show {
         /// The system file.
         file: PathBuf,
@@ -69,8 +75,22 @@ pub fn summary(system: &System) -> String {
             names.join(", ")
         }
     };
+    let square = system.num_equations() == system.variables().len();
+    let multihomogeneous = match MonomialSupports::from_system(system) {
+        Ok(supports) if square => best_partition(&supports, &PartitionSearchOptions::default())
+            .map(|c| {
+                format!(
+                    "multi-homogeneous Bézout number: {} for {} ({} search)\n",
+                    c.bezout_number,
+                    c.partition.describe(system.variables()),
+                    search_name(c.method)
+                )
+            })
+            .unwrap_or_default(),
+        _ => String::new(),
+    };
     format!(
-        "variables ({}): {}\nparameters ({}): {}\nequations: {}\ndegrees: {}\nBézout number: {}\n",
+        "variables ({}): {}\nparameters ({}): {}\nequations: {}\ndegrees: {}\nBézout number: {}\n{multihomogeneous}",
         system.variables().len(),
         list(system.variables()),
         system.parameters().len(),

@@ -3,7 +3,8 @@
 //! `solve`.
 //!
 //! Read in this order: [`linalg`] (the LU of the hot loop), [`homotopies`] (what is
-//! tracked), [`start`] (total-degree start systems), [`tracker`] (predictor, corrector,
+//! tracked), [`start`] (total-degree start systems), [`multihomogeneous`]
+//! (multi-homogeneous start systems and the automatic choice), [`tracker`] (predictor, corrector,
 //! step control, endgame, classification), [`solve`] (many paths in parallel, with
 //! re-runs of failed paths), [`monodromy`] (solutions of parametric families from one
 //! start pair, certified by a trace test).
@@ -11,6 +12,7 @@
 pub mod homotopies;
 pub mod linalg;
 pub mod monodromy;
+pub mod multihomogeneous;
 pub mod refine;
 pub mod solve;
 pub mod start;
@@ -24,6 +26,10 @@ pub use linalg::{DdLuWorkspace, LuWorkspace};
 pub use monodromy::{
     ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
     monodromy_solve, solve_by_monodromy, trace_test,
+};
+pub use multihomogeneous::{
+    MultiHomogeneousStartSystem, StartChoice, StartRequest, VariablePartition, choose_start_system,
+    solve_multihomogeneous,
 };
 pub use refine::{Refinement, contains_point, group_roots, newton_refine, same_point, same_root};
 pub use solve::{

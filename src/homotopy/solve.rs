@@ -174,7 +174,11 @@ fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError
     }
 }
 
-fn check_length(field: &'static str, expected: usize, found: usize) -> Result<(), HomotopyError> {
+pub(super) fn check_length(
+    field: &'static str,
+    expected: usize,
+    found: usize,
+) -> Result<(), HomotopyError> {
     if expected == found {
         Ok(())
     } else {
@@ -186,7 +190,7 @@ fn check_length(field: &'static str, expected: usize, found: usize) -> Result<()
     }
 }
 
-fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
+pub(super) fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
     if system.num_equations() != system.num_variables() {
         return Err(HomotopyError::NotSquare {
             equations: system.num_equations(),
@@ -207,12 +211,7 @@ pub fn solve_total_degree<F: Evaluator + ?Sized>(
 ) -> Result<SolveResult, HomotopyError> {
     check_square(system)?;
     check_length("degrees", system.num_variables(), degrees.len())?;
-    check_length(
-        "target_parameters",
-        system.num_parameters(),
-        target_parameters.len(),
-    )?;
-    check_finite("target_parameters", target_parameters)?;
+    check_target_parameters(system, target_parameters)?;
     if let Some(i) = degrees.iter().position(|&d| d == 0) {
         return Err(HomotopyError::InvalidDegrees(format!(
             "equation {i} has degree 0"
@@ -224,16 +223,49 @@ pub fn solve_total_degree<F: Evaluator + ?Sized>(
         .filter(|&c| c <= 1 << 32)
         .ok_or_else(|| HomotopyError::InvalidDegrees("Bézout number too large".into()))?
         as usize;
-    let gamma = crate::random::unit_complex(&mut crate::random::seeded(options.seed));
-    let homotopy = StraightLineHomotopy::new(&start, system, target_parameters.to_vec(), gamma);
-    let mut result = solve_with_homotopy(
-        &homotopy,
+    Ok(solve_from_start_system(
+        &start,
+        system,
         count,
         |index, x| start.start_solution(index as u64, x),
+        target_parameters,
         options,
-    );
+    ))
+}
+
+/// `target_parameters` has one finite value per parameter of `system`.
+pub(super) fn check_target_parameters<F: Evaluator + ?Sized>(
+    system: &F,
+    target_parameters: &[C64],
+) -> Result<(), HomotopyError> {
+    check_length(
+        "target_parameters",
+        system.num_parameters(),
+        target_parameters.len(),
+    )?;
+    check_finite("target_parameters", target_parameters)
+}
+
+/// Tracks the `count` paths of `(1 − t)·γ·G + t·F` (γ random from `options.seed`) from
+/// the start solutions `start_point(index, x)` of `G`.
+pub(super) fn solve_from_start_system<G, F, S>(
+    start: &G,
+    system: &F,
+    count: usize,
+    start_point: S,
+    target_parameters: &[C64],
+    options: &SolveOptions,
+) -> SolveResult
+where
+    G: Evaluator + ?Sized,
+    F: Evaluator + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    let gamma = crate::random::unit_complex(&mut crate::random::seeded(options.seed));
+    let homotopy = StraightLineHomotopy::new(start, system, target_parameters.to_vec(), gamma);
+    let mut result = solve_with_homotopy(&homotopy, count, start_point, options);
     result.gamma = gamma;
-    Ok(result)
+    result
 }
 
 /// Tracks `start_solutions` of `F(x; start_parameters) = 0` to
