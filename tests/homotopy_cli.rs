@@ -90,7 +90,7 @@ const BILINEAR: &str =
 fn start_option_reports_the_start_system_and_its_paths() {
     let file = write("bilinear.input", BILINEAR);
     let path = file.to_str().unwrap();
-    let out = singdist(&["solve", path, "--json"]);
+    let out = singdist(&["solve", path, "--start", "auto", "--json"]);
     assert!(out.status.success());
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let start = &value["start_system"];
@@ -115,13 +115,14 @@ fn start_option_reports_the_start_system_and_its_paths() {
     let r = 3f64.sqrt();
     assert!((xs[0] - (2.0 - r)).abs() < 1e-12 && (xs[1] - (2.0 + r)).abs() < 1e-12);
 
-    let out = singdist(&["solve", path, "--start", "total-degree", "--json"]);
+    // The default is the total degree.
+    let out = singdist(&["solve", path, "--json"]);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["start_system"]["name"], "total-degree");
     assert_eq!(value["summary"]["paths"], 4);
     assert_eq!(value["summary"]["nonsingular"], 2);
 
-    let out = singdist(&["solve", path, "--threads", "1"]);
+    let out = singdist(&["solve", path, "--threads", "1", "--start", "auto"]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
         text.contains("start system  multi-homogeneous {x} {y}\nstart paths   2 (total degree 4)"),
