@@ -8,7 +8,7 @@
 
 use singdist::C64;
 use singdist::homotopy::{
-    PathStatus, SolveOptions, group_roots, newton_refine, solve_total_degree,
+    PathStatus, SolveOptions, distinct_nonsingular_roots, solve_total_degree,
 };
 use singdist::system::{CompiledSystem, System, bertini, phc};
 
@@ -44,17 +44,7 @@ fn load(stem: &str) -> System {
 
 /// Distinct nonsingular roots among `points` after Newton refinement.
 fn distinct_nonsingular(system: &CompiledSystem, points: &[Vec<C64>]) -> Vec<Vec<C64>> {
-    let refined: Vec<(Vec<C64>, f64)> = points
-        .iter()
-        .map(|x| newton_refine(system, x, &[], 1e-13, 40))
-        .filter(|r| r.is_nonsingular(1e11))
-        .map(|r| (r.point, r.condition))
-        .collect();
-    let groups = group_roots(&refined, 1e-10);
-    (0..refined.len())
-        .filter(|&i| groups[i] == i)
-        .map(|i| refined[i].0.clone())
-        .collect()
+    distinct_nonsingular_roots(system, points)
 }
 
 fn solve(system: &System, seed: u64) -> singdist::homotopy::SolveResult {

@@ -9,7 +9,7 @@ use singdist::homotopy::multihomogeneous::{
 };
 use singdist::homotopy::{
     PathStatus, SolveOptions, SolveResult, StartChoice, StartRequest, choose_start_system,
-    group_roots, newton_refine, solve_multihomogeneous, solve_total_degree,
+    distinct_nonsingular_roots, solve_multihomogeneous, solve_total_degree,
 };
 use singdist::system::{System, bertini};
 
@@ -50,19 +50,7 @@ fn solve_by(system: &System, choice: &StartChoice, options: &SolveOptions) -> So
 
 /// Refined nonsingular roots, one per distinct root.
 fn distinct_roots(system: &System, result: &SolveResult) -> Vec<Vec<C64>> {
-    let compiled = system.compile();
-    let refined: Vec<(Vec<C64>, f64)> = result
-        .nonsingular_solutions()
-        .iter()
-        .map(|x| newton_refine(&compiled, x, &[], 1e-13, 40))
-        .filter(|r| r.is_nonsingular(1e11))
-        .map(|r| (r.point, r.condition))
-        .collect();
-    let groups = group_roots(&refined, 1e-10);
-    (0..refined.len())
-        .filter(|&i| groups[i] == i)
-        .map(|i| refined[i].0.clone())
-        .collect()
+    distinct_nonsingular_roots(&system.compile(), &result.nonsingular_solutions())
 }
 
 fn same_root_sets(a: &[Vec<C64>], b: &[Vec<C64>]) -> bool {

@@ -31,7 +31,10 @@ pub use multihomogeneous::{
     MultiHomogeneousStartSystem, StartChoice, StartRequest, VariablePartition, choose_start_system,
     solve_multihomogeneous,
 };
-pub use refine::{Refinement, contains_point, group_roots, newton_refine, same_point, same_root};
+pub use refine::{
+    Refinement, contains_point, distinct_nonsingular_roots, group_roots, newton_refine, same_point,
+    same_root,
+};
 pub use solve::{
     HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,
     solve_total_degree, solve_with_homotopy,

@@ -136,6 +136,28 @@ pub fn contains_point(set: &[Vec<C64>], x: &[C64], tolerance: f64) -> bool {
     set.iter().any(|y| same_point(x, y, tolerance))
 }
 
+/// The distinct nonsingular roots among approximate solutions `points` of
+/// `F(·; p) = 0` (no parameters): each refined by [`newton_refine`] (corrections below
+/// 1e-13 relative, at most 40 steps), kept if its condition number is below 1e11, and
+/// grouped by [`group_roots`] (tolerance 1e-10); one representative per root, in the
+/// order of `points`. The independent count the demo-suite tests compare with.
+pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
+    system: &F,
+    points: &[Vec<C64>],
+) -> Vec<Vec<C64>> {
+    let refined: Vec<(Vec<C64>, f64)> = points
+        .iter()
+        .map(|x| newton_refine(system, x, &[], 1e-13, 40))
+        .filter(|r| r.is_nonsingular(1e11))
+        .map(|r| (r.point, r.condition))
+        .collect();
+    let groups = group_roots(&refined, 1e-10);
+    (0..refined.len())
+        .filter(|&i| groups[i] == i)
+        .map(|i| refined[i].0.clone())
+        .collect()
+}
+
 /// Groups refined nonsingular roots into distinct roots: `roots[i]` is a point with its
 /// condition number; returns for every root the index of its group's first member.
 /// Sorting by the real part of the first coordinate keeps the comparison near-linear.

@@ -10,6 +10,33 @@
 use crate::C64;
 use crate::system::Evaluator;
 
+/// The parameter derivatives of a start system, which has no parameters: `∂G/∂p · dp`
+/// is zero and `∂G/∂p` is empty. For the `Evaluator` impls of start systems.
+macro_rules! no_parameter_derivatives {
+    () => {
+        fn evaluate_parameter_derivative(
+            &self,
+            _x: &[$crate::C64],
+            _p: &[$crate::C64],
+            _dp: &[$crate::C64],
+            _work: &mut [$crate::C64],
+            out: &mut [$crate::C64],
+        ) {
+            out.iter_mut().for_each(|v| *v = $crate::C64::new(0.0, 0.0));
+        }
+
+        fn evaluate_parameter_jacobian(
+            &self,
+            _x: &[$crate::C64],
+            _p: &[$crate::C64],
+            _work: &mut [$crate::C64],
+            _jac_p: &mut [$crate::C64],
+        ) {
+        }
+    };
+}
+pub(crate) use no_parameter_derivatives;
+
 /// `G_i(x) = x_i^{d_i} − 1`, i = 1..n.
 #[derive(Clone, Debug)]
 pub struct TotalDegreeStartSystem {
@@ -88,23 +115,5 @@ impl Evaluator for TotalDegreeStartSystem {
         }
     }
 
-    fn evaluate_parameter_derivative(
-        &self,
-        _x: &[C64],
-        _p: &[C64],
-        _dp: &[C64],
-        _work: &mut [C64],
-        out: &mut [C64],
-    ) {
-        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-    }
-
-    fn evaluate_parameter_jacobian(
-        &self,
-        _x: &[C64],
-        _p: &[C64],
-        _work: &mut [C64],
-        _jac_p: &mut [C64],
-    ) {
-    }
+    no_parameter_derivatives!();
 }

@@ -24,6 +24,7 @@
 use super::bezout::{BezoutError, BezoutTable, VariablePartition};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
+use crate::homotopy::start::no_parameter_derivatives;
 use crate::system::Evaluator;
 
 /// Largest Bézout table a start system builds (states `Π (k_j + 1)`).
@@ -234,25 +235,7 @@ impl Evaluator for MultiHomogeneousStartSystem {
         }
     }
 
-    fn evaluate_parameter_derivative(
-        &self,
-        _x: &[C64],
-        _p: &[C64],
-        _dp: &[C64],
-        _work: &mut [C64],
-        out: &mut [C64],
-    ) {
-        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-    }
-
-    fn evaluate_parameter_jacobian(
-        &self,
-        _x: &[C64],
-        _p: &[C64],
-        _work: &mut [C64],
-        _jac_p: &mut [C64],
-    ) {
-    }
+    no_parameter_derivatives!();
 }
 
 #[cfg(test)]
