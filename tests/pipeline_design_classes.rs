@@ -265,3 +265,34 @@ fn close_base_anchors_are_completed_by_the_generic_route() {
         );
     }
 }
+
+/// A platform congruent with the base (the matrix class `congruent`), scattered poses,
+/// `bars/bars`: at pose 1 one singularity path tends to the singular configuration
+/// with the platform on the base (λ → ∞) and needs about 17,600 steps of the
+/// conservative tracker — more than the curve's budget — before the endgame calls it
+/// at infinity. The last re-run with a long budget accounts for it; without it the
+/// pose lost that path (exit 3).
+#[test]
+fn congruent_design_loses_no_path_on_scattered_poses() {
+    use singdist::reference::designs::design_case;
+    let case = design_case("congruent", 1).expect("a class of the matrix");
+    let design = case.design().unwrap();
+    let metrics = ["bars/bars".parse::<Metric>().unwrap()];
+    let result = compute_curve(
+        &design,
+        &case.scattered_motion(),
+        8,
+        &metrics,
+        &CurveOptions::default(),
+        &default_start_solutions,
+        &|_| {},
+    )
+    .expect("the curve is computed");
+    assert!(result.failures.is_empty(), "{:?}", result.failures);
+    assert!(
+        result
+            .poses
+            .iter()
+            .all(|p| p.metrics["bars/bars"].distance.is_finite())
+    );
+}

@@ -223,6 +223,17 @@ pub(super) fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C
 /// endgame zone ([`track_with_retries`]).
 pub(super) const DIVERGENCE_ARC: f64 = 0.05;
 
+/// Steps shared by the last re-run of a route's paths that are still lost after the
+/// detours ([`track_with_retries`]): each gets `LAST_CHANCE_STEPS / lost` steps when
+/// that exceeds the retry tracker's own budget.
+pub(super) const LAST_CHANCE_STEPS: usize = 30_000;
+
+/// At most this many lost paths get the last re-run. On designs with two close
+/// anchors of a rigid part (10⁻⁴ apart) a pose loses up to eight paths near clusters
+/// of critical points; with 3,750–6,000 steps each none of them was found (49 of 49
+/// re-runs failed), with 15,000–30,000 steps 5 of 7 were.
+pub(super) const LAST_CHANCE_PATHS: usize = 2;
+
 /// The tracker settings of [`track_with_retries`].
 #[derive(Clone, Copy)]
 pub(crate) struct TrackingPlan<'a> {
@@ -407,6 +418,45 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // any one attempt classified at infinity, may account for more than any
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
+    }
+    if best < expected {
+        // Last chance: the reference route's paths that ran out of steps or failed
+        // otherwise (not those that passed close to infinity: that is the route's
+        // property), once more with a long step budget shared among them. Paths near
+        // a cluster of critical points (e.g. a base congruent with the platform, where
+        // a critical point tends to the singular configuration with the platform on
+        // the base) need thousands of steps; the shared budget bounds the cost of a
+        // pose that loses many (only a few lost paths get it: [`LAST_CHANCE_PATHS`]).
+        let long_runs: Vec<usize> = paths
+            .iter()
+            .filter(|p| matches!(p.status, PathStatus::Failed(_)) && !diverged_mid_path(p))
+            .map(|p| p.path_index)
+            .collect();
+        let per_path = LAST_CHANCE_STEPS / long_runs.len().max(1);
+        if !long_runs.is_empty()
+            && long_runs.len() <= LAST_CHANCE_PATHS
+            && per_path > retry_tracker.max_steps
+        {
+            let long = TrackerOptions {
+                max_steps: per_path,
+                max_extended_steps: per_path.max(retry_tracker.max_extended_steps),
+                ..retry_tracker.clone()
+            };
+            let mut patient = Tracker::new(&reference, long);
+            let mut reference_at_infinity = count_at_infinity(&paths);
+            for i in long_runs {
+                let again = patient.track(&starts[i], i);
+                tracked += 1;
+                if again.status == PathStatus::AtInfinity {
+                    reference_at_infinity += 1;
+                } else if simple_endpoint(&again)
+                    && !endpoints.iter().any(|y| same_endpoint(y, &again.solution))
+                {
+                    endpoints.push(again.solution);
+                }
+            }
+            best = best.max(endpoints.len() + reference_at_infinity);
+        }
     }
     Retried {
         endpoints,
