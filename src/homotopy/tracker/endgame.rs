@@ -195,9 +195,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         self.winding = c;
                         have_estimate = true;
                     }
-                    Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
-                    Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge)) => {}
-                    Err(SegmentError::Failure(reason)) => {
+                    Err(RouteStop::Diverged) => return PathStatus::AtInfinity,
+                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge)) => {}
+                    Err(RouteStop::Failed(reason)) => {
                         return self.give_up(have_estimate, reason);
                     }
                 }
@@ -208,8 +208,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             }
             match self.track_segment(t, C64::new(1.0 - s_next, 0.0)) {
                 Ok(()) => s = s_next,
-                Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
-                Err(SegmentError::Failure(reason)) => return self.give_up(have_estimate, reason),
+                Err(RouteStop::Diverged) => return PathStatus::AtInfinity,
+                Err(RouteStop::Failed(reason)) => return self.give_up(have_estimate, reason),
             }
         }
     }
@@ -269,7 +269,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 
     /// Loops around `|1 − t| = s` until the path closes; the mean of the samples (in
     /// `self.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
-    pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, SegmentError> {
+    pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, RouteStop> {
         let m = self.options.cauchy_samples_per_loop.max(3);
         self.x_checkpoint.copy_from_slice(&self.x);
         self.cauchy_sum
@@ -316,6 +316,6 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 }
             }
         }
-        Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge))
+        Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
     }
 }

@@ -241,6 +241,10 @@ pub enum FailureReason {
     TooManySteps,
     /// The path diverged before the endgame zone (a non-generic γ or start system).
     DivergedBeforeEndgame,
+    /// The path's norm passed `at_infinity_norm` on a route tracked without endgame
+    /// ([`Tracker::track_between`]): a pole passed on the way, or a root at infinity of
+    /// the end system; only an endgame can tell which.
+    DivergedOnRoute,
     /// The Cauchy loop did not close within `max_winding_number` loops.
     WindingNumberTooLarge,
     /// The endgame reached `endgame_min_radius` without two agreeing estimates.
@@ -534,10 +538,16 @@ impl Evaluation {
     }
 }
 
-/// Failure inside a segment.
+/// Why the tracker stopped before the end of a route (one segment or a chain of them).
+/// The tracking layer reports only three outcomes: the route's end was reached (`Ok`),
+/// the path diverged (its norm passed [`TrackerOptions::at_infinity_norm`]), or the
+/// tracker failed. Whether a divergence is a solution at infinity — rather than a pole
+/// passed on the way — is not the tracker's to say: only the endgame
+/// ([`Tracker::track`]'s last stretch to `t = 1`) classifies a path as
+/// [`PathStatus::AtInfinity`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum SegmentError {
-    Failure(FailureReason),
+enum RouteStop {
+    Failed(FailureReason),
     Diverged,
 }
 
@@ -667,8 +677,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         };
         let status = match self.track_real_interval(0.0, 1.0 - endgame_start) {
             Ok(()) => self.endgame(endgame_start),
-            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish(path_index, status)
     }
@@ -695,8 +705,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let status = match outcome {
             Ok(()) => self.endgame(endgame_start),
-            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish(path_index, status)
     }
@@ -704,7 +714,10 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// Tracks `start` from `t0` to `t1` (real, either direction) without endgame, e.g.
     /// a monodromy loop or a parameter homotopy between generic parameters. The
     /// endpoint is Newton-refined and returned as `Nonsingular` (or `Singular` if its
-    /// condition exceeds `singular_condition`).
+    /// condition exceeds `singular_condition`). A path whose norm passes
+    /// `at_infinity_norm` on the way is `Failed(DivergedOnRoute)`, never `AtInfinity`:
+    /// without an endgame a pole passed on the way cannot be told from a root at
+    /// infinity of the end system.
     pub fn track_between(
         &mut self,
         start: &[C64],
@@ -723,8 +736,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     PathStatus::Singular
                 }
             }
-            Err(SegmentError::Diverged) => PathStatus::AtInfinity,
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedOnRoute),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish_at(path_index, status, C64::new(t1, 0.0))
     }
@@ -907,7 +920,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     }
 
     /// Tracks along the real interval `[t0, t1]`, stopping at the homotopy's breakpoints.
-    fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), SegmentError> {
+    fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), RouteStop> {
         let mut a = t0;
         let forward = t1 >= t0;
         let breakpoints: Vec<f64> = {
@@ -931,7 +944,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     }
 
     /// Tracks `self.x` along the straight segment from `ta` to `tb` in the complex plane.
-    fn track_segment(&mut self, ta: C64, tb: C64) -> Result<(), SegmentError> {
+    fn track_segment(&mut self, ta: C64, tb: C64) -> Result<(), RouteStop> {
         let dt = tb - ta;
         let length = dt.norm();
         if length == 0.0 {
@@ -950,7 +963,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             if self.steps >= self.options.max_steps
                 || self.extended_steps >= self.options.max_extended_steps
             {
-                return Err(SegmentError::Failure(FailureReason::TooManySteps));
+                return Err(RouteStop::Failed(FailureReason::TooManySteps));
             }
             let mut h = (self.step.min(self.options.max_step) / length).min(1.0 - u);
             if 1.0 - u - h < 0.05 * h {
@@ -976,7 +989,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     self.t = ta + dt * u;
                     let scale = 1.0 + max_norm(&self.x);
                     if scale > self.options.at_infinity_norm {
-                        return Err(SegmentError::Diverged);
+                        return Err(RouteStop::Diverged);
                     }
                     let error = first_update / scale;
                     let factor = if error > 0.0 {
@@ -996,7 +1009,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         // the velocities at a large, ill-conditioned point); below the
                         // floor `u + h` would no longer advance.
                         if self.extended {
-                            return Err(SegmentError::Failure(FailureReason::StepSizeTooSmall));
+                            return Err(RouteStop::Failed(FailureReason::StepSizeTooSmall));
                         }
                         self.switch_to_extended();
                         self.step *= 4.0;
@@ -1040,7 +1053,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                                 .x
                                 .iter()
                                 .any(|v| !(v.re.is_finite() && v.im.is_finite()));
-                            return Err(SegmentError::Failure(if bad {
+                            return Err(RouteStop::Failed(if bad {
                                 FailureReason::NonFiniteValue
                             } else {
                                 FailureReason::StepSizeTooSmall
@@ -1142,5 +1155,99 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             previous = norm;
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `H(x, t) = (p − t)·x − 1`, one unknown: the path `x(t) = 1/(p − t)` from
+    /// `x(0) = 1/p` has a pole at `t = p` (a divergence mid-route for `p < 1`, a root
+    /// at infinity of `H(·, 1)` for `p = 1`).
+    pub(super) struct Pole(pub(super) f64);
+
+    impl Homotopy for Pole {
+        fn dimension(&self) -> usize {
+            1
+        }
+        fn workspace_len(&self) -> usize {
+            0
+        }
+        fn evaluate(&self, x: &[C64], t: C64, _: &mut [C64], h: &mut [C64]) {
+            h[0] = (C64::new(self.0, 0.0) - t) * x[0] - 1.0;
+        }
+        fn evaluate_with_jacobian(
+            &self,
+            x: &[C64],
+            t: C64,
+            work: &mut [C64],
+            h: &mut [C64],
+            jac: &mut [C64],
+        ) {
+            self.evaluate(x, t, work, h);
+            jac[0] = C64::new(self.0, 0.0) - t;
+        }
+        fn evaluate_time_derivative(&self, x: &[C64], _: C64, _: &mut [C64], dh: &mut [C64]) {
+            dh[0] = -x[0];
+        }
+    }
+
+    fn start(p: f64) -> Vec<C64> {
+        vec![C64::new(1.0 / p, 0.0)]
+    }
+
+    /// Steps of at most 0.01 and divergence at `‖x‖ > 10`: the tracker lands within
+    /// `|t − p| < 0.1` of a pole instead of stepping across it (a simple pole of a
+    /// rational path is no obstacle to the RK4 predictor).
+    fn near_pole_options() -> TrackerOptions {
+        TrackerOptions {
+            initial_step: 0.01,
+            max_step: 0.01,
+            at_infinity_norm: 10.0,
+            ..TrackerOptions::default()
+        }
+    }
+
+    #[test]
+    fn a_divergence_without_endgame_is_a_failure_not_a_point_at_infinity() {
+        let homotopy = Pole(0.5);
+        let mut tracker = Tracker::new(&homotopy, near_pole_options());
+        let result = tracker.track_between(&start(0.5), 0.0, 1.0, 0);
+        assert_eq!(
+            result.status,
+            PathStatus::Failed(FailureReason::DivergedOnRoute),
+            "{result:?}"
+        );
+        assert!(result.last_t.re < 0.5, "{result:?}");
+    }
+
+    #[test]
+    fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
+        let homotopy = Pole(1.0);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        let result = tracker.track(&start(1.0), 0);
+        assert_eq!(result.status, PathStatus::AtInfinity, "{result:?}");
+    }
+
+    #[test]
+    fn a_divergence_before_the_endgame_zone_is_reported_as_such() {
+        let homotopy = Pole(0.5);
+        let mut tracker = Tracker::new(&homotopy, near_pole_options());
+        let result = tracker.track(&start(0.5), 0);
+        assert_eq!(
+            result.status,
+            PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            "{result:?}"
+        );
+    }
+
+    #[test]
+    fn a_route_without_a_pole_reaches_its_end() {
+        let homotopy = Pole(2.0);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        let result = tracker.track_between(&start(2.0), 0.0, 1.0, 0);
+        assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
+        assert!((result.solution[0] - 1.0).norm() < 1e-12, "{result:?}");
     }
 }
