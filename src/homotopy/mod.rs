@@ -40,4 +40,7 @@ pub use solve::{
     solve_total_degree, solve_with_homotopy,
 };
 pub use start::TotalDegreeStartSystem;
-pub use tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
+pub use tracker::{
+    EndgameOptions, FailureReason, PathResult, PathStatus, PrecisionOptions, StepOptions, Tracker,
+    TrackerOptions,
+};

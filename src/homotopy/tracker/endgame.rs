@@ -31,7 +31,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         loop {
             let t = C64::new(1.0 - s, 0.0);
             let scale = max_norm(&self.x);
-            if scale > self.options.at_infinity_norm {
+            if scale > self.options.endgame.at_infinity_norm {
                 return PathStatus::AtInfinity;
             }
             // Valuations from dx/ds (dt/ds = −1).
@@ -69,9 +69,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         let converging = have_valuations
                             && (0.0..=0.6).contains(&ratio)
                             && self.valuations[i] + change * ratio / (1.0 - ratio)
-                                < -self.options.valuation_threshold;
+                                < -self.options.endgame.valuation_threshold;
                         if change.abs() > 0.01
-                            && !(self.options.growth_before_divergence
+                            && !(self.options.endgame.growth_before_divergence
                                 && self.has_grown(i)
                                 && (change <= GROWN_VALUATION_DRIFT * self.valuations[i].abs()
                                     || converging))
@@ -85,11 +85,11 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         }
                     }
                 }
-                diverging = smallest < -self.options.valuation_threshold && scale >= 10.0;
+                diverging = smallest < -self.options.endgame.valuation_threshold && scale >= 10.0;
                 // Below DEEP_RADIUS the resolution of t ends the endgame soon anyway: a
                 // stable negative valuation decides without growth.
                 let deep = s <= DEEP_RADIUS;
-                let threshold = -self.options.valuation_threshold;
+                let threshold = -self.options.endgame.valuation_threshold;
                 if stable && (smallest_grown < threshold || deep && smallest < threshold) {
                     stable_divergence += 1;
                     if stable_divergence >= 2 {
@@ -116,7 +116,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             let valuations_finite = have_valuations
                 && (0..n).all(|i| {
                     self.x[i].norm() < DIRECT_FINISH_FLOOR
-                        || self.valuations[i] > -self.options.valuation_threshold
+                        || self.valuations[i] > -self.options.endgame.valuation_threshold
                 });
             // A singular endpoint shows as a condition number growing like
             // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
@@ -125,7 +125,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             if !direct_failed
                 && valuations_finite
                 && condition_stable
-                && condition < self.options.direct_finish_condition
+                && condition < self.options.endgame.direct_finish_condition
             {
                 self.x_checkpoint.copy_from_slice(&self.x);
                 let saved_step = self.step;
@@ -133,7 +133,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
                     let final_condition = self.condition_at(C64::new(1.0, 0.0));
                     if converged
-                        && final_condition < self.options.singular_condition
+                        && final_condition < self.options.endgame.singular_condition
                         && final_condition < 100.0 * condition
                     {
                         return PathStatus::Nonsingular;
@@ -149,7 +149,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // a Cauchy loop (costly far out, where the Jacobian is ill-conditioned)
             // would not close on a finite estimate; the next radius is cheaper and the
             // valuation test above classifies a divergent path.
-            if !diverging && (direct_failed || condition >= self.options.direct_finish_condition) {
+            if !diverging
+                && (direct_failed || condition >= self.options.endgame.direct_finish_condition)
+            {
                 match self.cauchy_loop(s) {
                     Ok(c) => {
                         if loops_done >= 1 {
@@ -168,7 +170,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                                 let smallest = (0..n)
                                     .filter(|&i| deep || self.has_grown(i))
                                     .fold(f64::INFINITY, |a, i| a.min(self.loop_valuations[i]));
-                                if stable && smallest < -self.options.valuation_threshold {
+                                if stable && smallest < -self.options.endgame.valuation_threshold {
                                     return PathStatus::AtInfinity;
                                 }
                             }
@@ -186,7 +188,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                             .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
                         self.previous_estimate.copy_from_slice(&self.estimate);
                         if have_estimate
-                            && change <= self.options.endgame_tolerance * scale
+                            && change <= self.options.endgame.endgame_tolerance * scale
                             && self.estimate_residual_small()
                         {
                             self.winding = c;
@@ -202,8 +204,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     }
                 }
             }
-            let s_next = s * self.options.endgame_ratio;
-            if s_next < self.options.endgame_min_radius {
+            let s_next = s * self.options.endgame.endgame_ratio;
+            if s_next < self.options.endgame.endgame_min_radius {
                 return self.give_up(have_estimate, FailureReason::EndgameDidNotConverge);
             }
             match self.track_segment(t, C64::new(1.0 - s_next, 0.0)) {
@@ -218,7 +220,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
     /// valuation classifies a path as diverging.
     fn has_grown(&self, i: usize) -> bool {
-        !self.options.growth_before_divergence
+        !self.options.endgame.growth_before_divergence
             || self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.endgame_origin[i]
     }
 
@@ -234,7 +236,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             self.estimate_residual_small()
         } {
             self.classify_estimate(self.winding)
-        } else if self.options.growth_before_divergence && self.divergence_evidence {
+        } else if self.options.endgame.growth_before_divergence && self.divergence_evidence {
             PathStatus::AtInfinity
         } else {
             PathStatus::Failed(reason)
@@ -248,7 +250,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         self.homotopy
             .evaluate(&self.estimate, C64::new(1.0, 0.0), &mut e.work, &mut e.h);
         let scale = 1.0 + max_norm(&self.estimate);
-        max_norm(&e.h) <= self.options.endpoint_residual * scale * scale
+        max_norm(&e.h) <= self.options.endgame.endpoint_residual * scale * scale
     }
 
     /// Moves to the Cauchy estimate and classifies it (winding number 1 endpoints are
@@ -258,7 +260,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         self.t = C64::new(1.0, 0.0);
         if winding == 1 {
             let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
-            if converged && self.condition_at(C64::new(1.0, 0.0)) < self.options.singular_condition
+            if converged
+                && self.condition_at(C64::new(1.0, 0.0)) < self.options.endgame.singular_condition
             {
                 return PathStatus::Nonsingular;
             }
@@ -270,7 +273,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// Loops around `|1 − t| = s` until the path closes; the mean of the samples (in
     /// `self.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
     pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, RouteStop> {
-        let m = self.options.cauchy_samples_per_loop.max(3);
+        let m = self.options.endgame.cauchy_samples_per_loop.max(3);
         self.x_checkpoint.copy_from_slice(&self.x);
         self.cauchy_sum
             .iter_mut()
@@ -280,7 +283,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             C64::new(1.0, 0.0) - C64::from_polar(s, std::f64::consts::TAU * j as f64 / m as f64)
         };
         let mut extent: f64 = 0.0;
-        for c in 1..=self.options.max_winding_number.max(1) {
+        for c in 1..=self.options.endgame.max_winding_number.max(1) {
             for j in 0..m {
                 for ((acc, log_acc), x) in self
                     .cauchy_sum
@@ -301,7 +304,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     extent = extent.max(distance);
                 } else {
                     let scale = 1.0 + max_norm(&self.x);
-                    let noise = 100.0 * self.options.corrector_tolerance * scale;
+                    let noise = 100.0 * self.options.step.corrector_tolerance * scale;
                     if distance <= (1e-2 * extent).max(noise) {
                         let weight = 1.0 / (c * m) as f64;
                         for (e, acc) in self.estimate.iter_mut().zip(&self.cauchy_sum) {

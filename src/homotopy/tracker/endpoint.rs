@@ -79,7 +79,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             if stagnated || norm <= 1e-11 * scale {
                 // `eval.lu` holds J at the previous iterate, within 1e-9 of the limit.
                 condition = self.eval.condition_estimate();
-                status = if condition < self.options.singular_condition {
+                status = if condition < self.options.endgame.singular_condition {
                     PathStatus::Nonsingular
                 } else {
                     PathStatus::Singular
@@ -116,7 +116,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let mut previous = f64::INFINITY;
         let mut converged = false;
         let mut extended = self.precision.extended;
-        for _ in 0..self.options.refinement_iterations {
+        for _ in 0..self.options.endgame.refinement_iterations {
             self.x_saved.copy_from_slice(&self.x);
             match self.eval.newton(self.homotopy, &mut self.x, t, extended) {
                 NewtonUpdate::Singular => {

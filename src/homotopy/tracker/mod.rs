@@ -74,7 +74,10 @@ mod options;
 mod precision;
 mod step;
 
-pub use options::TrackerOptions;
+pub use options::{
+    CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
+    CURVE_PREDICTION_TOLERANCE, EndgameOptions, PrecisionOptions, StepOptions, TrackerOptions,
+};
 
 /// Why a path failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -207,7 +210,7 @@ fn max_norm(x: &[C64]) -> f64 {
 
 /// Why the tracker stopped before the end of a route (one segment or a chain of them).
 /// The tracking layer reports only three outcomes: the route's end was reached (`Ok`),
-/// the path diverged (its norm passed [`TrackerOptions::at_infinity_norm`]), or the
+/// the path diverged (its norm passed [`EndgameOptions::at_infinity_norm`]), or the
 /// tracker failed. Whether a divergence is a solution at infinity — rather than a pole
 /// passed on the way — is not the tracker's to say: only the endgame
 /// ([`Tracker::track`]'s last stretch to `t = 1`) classifies a path as
@@ -269,7 +272,11 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let z = C64::new(0.0, 0.0);
         Tracker {
             homotopy,
-            eval: Evaluation::new(n, homotopy.workspace_len(), options.extended_residual),
+            eval: Evaluation::new(
+                n,
+                homotopy.workspace_len(),
+                options.precision.extended_residual,
+            ),
             options,
             n,
             x: vec![z; n],
@@ -312,7 +319,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     pub(super) fn reset(&mut self, start: &[C64], t0: f64) {
         self.x.copy_from_slice(start);
         self.t = C64::new(t0, 0.0);
-        self.step = self.options.initial_step;
+        self.step = self.options.step.initial_step;
         self.steps = 0;
         self.rejected = 0;
         self.precision = Precision::default();
@@ -326,7 +333,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.reset(start, 0.0);
         let endgame_start = {
             let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
-            self.options.endgame_start.min(0.5 * (1.0 - last))
+            self.options.endgame.endgame_start.min(0.5 * (1.0 - last))
         };
         let status = match self.track_real_interval(0.0, 1.0 - endgame_start) {
             Ok(()) => self.endgame(endgame_start),
@@ -344,7 +351,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.reset(start, 0.0);
         let endgame_start = {
             let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
-            self.options.endgame_start.min(0.5 * (1.0 - last))
+            self.options.endgame.endgame_start.min(0.5 * (1.0 - last))
         };
         let end = C64::new(1.0 - endgame_start, 0.0);
         let mut from = C64::new(0.0, 0.0);
@@ -383,7 +390,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             Ok(()) => {
                 let (converged, _) = self.refine_at(C64::new(t1, 0.0));
                 let condition = self.condition_at(C64::new(t1, 0.0));
-                if converged && condition < self.options.singular_condition {
+                if converged && condition < self.options.endgame.singular_condition {
                     PathStatus::Nonsingular
                 } else {
                     PathStatus::Singular
@@ -471,10 +478,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.factorization_current = false;
         let floor = step_floor(&self.options, length);
         while u < 1.0 {
-            if self.steps >= self.options.max_steps || self.precision.budget_spent(&self.options) {
+            if self.steps >= self.options.step.max_steps
+                || self.precision.budget_spent(&self.options)
+            {
                 return Err(RouteStop::Failed(FailureReason::TooManySteps));
             }
-            let mut h = step_fraction(self.step, self.options.max_step, length, u);
+            let mut h = step_fraction(self.step, self.options.step.max_step, length, u);
             let t = ta + dt * u;
             let t_mid = ta + dt * (u + 0.5 * h);
             let t_new = ta + dt * (u + h);
@@ -492,13 +501,13 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
                     self.t = ta + dt * u;
                     let scale = 1.0 + max_norm(&self.x);
-                    if scale > self.options.at_infinity_norm {
+                    if scale > self.options.endgame.at_infinity_norm {
                         return Err(RouteStop::Diverged);
                     }
                     let factor =
-                        step_factor(first_update / scale, self.options.prediction_tolerance);
-                    self.step = (h * length * factor).min(self.options.max_step);
-                    if self.options.growth_before_divergence
+                        step_factor(first_update / scale, self.options.step.prediction_tolerance);
+                    self.step = (h * length * factor).min(self.options.step.max_step);
+                    if self.options.endgame.growth_before_divergence
                         && u < 1.0
                         && self.step < floor * length
                     {
@@ -635,12 +644,11 @@ pub(crate) mod tests {
     /// `|t − p| < 0.1` of a pole instead of stepping across it (a simple pole of a
     /// rational path is no obstacle to the RK4 predictor).
     fn near_pole_options() -> TrackerOptions {
-        TrackerOptions {
-            initial_step: 0.01,
-            max_step: 0.01,
-            at_infinity_norm: 10.0,
-            ..TrackerOptions::default()
-        }
+        let mut options = TrackerOptions::default();
+        options.step.initial_step = 0.01;
+        options.step.max_step = 0.01;
+        options.endgame.at_infinity_norm = 10.0;
+        options
     }
 
     #[test]

@@ -8,10 +8,10 @@
 //! Following the adaptive multiprecision of Bates, Hauenstein, Sommese & Wampler
 //! ("Adaptive multiprecision path tracking", SIAM J. Numer. Anal., 2008), the tracker
 //! switches to double-double arithmetic (about 32 digits, [`crate::system::double_double`])
-//! after [`TrackerOptions::extended_after_rejections`] consecutive rejected steps at a
+//! after [`super::PrecisionOptions::extended_after_rejections`] consecutive rejected steps at a
 //! condition number above [`RETURN_TO_DOUBLE_CONDITION`] (below it a rejection means a
 //! step too long, not too little precision), and returns to double precision every
-//! [`TrackerOptions::extended_accepted_steps`] accepted steps if the condition number
+//! [`super::PrecisionOptions::extended_accepted_steps`] accepted steps if the condition number
 //! is back below that bound.
 
 use super::TrackerOptions;
@@ -36,7 +36,7 @@ pub(super) struct Precision {
     /// Accepted steps since extended mode was switched on or last checked.
     pub(super) streak: usize,
     /// Steps attempted in extended mode (their budget is
-    /// [`TrackerOptions::max_extended_steps`]).
+    /// [`super::PrecisionOptions::max_extended_steps`]).
     pub(super) steps: usize,
 }
 
@@ -57,7 +57,7 @@ impl Precision {
 
     /// Whether the extended-precision step budget is spent.
     pub(super) fn budget_spent(&self, options: &TrackerOptions) -> bool {
-        self.steps >= options.max_extended_steps
+        self.steps >= options.precision.max_extended_steps
     }
 
     /// Records an accepted step; `true` when, in extended mode, the condition number
@@ -69,7 +69,9 @@ impl Precision {
             return false;
         }
         self.streak += 1;
-        if self.streak >= options.extended_accepted_steps && options.extended_after_rejections > 0 {
+        if self.streak >= options.precision.extended_accepted_steps
+            && options.precision.extended_after_rejections > 0
+        {
             self.streak = 0;
             return true;
         }
@@ -82,8 +84,8 @@ impl Precision {
     pub(super) fn rejected(&mut self, options: &TrackerOptions) -> bool {
         self.consecutive_rejections += 1;
         !self.extended
-            && options.extended_after_rejections > 0
-            && self.consecutive_rejections >= options.extended_after_rejections
+            && options.precision.extended_after_rejections > 0
+            && self.consecutive_rejections >= options.precision.extended_after_rejections
     }
 }
 
@@ -94,7 +96,7 @@ pub(super) struct Evaluation {
     pub(super) jac: Vec<C64>,
     pub(super) dh: Vec<C64>,
     pub(super) lu: LuWorkspace,
-    /// [`TrackerOptions::extended_residual`].
+    /// [`super::PrecisionOptions::extended_residual`].
     pub(super) extended_residual: bool,
     /// Extended mode: Jacobians in double-double, solves by `dd_lu`.
     pub(super) extended: bool,
@@ -263,11 +265,10 @@ mod tests {
     use crate::homotopy::tracker::tests::Pole;
 
     fn options(after: usize, every: usize) -> TrackerOptions {
-        TrackerOptions {
-            extended_after_rejections: after,
-            extended_accepted_steps: every,
-            ..TrackerOptions::default()
-        }
+        let mut options = TrackerOptions::default();
+        options.precision.extended_after_rejections = after;
+        options.precision.extended_accepted_steps = every;
+        options
     }
 
     #[test]
@@ -315,10 +316,8 @@ mod tests {
 
     #[test]
     fn only_extended_steps_count_against_their_budget() {
-        let options = TrackerOptions {
-            max_extended_steps: 2,
-            ..TrackerOptions::default()
-        };
+        let mut options = TrackerOptions::default();
+        options.precision.max_extended_steps = 2;
         let mut precision = Precision::default();
         precision.count_step();
         precision.count_step();

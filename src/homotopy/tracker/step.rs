@@ -42,10 +42,13 @@ pub(super) fn step_fraction(step: f64, max_step: f64, length: f64, u: f64) -> f6
 /// tracker switches to extended precision and then fails: `min_step_fraction`, with
 /// the growth-before-divergence endgame also at least [`MIN_ABSOLUTE_STEP`] in `t`.
 pub(super) fn step_floor(options: &TrackerOptions, length: f64) -> f64 {
-    if options.growth_before_divergence {
-        options.min_step_fraction.max(MIN_ABSOLUTE_STEP / length)
+    if options.endgame.growth_before_divergence {
+        options
+            .step
+            .min_step_fraction
+            .max(MIN_ABSOLUTE_STEP / length)
     } else {
-        options.min_step_fraction
+        options.step.min_step_fraction
     }
 }
 
@@ -102,7 +105,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     pub(super) fn correct(&mut self, t: C64) -> Option<f64> {
         let mut first = 0.0;
         let mut previous = 0.0;
-        for k in 0..self.options.max_corrector_iterations.max(1) {
+        for k in 0..self.options.step.max_corrector_iterations.max(1) {
             let norm = match self.eval.newton(
                 self.homotopy,
                 &mut self.x_predicted,
@@ -113,7 +116,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 NewtonUpdate::Singular => return None,
             };
             let scale = 1.0 + max_norm(&self.x_predicted);
-            let tolerance = self.options.corrector_tolerance * scale;
+            let tolerance = self.options.step.corrector_tolerance * scale;
             if k == 0 {
                 first = norm;
                 if norm <= tolerance {
@@ -125,11 +128,11 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 // successive updates below the noise tolerance mean the iterate is as
                 // accurate as the arithmetic allows, and far too close to its path for
                 // a jump to another one.
-                let noise = self.options.corrector_noise_tolerance * scale;
+                let noise = self.options.step.corrector_noise_tolerance * scale;
                 if norm <= noise && previous <= 10.0 * noise {
                     return Some(first);
                 }
-                if norm > self.options.max_contraction * previous {
+                if norm > self.options.step.max_contraction * previous {
                     return None;
                 }
                 if norm <= tolerance {
@@ -171,12 +174,10 @@ mod tests {
     #[test]
     fn the_absolute_step_floor_applies_with_growth_before_divergence_only() {
         let classic = TrackerOptions::default();
-        assert_eq!(step_floor(&classic, 1e-7), classic.min_step_fraction);
-        let growth = TrackerOptions {
-            growth_before_divergence: true,
-            ..TrackerOptions::default()
-        };
-        assert_eq!(step_floor(&growth, 1.0), growth.min_step_fraction);
+        assert_eq!(step_floor(&classic, 1e-7), classic.step.min_step_fraction);
+        let mut growth = TrackerOptions::default();
+        growth.endgame.growth_before_divergence = true;
+        assert_eq!(step_floor(&growth, 1.0), growth.step.min_step_fraction);
         assert_eq!(step_floor(&growth, 1e-7), MIN_ABSOLUTE_STEP / 1e-7);
     }
 
