@@ -155,11 +155,12 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 mod tests {
     use super::*;
     use crate::homotopy::TrackerOptions;
-    use crate::homotopy::tracker::tests::Square;
+    use crate::homotopy::tracker::tests::{square, square_root_family};
 
     #[test]
     fn correct_at_converges_to_the_nearest_root_and_counts_its_updates() {
-        let homotopy = Square;
+        let system = square_root_family();
+        let homotopy = square(&system);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         let result = tracker.correct_at(&[C64::new(-1.3, 0.0)], 1.0, 7);
         assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
@@ -175,7 +176,8 @@ mod tests {
     /// From `x = 0` the Jacobian `2x` of `x² − 2` is singular: no update at all.
     #[test]
     fn correct_at_fails_at_a_singular_jacobian() {
-        let homotopy = Square;
+        let system = square_root_family();
+        let homotopy = square(&system);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         let result = tracker.correct_at(&[C64::new(0.0, 0.0)], 1.0, 0);
         assert_eq!(
@@ -187,7 +189,8 @@ mod tests {
 
     #[test]
     fn refinement_reaches_full_accuracy_and_reports_the_condition() {
-        let homotopy = Square;
+        let system = square_root_family();
+        let homotopy = square(&system);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         tracker.reset(&[C64::new(1.4, 0.0)], 1.0);
         let (converged, _) = tracker.refine_at(C64::new(1.0, 0.0));

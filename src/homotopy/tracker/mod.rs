@@ -576,64 +576,45 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
 pub(crate) mod tests {
     use super::*;
 
-    /// `H(x, t) = (p − t)·x − 1`, one unknown: the path `x(t) = 1/(p − t)` from
-    /// `x(0) = 1/p` has a pole at `t = p` (a divergence mid-route for `p < 1`, a root
-    /// at infinity of `H(·, 1)` for `p = 1`).
-    pub(crate) struct Pole(pub(crate) f64);
+    use crate::homotopy::ParameterHomotopy;
+    use crate::system::{CompiledSystem, Expr, System};
 
-    impl Homotopy for Pole {
-        fn dimension(&self) -> usize {
-            1
-        }
-        fn workspace_len(&self) -> usize {
-            0
-        }
-        fn evaluate(&self, x: &[C64], t: C64, _: &mut [C64], h: &mut [C64]) {
-            h[0] = (C64::new(self.0, 0.0) - t) * x[0] - 1.0;
-        }
-        fn evaluate_with_jacobian(
-            &self,
-            x: &[C64],
-            t: C64,
-            work: &mut [C64],
-            h: &mut [C64],
-            jac: &mut [C64],
-        ) {
-            self.evaluate(x, t, work, h);
-            jac[0] = C64::new(self.0, 0.0) - t;
-        }
-        fn evaluate_time_derivative(&self, x: &[C64], _: C64, _: &mut [C64], dh: &mut [C64]) {
-            dh[0] = -x[0];
-        }
+    /// `q·x − 1 = 0`, one unknown `x` and one parameter `q`.
+    pub(crate) fn reciprocal_family() -> CompiledSystem {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        System::new(["x"], ["q"], vec![q * x - Expr::one()])
+            .unwrap()
+            .compile()
     }
 
-    /// `H(x, t) = x² − (1 + t)`, one unknown: the paths `x(t) = ±√(1 + t)`.
-    pub(crate) struct Square;
+    /// `x² − q = 0`, one unknown `x` and one parameter `q`.
+    pub(crate) fn square_root_family() -> CompiledSystem {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        System::new(["x"], ["q"], vec![x.clone() * x - q])
+            .unwrap()
+            .compile()
+    }
 
-    impl Homotopy for Square {
-        fn dimension(&self) -> usize {
-            1
-        }
-        fn workspace_len(&self) -> usize {
-            0
-        }
-        fn evaluate(&self, x: &[C64], t: C64, _: &mut [C64], h: &mut [C64]) {
-            h[0] = x[0] * x[0] - (t + 1.0);
-        }
-        fn evaluate_with_jacobian(
-            &self,
-            x: &[C64],
-            t: C64,
-            work: &mut [C64],
-            h: &mut [C64],
-            jac: &mut [C64],
-        ) {
-            self.evaluate(x, t, work, h);
-            jac[0] = 2.0 * x[0];
-        }
-        fn evaluate_time_derivative(&self, _: &[C64], _: C64, _: &mut [C64], dh: &mut [C64]) {
-            dh[0] = C64::new(-1.0, 0.0);
-        }
+    fn real_segment(
+        system: &CompiledSystem,
+        from: f64,
+        to: f64,
+    ) -> ParameterHomotopy<'_, CompiledSystem> {
+        ParameterHomotopy::segment(system, &[C64::new(from, 0.0)], &[C64::new(to, 0.0)])
+    }
+
+    /// `H(x, t) = (p − t)·x − 1` ([`reciprocal_family`] with `q` from `p` to
+    /// `p − 1`): the path `x(t) = 1/(p − t)` from `x(0) = 1/p` has a pole at `t = p`
+    /// (a divergence mid-route for `p < 1`, a root at infinity of `H(·, 1)` for
+    /// `p = 1`).
+    pub(crate) fn pole(system: &CompiledSystem, p: f64) -> ParameterHomotopy<'_, CompiledSystem> {
+        real_segment(system, p, p - 1.0)
+    }
+
+    /// `H(x, t) = x² − (1 + t)` ([`square_root_family`] with `q` from 1 to 2): the
+    /// paths `x(t) = ±√(1 + t)`.
+    pub(crate) fn square(system: &CompiledSystem) -> ParameterHomotopy<'_, CompiledSystem> {
+        real_segment(system, 1.0, 2.0)
     }
 
     fn start(p: f64) -> Vec<C64> {
@@ -653,7 +634,8 @@ pub(crate) mod tests {
 
     #[test]
     fn a_divergence_without_endgame_is_a_failure_not_a_point_at_infinity() {
-        let homotopy = Pole(0.5);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 0.5);
         let mut tracker = Tracker::new(&homotopy, near_pole_options());
         let result = tracker.track_between(&start(0.5), 0.0, 1.0, 0);
         assert_eq!(
@@ -666,7 +648,8 @@ pub(crate) mod tests {
 
     #[test]
     fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
-        let homotopy = Pole(1.0);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 1.0);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         let result = tracker.track(&start(1.0), 0);
         assert_eq!(result.status, PathStatus::AtInfinity, "{result:?}");
@@ -674,7 +657,8 @@ pub(crate) mod tests {
 
     #[test]
     fn a_divergence_before_the_endgame_zone_is_reported_as_such() {
-        let homotopy = Pole(0.5);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 0.5);
         let mut tracker = Tracker::new(&homotopy, near_pole_options());
         let result = tracker.track(&start(0.5), 0);
         assert_eq!(
@@ -686,7 +670,8 @@ pub(crate) mod tests {
 
     #[test]
     fn a_route_without_a_pole_reaches_its_end() {
-        let homotopy = Pole(2.0);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 2.0);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         let result = tracker.track_between(&start(2.0), 0.0, 1.0, 0);
         assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");

@@ -294,11 +294,8 @@ impl TrackerOptions {
     /// built-in example 1.5 × faster than the default preset with the same endpoints
     /// and distances.
     pub fn curve() -> Self {
-        let mut options = Self::fast();
-        options.step.max_steps = CURVE_MAX_STEPS;
+        let mut options = Self::fast().with_curve_budgets();
         options.step.prediction_tolerance = CURVE_PREDICTION_TOLERANCE;
-        options.precision.extended_after_rejections = CURVE_EXTENDED_AFTER_REJECTIONS;
-        options.endgame.at_infinity_norm = CURVE_AT_INFINITY_NORM;
         options
     }
 
@@ -308,13 +305,19 @@ impl TrackerOptions {
     /// [`CURVE_MAX_STEPS`], [`CURVE_AT_INFINITY_NORM`] and
     /// [`CURVE_EXTENDED_AFTER_REJECTIONS`].
     pub fn curve_neighbour() -> Self {
-        let mut options = Self::fast();
-        options.step.max_steps = CURVE_MAX_STEPS;
+        let mut options = Self::fast().with_curve_budgets();
         options.step.initial_step = 0.25;
         options.step.max_step = 0.5;
-        options.endgame.at_infinity_norm = CURVE_AT_INFINITY_NORM;
-        options.precision.extended_after_rejections = CURVE_EXTENDED_AFTER_REJECTIONS;
         options
+    }
+
+    /// `self` with the step budget, divergence bound and precision switching the
+    /// curve pipeline's first-run and pose-to-pose trackers share.
+    fn with_curve_budgets(mut self) -> Self {
+        self.step.max_steps = CURVE_MAX_STEPS;
+        self.precision.extended_after_rejections = CURVE_EXTENDED_AFTER_REJECTIONS;
+        self.endgame.at_infinity_norm = CURVE_AT_INFINITY_NORM;
+        self
     }
 
     /// The curve pipeline's re-run tracker: the conservative preset with

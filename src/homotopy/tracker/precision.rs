@@ -262,7 +262,7 @@ impl Evaluation {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::homotopy::tracker::tests::Pole;
+    use crate::homotopy::tracker::tests::{pole, reciprocal_family};
 
     fn options(after: usize, every: usize) -> TrackerOptions {
         let mut options = TrackerOptions::default();
@@ -333,10 +333,11 @@ mod tests {
     /// `x`), in double and in double-double; the velocity is `ẋ = x/(p − t)`.
     #[test]
     fn newton_and_velocity_agree_in_both_precisions() {
-        let homotopy = Pole(2.0);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 2.0);
         let t = C64::new(0.5, 0.0);
         for extended in [false, true] {
-            let mut eval = Evaluation::new(1, 0, true);
+            let mut eval = Evaluation::new(1, homotopy.workspace_len(), true);
             eval.extended = extended;
             let mut x = vec![C64::new(0.3, 0.1)];
             let NewtonUpdate::Step(norm) = eval.newton(&homotopy, &mut x, t, extended) else {
@@ -353,8 +354,9 @@ mod tests {
 
     #[test]
     fn a_singular_jacobian_stops_newton() {
-        let homotopy = Pole(0.5);
-        let mut eval = Evaluation::new(1, 0, true);
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 0.5);
+        let mut eval = Evaluation::new(1, homotopy.workspace_len(), true);
         let mut x = vec![C64::new(1.0, 0.0)];
         assert!(matches!(
             eval.newton(&homotopy, &mut x, C64::new(0.5, 0.0), false),

@@ -148,7 +148,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::homotopy::tracker::tests::Square;
+    use crate::homotopy::tracker::tests::{square, square_root_family};
 
     #[test]
     fn the_step_factor_holds_the_error_at_the_tolerance_and_is_clamped() {
@@ -186,7 +186,8 @@ mod tests {
     /// measures that error, and the corrected point is on the path.
     #[test]
     fn one_predictor_corrector_step_follows_the_path() {
-        let homotopy = Square;
+        let system = square_root_family();
+        let homotopy = square(&system);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
         let (t, dt) = (C64::new(0.0, 0.0), C64::new(1.0, 0.0));
@@ -205,7 +206,8 @@ mod tests {
     #[test]
     fn the_corrector_rejects_a_prediction_outside_the_basin() {
         // x² − (1 + t) from x = 40: Newton's updates only halve (ratio ≈ ½ > 0.25).
-        let homotopy = Square;
+        let system = square_root_family();
+        let homotopy = square(&system);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
         tracker.x_predicted[0] = C64::new(40.0, 0.0);
