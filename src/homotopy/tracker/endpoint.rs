@@ -154,15 +154,13 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::homotopy::TrackerOptions;
-    use crate::homotopy::tracker::tests::{square, square_root_family};
+    use crate::homotopy::tracker::tests::on_square;
 
     #[test]
     fn correct_at_converges_to_the_nearest_root_and_counts_its_updates() {
-        let system = square_root_family();
-        let homotopy = square(&system);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        let result = tracker.correct_at(&[C64::new(-1.3, 0.0)], 1.0, 7);
+        let result = on_square(0.0, 1.0, |tracker| {
+            tracker.correct_at(&[C64::new(-1.3, 0.0)], 1.0, 7)
+        });
         assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
         assert_eq!(result.path_index, 7);
         assert!(
@@ -176,10 +174,9 @@ mod tests {
     /// From `x = 0` the Jacobian `2x` of `x² − 2` is singular: no update at all.
     #[test]
     fn correct_at_fails_at_a_singular_jacobian() {
-        let system = square_root_family();
-        let homotopy = square(&system);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        let result = tracker.correct_at(&[C64::new(0.0, 0.0)], 1.0, 0);
+        let result = on_square(0.0, 1.0, |tracker| {
+            tracker.correct_at(&[C64::new(0.0, 0.0)], 1.0, 0)
+        });
         assert_eq!(
             result.status,
             PathStatus::Failed(FailureReason::CorrectorDidNotConverge),
@@ -189,14 +186,12 @@ mod tests {
 
     #[test]
     fn refinement_reaches_full_accuracy_and_reports_the_condition() {
-        let system = square_root_family();
-        let homotopy = square(&system);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        tracker.reset(&[C64::new(1.4, 0.0)], 1.0);
-        let (converged, _) = tracker.refine_at(C64::new(1.0, 0.0));
-        assert!(converged);
-        assert!((tracker.x[0] - 2.0f64.sqrt()).norm() < 1e-15);
-        // One unknown: the 1-norm condition number of a nonzero 1×1 matrix is 1.
-        assert_eq!(tracker.condition_at(C64::new(1.0, 0.0)), 1.0);
+        on_square(1.4, 1.0, |tracker| {
+            let (converged, _) = tracker.refine_at(C64::new(1.0, 0.0));
+            assert!(converged);
+            assert!((tracker.x[0] - 2.0f64.sqrt()).norm() < 1e-15);
+            // One unknown: the 1-norm condition number of a nonzero 1×1 matrix is 1.
+            assert_eq!(tracker.condition_at(C64::new(1.0, 0.0)), 1.0);
+        });
     }
 }

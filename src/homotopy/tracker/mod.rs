@@ -617,8 +617,32 @@ pub(crate) mod tests {
         real_segment(system, 1.0, 2.0)
     }
 
-    fn start(p: f64) -> Vec<C64> {
-        vec![C64::new(1.0 / p, 0.0)]
+    /// Runs `test` on a tracker with the default options for [`square`], reset to
+    /// `x = start` at `t = t0`.
+    pub(crate) fn on_square<R>(
+        start: f64,
+        t0: f64,
+        test: impl FnOnce(&mut Tracker<'_, ParameterHomotopy<'_, CompiledSystem>>) -> R,
+    ) -> R {
+        let system = square_root_family();
+        let homotopy = square(&system);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        tracker.reset(&[C64::new(start, 0.0)], t0);
+        test(&mut tracker)
+    }
+
+    /// The path of [`pole`] from `x(0) = 1/p`, tracked with `options` to `t = 1`
+    /// with the endgame ([`Tracker::track`]) or without ([`Tracker::track_between`]).
+    fn along_pole(p: f64, options: TrackerOptions, endgame: bool) -> PathResult {
+        let system = reciprocal_family();
+        let homotopy = pole(&system, p);
+        let mut tracker = Tracker::new(&homotopy, options);
+        let start = [C64::new(1.0 / p, 0.0)];
+        if endgame {
+            tracker.track(&start, 0)
+        } else {
+            tracker.track_between(&start, 0.0, 1.0, 0)
+        }
     }
 
     /// Steps of at most 0.01 and divergence at `‖x‖ > 10`: the tracker lands within
@@ -632,48 +656,29 @@ pub(crate) mod tests {
         options
     }
 
+    /// A pole at `t = ½` is a divergence on the route, a failure whether the route
+    /// ends with the endgame or not, never a point at infinity.
     #[test]
-    fn a_divergence_without_endgame_is_a_failure_not_a_point_at_infinity() {
-        let system = reciprocal_family();
-        let homotopy = pole(&system, 0.5);
-        let mut tracker = Tracker::new(&homotopy, near_pole_options());
-        let result = tracker.track_between(&start(0.5), 0.0, 1.0, 0);
-        assert_eq!(
-            result.status,
-            PathStatus::Failed(FailureReason::DivergedOnRoute),
-            "{result:?}"
-        );
-        assert!(result.last_t.re < 0.5, "{result:?}");
+    fn a_divergence_on_the_route_is_a_failure_not_a_point_at_infinity() {
+        for (endgame, reason) in [
+            (false, FailureReason::DivergedOnRoute),
+            (true, FailureReason::DivergedBeforeEndgame),
+        ] {
+            let result = along_pole(0.5, near_pole_options(), endgame);
+            assert_eq!(result.status, PathStatus::Failed(reason), "{result:?}");
+            assert!(result.last_t.re < 0.5, "{result:?}");
+        }
     }
 
     #[test]
     fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
-        let system = reciprocal_family();
-        let homotopy = pole(&system, 1.0);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        let result = tracker.track(&start(1.0), 0);
+        let result = along_pole(1.0, TrackerOptions::default(), true);
         assert_eq!(result.status, PathStatus::AtInfinity, "{result:?}");
     }
 
     #[test]
-    fn a_divergence_before_the_endgame_zone_is_reported_as_such() {
-        let system = reciprocal_family();
-        let homotopy = pole(&system, 0.5);
-        let mut tracker = Tracker::new(&homotopy, near_pole_options());
-        let result = tracker.track(&start(0.5), 0);
-        assert_eq!(
-            result.status,
-            PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
-            "{result:?}"
-        );
-    }
-
-    #[test]
     fn a_route_without_a_pole_reaches_its_end() {
-        let system = reciprocal_family();
-        let homotopy = pole(&system, 2.0);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        let result = tracker.track_between(&start(2.0), 0.0, 1.0, 0);
+        let result = along_pole(2.0, TrackerOptions::default(), false);
         assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
         assert!((result.solution[0] - 1.0).norm() < 1e-12, "{result:?}");
     }

@@ -148,7 +148,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::homotopy::tracker::tests::{square, square_root_family};
+    use crate::homotopy::tracker::tests::on_square;
 
     #[test]
     fn the_step_factor_holds_the_error_at_the_tolerance_and_is_clamped() {
@@ -186,19 +186,17 @@ mod tests {
     /// measures that error, and the corrected point is on the path.
     #[test]
     fn one_predictor_corrector_step_follows_the_path() {
-        let system = square_root_family();
-        let homotopy = square(&system);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
-        let (t, dt) = (C64::new(0.0, 0.0), C64::new(1.0, 0.0));
-        let h = 0.1;
-        assert!(tracker.predict(t, t + 0.5 * h, t + h, dt, h).is_some());
-        let exact = 1.1f64.sqrt();
-        let error = (tracker.x_predicted[0] - exact).norm();
-        assert!(error > 1e-9 && error < 1e-8, "{error}");
-        let first = tracker.correct(t + h).expect("accepted");
-        assert!((first - error).abs() < 1e-3 * error, "{first} vs {error}");
-        assert!((tracker.x_predicted[0] - exact).norm() < 1e-15);
+        on_square(1.0, 0.0, |tracker| {
+            let (t, dt) = (C64::new(0.0, 0.0), C64::new(1.0, 0.0));
+            let h = 0.1;
+            assert!(tracker.predict(t, t + 0.5 * h, t + h, dt, h).is_some());
+            let exact = 1.1f64.sqrt();
+            let error = (tracker.x_predicted[0] - exact).norm();
+            assert!(error > 1e-9 && error < 1e-8, "{error}");
+            let first = tracker.correct(t + h).expect("accepted");
+            assert!((first - error).abs() < 1e-3 * error, "{first} vs {error}");
+            assert!((tracker.x_predicted[0] - exact).norm() < 1e-15);
+        });
     }
 
     /// A prediction on no path at all (a point far from the solution curve) does not
@@ -206,15 +204,13 @@ mod tests {
     #[test]
     fn the_corrector_rejects_a_prediction_outside_the_basin() {
         // x² − (1 + t) from x = 40: Newton's updates only halve (ratio ≈ ½ > 0.25).
-        let system = square_root_family();
-        let homotopy = square(&system);
-        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
-        tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
-        tracker.x_predicted[0] = C64::new(40.0, 0.0);
-        assert_eq!(tracker.correct(C64::new(0.1, 0.0)), None);
-        // Near the root the same corrector accepts.
-        tracker.x_predicted[0] = C64::new(1.05, 0.0);
-        assert!(tracker.correct(C64::new(0.1, 0.0)).is_some());
-        assert!((tracker.x_predicted[0] - 1.1f64.sqrt()).norm() < 1e-12);
+        on_square(1.0, 0.0, |tracker| {
+            tracker.x_predicted[0] = C64::new(40.0, 0.0);
+            assert_eq!(tracker.correct(C64::new(0.1, 0.0)), None);
+            // Near the root the same corrector accepts.
+            tracker.x_predicted[0] = C64::new(1.05, 0.0);
+            assert!(tracker.correct(C64::new(0.1, 0.0)).is_some());
+            assert!((tracker.x_predicted[0] - 1.1f64.sqrt()).norm() < 1e-12);
+        });
     }
 }
