@@ -39,6 +39,7 @@ use crate::mechanism::rpr::{
     Design, collinearity_base, collinearity_platform, singularity_polynomial,
 };
 use crate::metric::{Metric, Part};
+use crate::problem::{SubProblem, subproblems_of};
 use crate::random;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -63,41 +64,35 @@ pub enum Constraint {
 }
 
 impl Constraint {
-    /// The name used in the pipeline's output (`singularity`, `collinear-platform`, …).
+    /// The name used in the pipeline's output (`singularity`, `collinear-platform`, …):
+    /// that of the same [`SubProblem`].
     pub fn name(self) -> &'static str {
-        match self {
-            Constraint::Singularity => "singularity",
-            Constraint::CollinearPlatform => "collinear-platform",
-            Constraint::CollinearBase => "collinear-base",
-            Constraint::AllCollinear => "all-collinear",
-            Constraint::CoincidentPlatform => "coincident-platform",
-            Constraint::CoincidentBase => "coincident-base",
-        }
+        SubProblem::ALL
+            .into_iter()
+            .find(|&kind| Constraint::from(kind) == self)
+            .map_or("", SubProblem::name)
     }
 
-    /// The constraint sets whose minimum is the singularity distance of `metric`:
-    /// the singularity variety always; the collinear platform (base) for a `bars`
-    /// platform (base); all six points collinear when neither part is `bars`; three
-    /// coincident platform (base) points for a `bars` platform (base) with the other
-    /// part rigid.
+    /// The constraint sets whose minimum is the singularity distance of `metric`: those
+    /// of the pipeline's sub-problems ([`subproblems_of`]), in the same order.
     pub fn of_metric(metric: Metric) -> Vec<Constraint> {
-        let mut list = vec![Constraint::Singularity];
-        if metric.platform == Part::Bars {
-            list.push(Constraint::CollinearPlatform);
+        subproblems_of(metric)
+            .into_iter()
+            .map(Constraint::from)
+            .collect()
+    }
+}
+
+impl From<SubProblem> for Constraint {
+    fn from(kind: SubProblem) -> Self {
+        match kind {
+            SubProblem::Singularity => Constraint::Singularity,
+            SubProblem::CollinearPlatform => Constraint::CollinearPlatform,
+            SubProblem::CollinearBase => Constraint::CollinearBase,
+            SubProblem::AllCollinear => Constraint::AllCollinear,
+            SubProblem::CoincidentPlatform => Constraint::CoincidentPlatform,
+            SubProblem::CoincidentBase => Constraint::CoincidentBase,
         }
-        if metric.base == Part::Bars {
-            list.push(Constraint::CollinearBase);
-        }
-        if metric.platform != Part::Bars && metric.base != Part::Bars {
-            list.push(Constraint::AllCollinear);
-        }
-        if metric.platform == Part::Bars && metric.base == Part::Rigid {
-            list.push(Constraint::CoincidentPlatform);
-        }
-        if metric.base == Part::Bars && metric.platform == Part::Rigid {
-            list.push(Constraint::CoincidentBase);
-        }
-        list
     }
 }
 
@@ -1004,4 +999,34 @@ pub fn reference_distances(
         .par_iter()
         .map(|&metric| reference_distance(design, k, metric, options))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constraint_sets_are_the_pipelines_subproblems() {
+        for metric in Metric::all() {
+            let names: Vec<&str> = Constraint::of_metric(metric)
+                .into_iter()
+                .map(Constraint::name)
+                .collect();
+            let expected: Vec<&str> = subproblems_of(metric)
+                .into_iter()
+                .map(SubProblem::name)
+                .collect();
+            assert_eq!(names, expected, "{metric:?}");
+        }
+        // Platform bars, base rigid (Kapilavai and Nawratil, Eq. 62).
+        assert_eq!(
+            Constraint::of_metric(Metric::new(Part::Bars, Part::Rigid)),
+            [
+                Constraint::Singularity,
+                Constraint::CollinearPlatform,
+                Constraint::CoincidentPlatform
+            ]
+        );
+        assert_eq!(Constraint::CoincidentBase.name(), "coincident-base");
+    }
 }
