@@ -44,63 +44,11 @@ use crate::random;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::fmt;
 
-/// A constraint set (sub-problem) of the singularity distance.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
-pub enum Constraint {
-    /// `S(K′) = 0`: the leg lines are concurrent or parallel.
-    Singularity,
-    /// `C_p(K′) = 0`: the platform points are collinear.
-    CollinearPlatform,
-    /// `C_b(K′) = 0`: the base points are collinear.
-    CollinearBase,
-    /// All six points on one line.
-    AllCollinear,
-    /// `b_1′ = b_2′ = b_3′` (base rigid).
-    CoincidentPlatform,
-    /// `a_1′ = a_2′ = a_3′` (platform rigid).
-    CoincidentBase,
-}
-
-impl Constraint {
-    /// The name used in the pipeline's output (`singularity`, `collinear-platform`, …):
-    /// that of the same [`SubProblem`].
-    pub fn name(self) -> &'static str {
-        SubProblem::ALL
-            .into_iter()
-            .find(|&kind| Constraint::from(kind) == self)
-            .map_or("", SubProblem::name)
-    }
-
-    /// The constraint sets whose minimum is the singularity distance of `metric`: those
-    /// of the pipeline's sub-problems ([`subproblems_of`]), in the same order.
-    pub fn of_metric(metric: Metric) -> Vec<Constraint> {
-        subproblems_of(metric)
-            .into_iter()
-            .map(Constraint::from)
-            .collect()
-    }
-}
-
-impl From<SubProblem> for Constraint {
-    fn from(kind: SubProblem) -> Self {
-        match kind {
-            SubProblem::Singularity => Constraint::Singularity,
-            SubProblem::CollinearPlatform => Constraint::CollinearPlatform,
-            SubProblem::CollinearBase => Constraint::CollinearBase,
-            SubProblem::AllCollinear => Constraint::AllCollinear,
-            SubProblem::CoincidentPlatform => Constraint::CoincidentPlatform,
-            SubProblem::CoincidentBase => Constraint::CoincidentBase,
-        }
-    }
-}
-
-impl fmt::Display for Constraint {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+/// A constraint set of the singularity distance: one of the pipeline's sub-problems
+/// ([`SubProblem`], with its name), so that the reference search and the pipeline
+/// minimise over the same sets ([`subproblems_of`] gives those of a metric).
+pub type Constraint = SubProblem;
 
 /// Anchors count as collinear when twice their triangle's area is at most this times
 /// the square of its longest edge.
@@ -953,7 +901,7 @@ pub fn reference_distance(
 ) -> MetricReference {
     let mut subproblems = Vec::new();
     let mut not_applicable = Vec::new();
-    for constraint in Constraint::of_metric(metric) {
+    for constraint in subproblems_of(metric) {
         if constraint == Constraint::AllCollinear && !all_collinear_applies(design, metric) {
             not_applicable.push(constraint);
             continue;
@@ -1005,28 +953,21 @@ pub fn reference_distances(
 mod tests {
     use super::*;
 
+    /// Constraints serialise as their variant names, as before they were the
+    /// pipeline's sub-problems.
     #[test]
-    fn constraint_sets_are_the_pipelines_subproblems() {
-        for metric in Metric::all() {
-            let names: Vec<&str> = Constraint::of_metric(metric)
-                .into_iter()
-                .map(Constraint::name)
-                .collect();
-            let expected: Vec<&str> = subproblems_of(metric)
-                .into_iter()
-                .map(SubProblem::name)
-                .collect();
-            assert_eq!(names, expected, "{metric:?}");
-        }
-        // Platform bars, base rigid (Kapilavai and Nawratil, Eq. 62).
+    fn constraints_serialise_by_variant_name() {
+        let names: Vec<String> = subproblems_of(Metric::new(Part::Bars, Part::Rigid))
+            .into_iter()
+            .map(|c: Constraint| serde_json::to_string(&c).unwrap())
+            .collect();
         assert_eq!(
-            Constraint::of_metric(Metric::new(Part::Bars, Part::Rigid)),
+            names,
             [
-                Constraint::Singularity,
-                Constraint::CollinearPlatform,
-                Constraint::CoincidentPlatform
+                "\"Singularity\"",
+                "\"CollinearPlatform\"",
+                "\"CoincidentPlatform\""
             ]
         );
-        assert_eq!(Constraint::CoincidentBase.name(), "coincident-base");
     }
 }
