@@ -16,7 +16,7 @@
 
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine};
-use super::start::TotalDegreeStartSystem;
+use super::start::{TotalDegreeStartSystem, no_parameter_derivatives};
 use super::tracker::{
     EndgameOptions, FailureReason, PathResult, PathStatus, Tracker, TrackerOptions,
 };
@@ -538,17 +538,7 @@ impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
         self.homotopy
             .evaluate_with_jacobian(x, C64::new(1.0, 0.0), work, f, jac);
     }
-    fn evaluate_parameter_derivative(
-        &self,
-        _: &[C64],
-        _: &[C64],
-        _: &[C64],
-        _: &mut [C64],
-        out: &mut [C64],
-    ) {
-        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-    }
-    fn evaluate_parameter_jacobian(&self, _: &[C64], _: &[C64], _: &mut [C64], _: &mut [C64]) {}
+    no_parameter_derivatives!();
 }
 
 /// Sets `multiplicity` of every finite path to the number of finite paths ending at
