@@ -144,6 +144,16 @@ impl SolveResult {
             .collect()
     }
 
+    /// Every finite endpoint (nonsingular or singular; a cluster once per path), in
+    /// path order.
+    pub fn finite_endpoints(&self) -> Vec<Vec<C64>> {
+        self.paths
+            .iter()
+            .filter(|p| p.status.is_finite())
+            .map(|p| p.solution.clone())
+            .collect()
+    }
+
     /// Distinct finite solutions (one representative per cluster), in path order.
     pub fn finite_solutions(&self) -> Vec<&PathResult> {
         distinct_finite(&self.paths)
