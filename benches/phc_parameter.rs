@@ -121,12 +121,7 @@ fn main() {
             .expect("parameter homotopy")
         };
         let ours = pool.install(run);
-        let our_points: Vec<Vec<C64>> = ours
-            .paths
-            .iter()
-            .filter(|p| p.status.is_finite())
-            .map(|p| p.solution.clone())
-            .collect();
+        let our_points = ours.finite_endpoints();
         let our_seconds = best_of_3(|| {
             pool.install(run);
         });

@@ -213,6 +213,18 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
     let radial = PLATFORM.map(|c| (c - q).normalize());
     let theta_scheme = Scheme::from_number(1).unwrap();
     let psi_scheme = Scheme::from_number(2).unwrap();
+    // Each (scheme, model) classifies the configuration as the given type.
+    let expect = |design: &RrrDesign,
+                  config: &RrrConfiguration,
+                  cases: &[(Scheme, PsiModel, SingularityType)]| {
+        for &(scheme, model, expected) in cases {
+            assert_eq!(
+                classify(design, config, scheme, model, tol),
+                expected,
+                "scheme {scheme} {model:?}"
+            );
+        }
+    };
 
     // θθθ: distal lines B_iC_i through Q.
     let elbows = [0, 1, 2].map(|i| PLATFORM[i] + 2.0 * radial[i]);
@@ -220,39 +232,41 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
     let (design, config) = design_through(bases, elbows, PLATFORM);
     let jac = jacobians(&config, theta_scheme, PsiModel::Seed);
     assert!(jac.det_jx().abs() < 1e-12);
-    assert_eq!(
-        classify(&design, &config, theta_scheme, PsiModel::Seed, tol),
-        SingularityType::TypeII
-    );
-    assert_eq!(
-        classify(&design, &config, psi_scheme, PsiModel::Seed, tol),
-        SingularityType::Regular
+    expect(
+        &design,
+        &config,
+        &[
+            (theta_scheme, PsiModel::Seed, SingularityType::TypeII),
+            (psi_scheme, PsiModel::Seed, SingularityType::Regular),
+        ],
     );
 
     // Type III: same concurrent distal lines, and leg 0 stretched (O_0 on the line B_0C_0).
     let mut stretched_bases = bases;
     stretched_bases[0] = elbows[0] + 1.7 * radial[0];
     let (design3, config3) = design_through(stretched_bases, elbows, PLATFORM);
-    assert_eq!(
-        classify(&design3, &config3, theta_scheme, PsiModel::Seed, tol),
-        SingularityType::TypeIII
+    expect(
+        &design3,
+        &config3,
+        &[(theta_scheme, PsiModel::Seed, SingularityType::TypeIII)],
     );
 
     // ψψψ, seed model: the lines through C_i parallel to O_iB_i pass through Q.
     let elbows = [0, 1, 2].map(|i| PLATFORM[i] + 2.0 * rotate(radial[i], 0.9));
     let bases = [0, 1, 2].map(|i| elbows[i] - 1.6 * radial[i]);
     let (design, config) = design_through(bases, elbows, PLATFORM);
-    assert_eq!(
-        classify(&design, &config, psi_scheme, PsiModel::Seed, tol),
-        SingularityType::TypeII
-    );
-    assert_eq!(
-        classify(&design, &config, theta_scheme, PsiModel::Seed, tol),
-        SingularityType::Regular
-    );
-    assert_eq!(
-        classify(&design, &config, psi_scheme, PsiModel::RelativeElbow, tol),
-        SingularityType::Regular
+    expect(
+        &design,
+        &config,
+        &[
+            (psi_scheme, PsiModel::Seed, SingularityType::TypeII),
+            (theta_scheme, PsiModel::Seed, SingularityType::Regular),
+            (
+                psi_scheme,
+                PsiModel::RelativeElbow,
+                SingularityType::Regular,
+            ),
+        ],
     );
 
     // ψψψ, relative-elbow model: lines O_iC_i through Q (the text of Ramana Babu et al.,
@@ -260,13 +274,13 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
     let bases = [0, 1, 2].map(|i| PLATFORM[i] + 3.5 * radial[i]);
     let elbows = [0, 1, 2].map(|i| bases[i] + 2.0 * rotate(-radial[i], 0.7));
     let (design, config) = design_through(bases, elbows, PLATFORM);
-    assert_eq!(
-        classify(&design, &config, psi_scheme, PsiModel::RelativeElbow, tol),
-        SingularityType::TypeII
-    );
-    assert_eq!(
-        classify(&design, &config, psi_scheme, PsiModel::Seed, tol),
-        SingularityType::Regular
+    expect(
+        &design,
+        &config,
+        &[
+            (psi_scheme, PsiModel::RelativeElbow, SingularityType::TypeII),
+            (psi_scheme, PsiModel::Seed, SingularityType::Regular),
+        ],
     );
 
     // Generic pose of the example design: regular for all schemes and both models.

@@ -66,12 +66,7 @@ fn demo_systems_are_solved_completely_for_two_seeds() {
             let s = &result.summary;
             assert_eq!(s.failed, 0, "{stem}, seed {seed}: failed paths: {s:?}");
             assert_eq!(s.nonsingular, expected, "{stem}, seed {seed}: {s:?}");
-            let finite: Vec<Vec<C64>> = result
-                .paths
-                .iter()
-                .filter(|p| p.status.is_finite())
-                .map(|p| p.solution.clone())
-                .collect();
+            let finite = result.finite_endpoints();
             let distinct = distinct_nonsingular(&compiled, &finite);
             assert_eq!(
                 distinct.len(),

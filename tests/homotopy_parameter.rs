@@ -273,12 +273,10 @@ fn rejections_at_a_well_conditioned_point_keep_double_precision() {
     let c = real;
     let system = square_root_family();
     let homotopy = segment(&system, 1.0, 1e4);
-    let options = TrackerOptions {
-        initial_step: 0.5,
-        max_step: 0.5,
-        ..TrackerOptions::fast()
-    };
-    assert!(options.extended_after_rejections > 0);
+    let mut options = TrackerOptions::fast();
+    options.step.initial_step = 0.5;
+    options.step.max_step = 0.5;
+    assert!(options.precision.extended_after_rejections > 0);
     let mut tracker = Tracker::new(&homotopy, options);
     let result = tracker.track_between(&c(1.0), 0.0, 1.0, 0);
     assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");

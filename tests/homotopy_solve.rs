@@ -167,10 +167,8 @@ fn bad_input_is_an_error_not_a_panic() {
 fn failed_paths_are_retracked_with_conservative_options() {
     use singdist::homotopy::TrackerOptions;
     let system = katsura(4);
-    let tracker = TrackerOptions {
-        max_steps: 5,
-        ..TrackerOptions::default()
-    };
+    let mut tracker = TrackerOptions::default();
+    tracker.step.max_steps = 5;
     let options = SolveOptions {
         tracker,
         ..SolveOptions::default()

@@ -351,13 +351,13 @@ fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start(
         coordinates: Coordinates::Cartesian,
         ..CurveOptions::default()
     };
-    options.tracker.extended_after_rejections = 3;
+    options.tracker.precision.extended_after_rejections = 3;
     let (seed_default, poses_default) = lost_on_example("rigid/rigid", &poses, &options);
     assert_eq!(poses_default, 0, "double-double extended mode");
     assert!(seed_default <= 2, "seed stage lost {seed_default}");
     let mut double_only = options.clone();
-    double_only.tracker.extended_residual = false;
-    double_only.retry_tracker.extended_residual = false;
+    double_only.tracker.precision.extended_residual = false;
+    double_only.retry_tracker.precision.extended_residual = false;
     let (seed_double, poses_double) = lost_on_example("rigid/rigid", &poses, &double_only);
     assert!(
         poses_double > 0 || seed_double > seed_default,
@@ -464,8 +464,8 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
     let samples = sample_motion(&motion, poses).expect("samples");
     let starved_with = |budget: usize| {
         let mut options = CurveOptions::default();
-        options.tracker.max_steps = budget;
-        options.retry_tracker.max_steps = budget;
+        options.tracker.step.max_steps = budget;
+        options.retry_tracker.step.max_steps = budget;
         options.retry_attempts = 0;
         // Every pose from the seed: the rescue pass, not a chain, must recover them.
         options.chain_length = 1;

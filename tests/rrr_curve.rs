@@ -10,15 +10,8 @@ use singdist::pipeline::rrr_curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 use std::f64::consts::PI;
 
-fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {
-    compute_rrr_curve_at(
-        trajectory,
-        taus,
-        &RrrCurveOptions::default(),
-        &default_rrr_start_solutions,
-    )
-    .expect("curve")
-}
+mod rrr_support;
+use rrr_support::curve_at;
 
 /// Lost paths are reported, never hidden (`accounted` counts finite endpoints and paths
 /// classified at infinity only). Along the example motion the parallel problem has

@@ -7,7 +7,7 @@ use singdist::pipeline::rrr_curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 
 mod rrr_support;
-use rrr_support::trajectories;
+use rrr_support::{curve_at, trajectories};
 
 fn scaled_coordinate(c: &MotionCoordinate, factor: f64) -> MotionCoordinate {
     let mut out = c.clone();
@@ -35,16 +35,6 @@ fn scaled(trajectory: &RrrTrajectory, factor: f64) -> RrrTrajectory {
         phi: m.phi.clone(),
     });
     RrrTrajectory::new(design, trajectory.initial_modes(), motion).expect("scaled trajectory")
-}
-
-fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {
-    compute_rrr_curve_at(
-        trajectory,
-        taus,
-        &RrrCurveOptions::default(),
-        &default_rrr_start_solutions,
-    )
-    .expect("curve")
 }
 
 fn distances(curve: &RrrCurveResult) -> Vec<f64> {

@@ -38,22 +38,16 @@ fn invalid_systems_are_rejected_with_the_offending_name() {
 
 #[test]
 fn degrees_see_cancellations_and_treat_parameters_as_coefficients() {
-    let x = Expr::variable("x");
-    let y = Expr::variable("y");
-    let p = Expr::parameter("p");
-    let system = System::new(
-        ["x", "y"],
-        ["p"],
+    let system = xy_system(|x, y, p| {
         vec![
             // (x + y)² − x² − 2xy = y²: degree 2 though the tree has x² terms.
-            (&x + &y).pow(2) - x.pow(2) - 2.0 * &x * &y,
+            (x + y).pow(2) - x.pow(2) - 2.0 * x * y,
             // p³·x: degree 1 in the variables.
-            p.pow(3) * &x - 1.0,
+            p.pow(3) * x - 1.0,
             // (x·y)³ − (x·y)³ + x: degree 1 after cancellation.
-            (&x * &y).pow(3) - (&y * &x).pow(3) + &x,
-        ],
-    )
-    .unwrap();
+            (x * y).pow(3) - (y * x).pow(3) + x,
+        ]
+    });
     assert_eq!(system.degrees(), vec![2, 1, 1]);
     assert_eq!(system.bezout_number(), 2);
 }

@@ -9,16 +9,8 @@ use system_support::*;
 
 #[test]
 fn small_system_is_written_expanded() {
-    let x = Expr::variable("x");
-    let y = Expr::variable("y");
-    let p = Expr::parameter("p");
     // (x + y)^2 − p·x and x·y − 3
-    let system = System::new(
-        ["x", "y"],
-        ["p"],
-        vec![(&x + &y).pow(2) - &p * &x, &x * &y - 3.0],
-    )
-    .unwrap();
+    let system = xy_system(|x, y, p| vec![(x + y).pow(2) - p * x, x * y - 3.0]);
     let text = phc::write(&system, &[("p".to_string(), C64::new(2.0, 0.0))]).unwrap();
     assert_eq!(
         text,

@@ -26,6 +26,7 @@
 use super::midrad::MidpointRadius;
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
+use crate::homotopy::newton::{NewtonBuffers, NewtonOptions, NewtonStop, newton};
 use crate::system::Evaluator;
 use crate::system::compile::CompiledSystem;
 use crate::system::interval::{ComplexInterval, Interval};
@@ -253,31 +254,29 @@ impl<'a> Krawczyk<'a> {
         })
     }
 
-    /// Newton's method from `x` (residual in double-double); `None` if the Jacobian is
-    /// singular.
+    /// Newton's method from `x` ([`newton`], residual in double-double) for at most
+    /// [`POLISH_STEPS`] updates, until one is below [`POLISHED`] relative; `None` if
+    /// the Jacobian is singular or a value is not finite. `self.lu` then holds the
+    /// factorisation at the iterate before the last update.
     fn polish(&mut self, x: &[C64]) -> Option<Vec<C64>> {
         let mut x = x.to_vec();
         let Buffers { f, jac, .. } = &mut self.buffers;
-        for _ in 0..POLISH_STEPS {
-            self.system
-                .evaluate_with_jacobian(&x, &self.parameters, &mut self.work, f, jac);
-            self.system
-                .evaluate_extended(&x, &self.parameters, &mut self.work, f);
-            if !self.lu.factor(jac) {
-                return None;
-            }
-            self.lu.solve_in_place(f);
-            let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-            let update = f.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-            for (xi, dxi) in x.iter_mut().zip(f.iter()) {
-                *xi -= dxi;
-            }
-            // Converged to rounding: more steps would not move the point.
-            if update <= POLISHED * scale {
-                break;
-            }
+        let options = NewtonOptions {
+            tolerance: POLISHED,
+            max_iterations: POLISH_STEPS,
+            stop_when_growing: false,
+        };
+        let buffers = NewtonBuffers {
+            work: &mut self.work,
+            f,
+            jac,
+            lu: &mut self.lu,
+        };
+        let outcome = newton(self.system, &mut x, &self.parameters, &options, buffers);
+        match outcome.stop {
+            NewtonStop::Singular | NewtonStop::NonFinite => None,
+            _ => x.iter().all(|v| v.is_finite()).then_some(x),
         }
-        x.iter().all(|v| v.is_finite()).then_some(x)
     }
 
     /// The Krawczyk test on boxes around `center` of growing size. With `symmetric`

@@ -182,6 +182,7 @@ fn reason_name(reason: FailureReason) -> &'static str {
         FailureReason::StepSizeTooSmall => "StepSizeTooSmall",
         FailureReason::TooManySteps => "TooManySteps",
         FailureReason::DivergedBeforeEndgame => "DivergedBeforeEndgame",
+        FailureReason::DivergedOnRoute => "DivergedOnRoute",
         FailureReason::WindingNumberTooLarge => "WindingNumberTooLarge",
         FailureReason::EndgameDidNotConverge => "EndgameDidNotConverge",
         FailureReason::NonFiniteValue => "NonFiniteValue",

@@ -13,6 +13,7 @@ pub mod homotopies;
 pub mod linalg;
 pub mod monodromy;
 pub mod multihomogeneous;
+pub mod newton;
 pub mod refine;
 pub mod solve;
 pub mod start;
@@ -31,6 +32,7 @@ pub use multihomogeneous::{
     MultiHomogeneousStartSystem, StartChoice, StartRequest, VariablePartition, choose_start_system,
     solve_multihomogeneous,
 };
+pub use newton::{NewtonBuffers, NewtonOptions, NewtonOutcome, NewtonStop, newton};
 pub use refine::{
     Refinement, contains_point, distinct_nonsingular_roots, group_roots, newton_refine, same_point,
     same_root,
@@ -40,4 +42,7 @@ pub use solve::{
     solve_total_degree, solve_with_homotopy,
 };
 pub use start::TotalDegreeStartSystem;
-pub use tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
+pub use tracker::{
+    EndgameOptions, FailureReason, PathResult, PathStatus, PrecisionOptions, StepOptions, Tracker,
+    TrackerOptions,
+};

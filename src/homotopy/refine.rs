@@ -15,6 +15,7 @@
 //! distinct close roots or splits one ill-conditioned root in two.
 
 use super::linalg::LuWorkspace;
+use super::newton::{NewtonBuffers, NewtonOptions, max_norm, newton};
 use crate::C64;
 use crate::system::Evaluator;
 
@@ -42,13 +43,10 @@ impl Refinement {
     }
 }
 
-fn max_norm(x: &[C64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| m.max(v.norm()))
-}
-
-/// Refines `x` by at most `max_iterations` Newton steps on `F(·; p) = 0`; stops when a
-/// correction is below `tolerance · (1 + ‖x‖∞)`, or when the corrections stop
-/// decreasing (no convergence).
+/// Refines `x` by at most `max_iterations` Newton steps on `F(·; p) = 0`
+/// ([`super::newton::newton`]); stops when a correction is below
+/// `tolerance · (1 + ‖x‖∞)`, or when the corrections stop decreasing (no
+/// convergence); then evaluates the residual and condition at the last iterate.
 pub fn newton_refine<F: Evaluator + ?Sized>(
     system: &F,
     x: &[C64],
@@ -63,38 +61,26 @@ pub fn newton_refine<F: Evaluator + ?Sized>(
     let mut f = vec![zero; system.num_equations()];
     let mut jac = vec![zero; system.num_equations() * n];
     let mut lu = LuWorkspace::new(n);
-    let mut previous = f64::INFINITY;
+    let options = NewtonOptions {
+        tolerance,
+        max_iterations,
+        stop_when_growing: true,
+    };
+    let buffers = NewtonBuffers {
+        work: &mut work,
+        f: &mut f,
+        jac: &mut jac,
+        lu: &mut lu,
+    };
+    let outcome = newton(system, &mut point, parameters, &options, buffers);
     let mut result = Refinement {
         point: Vec::new(),
-        converged: false,
-        last_correction: f64::INFINITY,
+        converged: outcome.converged(),
+        last_correction: outcome.last_correction,
         residual: f64::INFINITY,
         condition: f64::INFINITY,
-        iterations: 0,
+        iterations: outcome.iterations,
     };
-    for iteration in 0..max_iterations {
-        system.evaluate_with_jacobian(&point, parameters, &mut work, &mut f, &mut jac);
-        system.evaluate_extended(&point, parameters, &mut work, &mut f);
-        if !lu.factor(&jac) || f.iter().any(|v| !v.re.is_finite() || !v.im.is_finite()) {
-            break;
-        }
-        lu.solve_in_place(&mut f);
-        let scale = 1.0 + max_norm(&point);
-        let correction = max_norm(&f) / scale;
-        if !correction.is_finite() || correction > 2.0 * previous && iteration > 1 {
-            break;
-        }
-        for (xi, di) in point.iter_mut().zip(&f) {
-            *xi -= di;
-        }
-        result.iterations = iteration + 1;
-        result.last_correction = correction;
-        if correction <= tolerance {
-            result.converged = true;
-            break;
-        }
-        previous = correction;
-    }
     system.evaluate_with_jacobian(&point, parameters, &mut work, &mut f, &mut jac);
     system.evaluate_extended(&point, parameters, &mut work, &mut f);
     result.residual = max_norm(&f);

@@ -11,13 +11,15 @@
 //! ([`FailureReason::PathJumped`]), so no root is counted twice. Paths whose norm
 //! passed `at_infinity_norm` before the endgame zone are at infinity if their last
 //! point grows like a power of `1 − t` (see `classify_early_divergence`; with
-//! [`TrackerOptions::growth_before_divergence`]), else they stay
+//! [`EndgameOptions::growth_before_divergence`]), else they stay
 //! failed. Finite endpoints are then clustered to give multiplicities.
 
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine};
-use super::start::TotalDegreeStartSystem;
-use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
+use super::start::{TotalDegreeStartSystem, no_parameter_derivatives};
+use super::tracker::{
+    EndgameOptions, FailureReason, PathResult, PathStatus, Tracker, TrackerOptions,
+};
 use crate::C64;
 use crate::system::Evaluator;
 use rayon::prelude::*;
@@ -86,7 +88,10 @@ impl Default for SolveOptions {
             // The endgame for badly scaled systems (PHCpack's demo suite: chemequ,
             // kotsireas, game5two have large finite roots approached like s^{-1/2}).
             tracker: TrackerOptions {
-                growth_before_divergence: true,
+                endgame: EndgameOptions {
+                    growth_before_divergence: true,
+                    ..EndgameOptions::default()
+                },
                 ..TrackerOptions::default()
             },
             seed: 0x5eed,
@@ -135,6 +140,16 @@ impl SolveResult {
         self.paths
             .iter()
             .filter(|p| p.status == PathStatus::Nonsingular)
+            .map(|p| p.solution.clone())
+            .collect()
+    }
+
+    /// Every finite endpoint (nonsingular or singular; a cluster once per path), in
+    /// path order.
+    pub fn finite_endpoints(&self) -> Vec<Vec<C64>> {
+        self.paths
+            .iter()
+            .filter(|p| p.status.is_finite())
             .map(|p| p.solution.clone())
             .collect()
     }
@@ -344,16 +359,24 @@ where
         if !suspicious.is_empty() {
             retracked = suspicious.len();
             let mut conservative = TrackerOptions::conservative();
-            conservative.max_steps = conservative.max_steps.max(options.tracker.max_steps);
-            conservative.growth_before_divergence = options.tracker.growth_before_divergence;
+            conservative.step.max_steps = conservative
+                .step
+                .max_steps
+                .max(options.tracker.step.max_steps);
+            conservative.endgame.growth_before_divergence =
+                options.tracker.endgame.growth_before_divergence;
             for redo in track_all(&suspicious, &conservative) {
                 let index = redo.path_index;
                 paths[index] = redo;
             }
         }
     }
-    if options.tracker.growth_before_divergence {
-        classify_early_divergence(homotopy, &mut paths, options.tracker.valuation_threshold);
+    if options.tracker.endgame.growth_before_divergence {
+        classify_early_divergence(
+            homotopy,
+            &mut paths,
+            options.tracker.endgame.valuation_threshold,
+        );
     }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
     mark_jumped_paths(homotopy, &mut paths);
@@ -525,17 +548,7 @@ impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
         self.homotopy
             .evaluate_with_jacobian(x, C64::new(1.0, 0.0), work, f, jac);
     }
-    fn evaluate_parameter_derivative(
-        &self,
-        _: &[C64],
-        _: &[C64],
-        _: &[C64],
-        _: &mut [C64],
-        out: &mut [C64],
-    ) {
-        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-    }
-    fn evaluate_parameter_jacobian(&self, _: &[C64], _: &[C64], _: &mut [C64], _: &mut [C64]) {}
+    no_parameter_derivatives!();
 }
 
 /// Sets `multiplicity` of every finite path to the number of finite paths ending at

@@ -10,8 +10,9 @@
 use crate::C64;
 use crate::system::Evaluator;
 
-/// The parameter derivatives of a start system, which has no parameters: `∂G/∂p · dp`
-/// is zero and `∂G/∂p` is empty. For the `Evaluator` impls of start systems.
+/// The parameter derivatives of a system without parameters: `∂G/∂p · dp` is zero and
+/// `∂G/∂p` is empty. For the `Evaluator` impls of start systems and of a homotopy's
+/// target `H(·, 1)`.
 macro_rules! no_parameter_derivatives {
     () => {
         fn evaluate_parameter_derivative(

@@ -8,7 +8,7 @@
 //! the reducible solution varieties of the rigid/rigid problems.
 
 use super::start_file::StartSolutions;
-use crate::homotopy::{MonodromyOptions, TrackerOptions};
+use crate::homotopy::{MonodromyOptions, PrecisionOptions, TrackerOptions};
 use crate::metric::Part;
 use crate::problem::{LagrangeProblem, ProblemId, SubProblem};
 use std::collections::HashMap;
@@ -83,7 +83,10 @@ impl Default for AbInitioOptions {
                 // dropped (the next loops find its endpoint): `ab-initio --all` took
                 // 71 s with the tracker's default budget of 1000, 60 s with 300.
                 tracker: TrackerOptions {
-                    max_extended_steps: 300,
+                    precision: PrecisionOptions {
+                        max_extended_steps: 300,
+                        ..PrecisionOptions::default()
+                    },
                     ..TrackerOptions::default()
                 },
                 ..MonodromyOptions::default()

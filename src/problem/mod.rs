@@ -34,8 +34,9 @@ use crate::metric::{Metric, Part};
 use std::fmt;
 use std::str::FromStr;
 
-/// The kinds of sub-problem of docs/theory.md §5, with their stable names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+/// The kinds of sub-problem of docs/theory.md §5, with their stable names; serialised
+/// as the variant name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
 pub enum SubProblem {
     /// `S(K′) = 0`: leg lines concurrent or parallel (all nine metrics).
     Singularity,

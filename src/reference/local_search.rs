@@ -39,73 +39,16 @@ use crate::mechanism::rpr::{
     Design, collinearity_base, collinearity_platform, singularity_polynomial,
 };
 use crate::metric::{Metric, Part};
+use crate::problem::{SubProblem, subproblems_of};
 use crate::random;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::fmt;
 
-/// A constraint set (sub-problem) of the singularity distance.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
-pub enum Constraint {
-    /// `S(K′) = 0`: the leg lines are concurrent or parallel.
-    Singularity,
-    /// `C_p(K′) = 0`: the platform points are collinear.
-    CollinearPlatform,
-    /// `C_b(K′) = 0`: the base points are collinear.
-    CollinearBase,
-    /// All six points on one line.
-    AllCollinear,
-    /// `b_1′ = b_2′ = b_3′` (base rigid).
-    CoincidentPlatform,
-    /// `a_1′ = a_2′ = a_3′` (platform rigid).
-    CoincidentBase,
-}
-
-impl Constraint {
-    /// The name used in the pipeline's output (`singularity`, `collinear-platform`, …).
-    pub fn name(self) -> &'static str {
-        match self {
-            Constraint::Singularity => "singularity",
-            Constraint::CollinearPlatform => "collinear-platform",
-            Constraint::CollinearBase => "collinear-base",
-            Constraint::AllCollinear => "all-collinear",
-            Constraint::CoincidentPlatform => "coincident-platform",
-            Constraint::CoincidentBase => "coincident-base",
-        }
-    }
-
-    /// The constraint sets whose minimum is the singularity distance of `metric`:
-    /// the singularity variety always; the collinear platform (base) for a `bars`
-    /// platform (base); all six points collinear when neither part is `bars`; three
-    /// coincident platform (base) points for a `bars` platform (base) with the other
-    /// part rigid.
-    pub fn of_metric(metric: Metric) -> Vec<Constraint> {
-        let mut list = vec![Constraint::Singularity];
-        if metric.platform == Part::Bars {
-            list.push(Constraint::CollinearPlatform);
-        }
-        if metric.base == Part::Bars {
-            list.push(Constraint::CollinearBase);
-        }
-        if metric.platform != Part::Bars && metric.base != Part::Bars {
-            list.push(Constraint::AllCollinear);
-        }
-        if metric.platform == Part::Bars && metric.base == Part::Rigid {
-            list.push(Constraint::CoincidentPlatform);
-        }
-        if metric.base == Part::Bars && metric.platform == Part::Rigid {
-            list.push(Constraint::CoincidentBase);
-        }
-        list
-    }
-}
-
-impl fmt::Display for Constraint {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+/// A constraint set of the singularity distance: one of the pipeline's sub-problems
+/// ([`SubProblem`], with its name), so that the reference search and the pipeline
+/// minimise over the same sets ([`subproblems_of`] gives those of a metric).
+pub type Constraint = SubProblem;
 
 /// Anchors count as collinear when twice their triangle's area is at most this times
 /// the square of its longest edge.
@@ -958,7 +901,7 @@ pub fn reference_distance(
 ) -> MetricReference {
     let mut subproblems = Vec::new();
     let mut not_applicable = Vec::new();
-    for constraint in Constraint::of_metric(metric) {
+    for constraint in subproblems_of(metric) {
         if constraint == Constraint::AllCollinear && !all_collinear_applies(design, metric) {
             not_applicable.push(constraint);
             continue;
@@ -1004,4 +947,27 @@ pub fn reference_distances(
         .par_iter()
         .map(|&metric| reference_distance(design, k, metric, options))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Constraints serialise as their variant names, as before they were the
+    /// pipeline's sub-problems.
+    #[test]
+    fn constraints_serialise_by_variant_name() {
+        let names: Vec<String> = subproblems_of(Metric::new(Part::Bars, Part::Rigid))
+            .into_iter()
+            .map(|c: Constraint| serde_json::to_string(&c).unwrap())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "\"Singularity\"",
+                "\"CollinearPlatform\"",
+                "\"CoincidentPlatform\""
+            ]
+        );
+    }
 }

@@ -1,7 +1,24 @@
-//! Test designs shared by the 3-RRR tests.
+//! Test designs and helpers shared by the 3-RRR tests.
+// Each test crate that includes this module uses part of it.
+#![allow(dead_code)]
 
 use singdist::mechanism::rpr::{Motion, MotionCoordinate};
 use singdist::mechanism::rrr::*;
+use singdist::pipeline::rrr_curve::{
+    RrrCurveOptions, RrrCurveResult, compute_rrr_curve_at, default_rrr_start_solutions,
+};
+
+/// The curve of `trajectory` at the motion parameters `taus` with the default options
+/// and start solutions.
+pub fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {
+    compute_rrr_curve_at(
+        trajectory,
+        taus,
+        &RrrCurveOptions::default(),
+        &default_rrr_start_solutions,
+    )
+    .expect("curve")
+}
 
 /// Three design classes: the built-in example (equal links, a leg folding through its
 /// base joint), an asymmetric design with unequal links, and a symmetric design with

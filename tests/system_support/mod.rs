@@ -6,6 +6,14 @@ use singdist::algebra::{Point, cross, det3, difference, dot};
 use singdist::random::{SeededRng, complex_normal, uniform};
 use singdist::system::{Expr, System};
 
+/// The system in the unknowns `x`, `y` and the parameter `p` with the equations
+/// `equations(x, y, p)`.
+pub fn xy_system(equations: impl FnOnce(&Expr, &Expr, &Expr) -> Vec<Expr>) -> System {
+    let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+    let p = Expr::parameter("p");
+    System::new(["x", "y"], ["p"], equations(&x, &y, &p)).unwrap()
+}
+
 /// `|d|²` written with `dot` so it is a polynomial (no conjugation).
 fn squared<T: singdist::algebra::Ring>(d: &Point<T>) -> T {
     dot(d, d)

@@ -4,6 +4,49 @@
 
 use super::*;
 
+/// The endgame's per-path buffers: Cauchy sums and estimates, valuations and their
+/// history (allocated once per tracker).
+pub(super) struct EndgameState {
+    cauchy_sum: Vec<C64>,
+    estimate: Vec<C64>,
+    previous_estimate: Vec<C64>,
+    valuations: Vec<f64>,
+    previous_valuations: Vec<f64>,
+    log_sum: Vec<f64>,
+    log_mean: Vec<f64>,
+    previous_log_mean: Vec<f64>,
+    loop_valuations: Vec<f64>,
+    previous_loop_valuations: Vec<f64>,
+    /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
+    endgame_origin: Vec<f64>,
+    /// Change of each valuation between the last two radii of the endgame.
+    valuation_changes: Vec<f64>,
+    /// The endgame's last valuation check found stable negative valuations.
+    divergence_evidence: bool,
+}
+
+impl EndgameState {
+    /// Buffers for `n` unknowns.
+    pub(super) fn new(n: usize) -> Self {
+        let zero = C64::new(0.0, 0.0);
+        EndgameState {
+            cauchy_sum: vec![zero; n],
+            estimate: vec![zero; n],
+            previous_estimate: vec![zero; n],
+            valuations: vec![0.0; n],
+            previous_valuations: vec![0.0; n],
+            log_sum: vec![0.0; n],
+            log_mean: vec![0.0; n],
+            previous_log_mean: vec![0.0; n],
+            loop_valuations: vec![0.0; n],
+            previous_loop_valuations: vec![0.0; n],
+            endgame_origin: vec![1.0; n],
+            valuation_changes: vec![f64::NAN; n],
+            divergence_evidence: false,
+        }
+    }
+}
+
 impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// The endgame from `t = 1 − s0` (see the module documentation).
     pub(super) fn endgame(&mut self, s0: f64) -> PathStatus {
@@ -21,17 +64,18 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         // consecutive differences agreeing pin the valuation `w_i` down.
         let mut loops_done = 0;
         let mut previous_loop_radius = 0.0f64;
-        self.divergence_evidence = false;
-        self.valuation_changes
+        self.state.divergence_evidence = false;
+        self.state
+            .valuation_changes
             .iter_mut()
             .for_each(|c| *c = f64::NAN);
-        for (o, x) in self.endgame_origin.iter_mut().zip(&self.x) {
+        for (o, x) in self.state.endgame_origin.iter_mut().zip(&self.x) {
             *o = x.norm().max(1.0);
         }
         loop {
             let t = C64::new(1.0 - s, 0.0);
             let scale = max_norm(&self.x);
-            if scale > self.options.at_infinity_norm {
+            if scale > self.options.endgame.at_infinity_norm {
                 return PathStatus::AtInfinity;
             }
             // Valuations from dx/ds (dt/ds = −1).
@@ -46,7 +90,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             let mut diverging = false;
             if ok {
                 for i in 0..n {
-                    self.valuations[i] = if self.x[i].norm() > 0.0 {
+                    self.state.valuations[i] = if self.x[i].norm() > 0.0 {
                         (self.k1[i] * s / self.x[i]).re
                     } else {
                         0.0
@@ -64,32 +108,33 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         // negative limit v + Δ·q/(1 − q) (Aitken's extrapolation); a
                         // rise towards 0 (a large finite limit being approached)
                         // accelerates and is not stable.
-                        let change = self.valuations[i] - self.previous_valuations[i];
-                        let ratio = change / self.valuation_changes[i];
+                        let change = self.state.valuations[i] - self.state.previous_valuations[i];
+                        let ratio = change / self.state.valuation_changes[i];
                         let converging = have_valuations
                             && (0.0..=0.6).contains(&ratio)
-                            && self.valuations[i] + change * ratio / (1.0 - ratio)
-                                < -self.options.valuation_threshold;
+                            && self.state.valuations[i] + change * ratio / (1.0 - ratio)
+                                < -self.options.endgame.valuation_threshold;
                         if change.abs() > 0.01
-                            && !(self.options.growth_before_divergence
+                            && !(self.options.endgame.growth_before_divergence
                                 && self.has_grown(i)
-                                && (change <= GROWN_VALUATION_DRIFT * self.valuations[i].abs()
+                                && (change
+                                    <= GROWN_VALUATION_DRIFT * self.state.valuations[i].abs()
                                     || converging))
                         {
                             stable = false;
                         }
-                        self.valuation_changes[i] = change;
-                        smallest = smallest.min(self.valuations[i]);
+                        self.state.valuation_changes[i] = change;
+                        smallest = smallest.min(self.state.valuations[i]);
                         if self.has_grown(i) {
-                            smallest_grown = smallest_grown.min(self.valuations[i]);
+                            smallest_grown = smallest_grown.min(self.state.valuations[i]);
                         }
                     }
                 }
-                diverging = smallest < -self.options.valuation_threshold && scale >= 10.0;
+                diverging = smallest < -self.options.endgame.valuation_threshold && scale >= 10.0;
                 // Below DEEP_RADIUS the resolution of t ends the endgame soon anyway: a
                 // stable negative valuation decides without growth.
                 let deep = s <= DEEP_RADIUS;
-                let threshold = -self.options.valuation_threshold;
+                let threshold = -self.options.endgame.valuation_threshold;
                 if stable && (smallest_grown < threshold || deep && smallest < threshold) {
                     stable_divergence += 1;
                     if stable_divergence >= 2 {
@@ -103,8 +148,11 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 } else {
                     0
                 };
-                self.divergence_evidence = stable && smallest < threshold || grown_divergence >= 2;
-                self.previous_valuations.copy_from_slice(&self.valuations);
+                self.state.divergence_evidence =
+                    stable && smallest < threshold || grown_divergence >= 2;
+                self.state
+                    .previous_valuations
+                    .copy_from_slice(&self.state.valuations);
                 have_valuations = true;
             }
             // The direct finish needs every coordinate to stay bounded, including ones
@@ -116,7 +164,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             let valuations_finite = have_valuations
                 && (0..n).all(|i| {
                     self.x[i].norm() < DIRECT_FINISH_FLOOR
-                        || self.valuations[i] > -self.options.valuation_threshold
+                        || self.state.valuations[i] > -self.options.endgame.valuation_threshold
                 });
             // A singular endpoint shows as a condition number growing like
             // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
@@ -125,7 +173,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             if !direct_failed
                 && valuations_finite
                 && condition_stable
-                && condition < self.options.direct_finish_condition
+                && condition < self.options.endgame.direct_finish_condition
             {
                 self.x_checkpoint.copy_from_slice(&self.x);
                 let saved_step = self.step;
@@ -133,7 +181,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
                     let final_condition = self.condition_at(C64::new(1.0, 0.0));
                     if converged
-                        && final_condition < self.options.singular_condition
+                        && final_condition < self.options.endgame.singular_condition
                         && final_condition < 100.0 * condition
                     {
                         return PathStatus::Nonsingular;
@@ -149,44 +197,56 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // a Cauchy loop (costly far out, where the Jacobian is ill-conditioned)
             // would not close on a finite estimate; the next radius is cheaper and the
             // valuation test above classifies a divergent path.
-            if !diverging && (direct_failed || condition >= self.options.direct_finish_condition) {
+            if !diverging
+                && (direct_failed || condition >= self.options.endgame.direct_finish_condition)
+            {
                 match self.cauchy_loop(s) {
                     Ok(c) => {
                         if loops_done >= 1 {
                             let log_ratio = (s / previous_loop_radius).ln();
                             for i in 0..n {
-                                self.loop_valuations[i] =
-                                    (self.log_mean[i] - self.previous_log_mean[i]) / log_ratio;
+                                self.state.loop_valuations[i] = (self.state.log_mean[i]
+                                    - self.state.previous_log_mean[i])
+                                    / log_ratio;
                             }
                             if loops_done >= 2 {
                                 let stable = (0..n).all(|i| {
-                                    (self.loop_valuations[i] - self.previous_loop_valuations[i])
+                                    (self.state.loop_valuations[i]
+                                        - self.state.previous_loop_valuations[i])
                                         .abs()
                                         < 1e-3
                                 });
                                 let deep = s <= DEEP_RADIUS;
                                 let smallest = (0..n)
                                     .filter(|&i| deep || self.has_grown(i))
-                                    .fold(f64::INFINITY, |a, i| a.min(self.loop_valuations[i]));
-                                if stable && smallest < -self.options.valuation_threshold {
+                                    .fold(f64::INFINITY, |a, i| {
+                                        a.min(self.state.loop_valuations[i])
+                                    });
+                                if stable && smallest < -self.options.endgame.valuation_threshold {
                                     return PathStatus::AtInfinity;
                                 }
                             }
-                            self.previous_loop_valuations
-                                .copy_from_slice(&self.loop_valuations);
+                            self.state
+                                .previous_loop_valuations
+                                .copy_from_slice(&self.state.loop_valuations);
                         }
-                        self.previous_log_mean.copy_from_slice(&self.log_mean);
+                        self.state
+                            .previous_log_mean
+                            .copy_from_slice(&self.state.log_mean);
                         previous_loop_radius = s;
                         loops_done += 1;
-                        let scale = 1.0 + max_norm(&self.estimate);
+                        let scale = 1.0 + max_norm(&self.state.estimate);
                         let change = self
+                            .state
                             .estimate
                             .iter()
-                            .zip(&self.previous_estimate)
+                            .zip(&self.state.previous_estimate)
                             .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
-                        self.previous_estimate.copy_from_slice(&self.estimate);
+                        self.state
+                            .previous_estimate
+                            .copy_from_slice(&self.state.estimate);
                         if have_estimate
-                            && change <= self.options.endgame_tolerance * scale
+                            && change <= self.options.endgame.endgame_tolerance * scale
                             && self.estimate_residual_small()
                         {
                             self.winding = c;
@@ -195,21 +255,21 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         self.winding = c;
                         have_estimate = true;
                     }
-                    Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
-                    Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge)) => {}
-                    Err(SegmentError::Failure(reason)) => {
+                    Err(RouteStop::Diverged) => return PathStatus::AtInfinity,
+                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge)) => {}
+                    Err(RouteStop::Failed(reason)) => {
                         return self.give_up(have_estimate, reason);
                     }
                 }
             }
-            let s_next = s * self.options.endgame_ratio;
-            if s_next < self.options.endgame_min_radius {
+            let s_next = s * self.options.endgame.endgame_ratio;
+            if s_next < self.options.endgame.endgame_min_radius {
                 return self.give_up(have_estimate, FailureReason::EndgameDidNotConverge);
             }
             match self.track_segment(t, C64::new(1.0 - s_next, 0.0)) {
                 Ok(()) => s = s_next,
-                Err(SegmentError::Diverged) => return PathStatus::AtInfinity,
-                Err(SegmentError::Failure(reason)) => return self.give_up(have_estimate, reason),
+                Err(RouteStop::Diverged) => return PathStatus::AtInfinity,
+                Err(RouteStop::Failed(reason)) => return self.give_up(have_estimate, reason),
             }
         }
     }
@@ -218,8 +278,8 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
     /// valuation classifies a path as diverging.
     fn has_grown(&self, i: usize) -> bool {
-        !self.options.growth_before_divergence
-            || self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.endgame_origin[i]
+        !self.options.endgame.growth_before_divergence
+            || self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.state.endgame_origin[i]
     }
 
     /// End of the endgame without converged estimates: the last Cauchy estimate if
@@ -230,11 +290,13 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// valuations at the last two radii; else failure.
     pub(super) fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
         if have_estimate && self.winding > 1 && {
-            self.estimate.copy_from_slice(&self.previous_estimate);
+            self.state
+                .estimate
+                .copy_from_slice(&self.state.previous_estimate);
             self.estimate_residual_small()
         } {
             self.classify_estimate(self.winding)
-        } else if self.options.growth_before_divergence && self.divergence_evidence {
+        } else if self.options.endgame.growth_before_divergence && self.state.divergence_evidence {
             PathStatus::AtInfinity
         } else {
             PathStatus::Failed(reason)
@@ -245,47 +307,54 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// generous d̂ = 2 (a Cauchy mean of a diverging path has an O(1) residual).
     pub(super) fn estimate_residual_small(&mut self) -> bool {
         let e = &mut self.eval;
-        self.homotopy
-            .evaluate(&self.estimate, C64::new(1.0, 0.0), &mut e.work, &mut e.h);
-        let scale = 1.0 + max_norm(&self.estimate);
-        max_norm(&e.h) <= self.options.endpoint_residual * scale * scale
+        self.homotopy.evaluate(
+            &self.state.estimate,
+            C64::new(1.0, 0.0),
+            &mut e.work,
+            &mut e.h,
+        );
+        let scale = 1.0 + max_norm(&self.state.estimate);
+        max_norm(&e.h) <= self.options.endgame.endpoint_residual * scale * scale
     }
 
     /// Moves to the Cauchy estimate and classifies it (winding number 1 endpoints are
     /// refined by Newton and are nonsingular if well conditioned).
     pub(super) fn classify_estimate(&mut self, winding: usize) -> PathStatus {
-        self.x.copy_from_slice(&self.estimate);
+        self.x.copy_from_slice(&self.state.estimate);
         self.t = C64::new(1.0, 0.0);
         if winding == 1 {
             let (converged, _) = self.refine_at(C64::new(1.0, 0.0));
-            if converged && self.condition_at(C64::new(1.0, 0.0)) < self.options.singular_condition
+            if converged
+                && self.condition_at(C64::new(1.0, 0.0)) < self.options.endgame.singular_condition
             {
                 return PathStatus::Nonsingular;
             }
-            self.x.copy_from_slice(&self.estimate);
+            self.x.copy_from_slice(&self.state.estimate);
         }
         PathStatus::Singular
     }
 
     /// Loops around `|1 − t| = s` until the path closes; the mean of the samples (in
-    /// `self.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
-    pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, SegmentError> {
-        let m = self.options.cauchy_samples_per_loop.max(3);
+    /// `self.state.estimate`) is the Cauchy-integral estimate of the endpoint. Returns `c`.
+    pub(super) fn cauchy_loop(&mut self, s: f64) -> Result<usize, RouteStop> {
+        let m = self.options.endgame.cauchy_samples_per_loop.max(3);
         self.x_checkpoint.copy_from_slice(&self.x);
-        self.cauchy_sum
+        self.state
+            .cauchy_sum
             .iter_mut()
             .for_each(|v| *v = C64::new(0.0, 0.0));
-        self.log_sum.iter_mut().for_each(|v| *v = 0.0);
+        self.state.log_sum.iter_mut().for_each(|v| *v = 0.0);
         let point = |j: usize| {
             C64::new(1.0, 0.0) - C64::from_polar(s, std::f64::consts::TAU * j as f64 / m as f64)
         };
         let mut extent: f64 = 0.0;
-        for c in 1..=self.options.max_winding_number.max(1) {
+        for c in 1..=self.options.endgame.max_winding_number.max(1) {
             for j in 0..m {
                 for ((acc, log_acc), x) in self
+                    .state
                     .cauchy_sum
                     .iter_mut()
-                    .zip(self.log_sum.iter_mut())
+                    .zip(self.state.log_sum.iter_mut())
                     .zip(&self.x)
                 {
                     *acc += x;
@@ -301,13 +370,13 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     extent = extent.max(distance);
                 } else {
                     let scale = 1.0 + max_norm(&self.x);
-                    let noise = 100.0 * self.options.corrector_tolerance * scale;
+                    let noise = 100.0 * self.options.step.corrector_tolerance * scale;
                     if distance <= (1e-2 * extent).max(noise) {
                         let weight = 1.0 / (c * m) as f64;
-                        for (e, acc) in self.estimate.iter_mut().zip(&self.cauchy_sum) {
+                        for (e, acc) in self.state.estimate.iter_mut().zip(&self.state.cauchy_sum) {
                             *e = acc * weight;
                         }
-                        for (l, acc) in self.log_mean.iter_mut().zip(&self.log_sum) {
+                        for (l, acc) in self.state.log_mean.iter_mut().zip(&self.state.log_sum) {
                             *l = acc * weight;
                         }
                         return Ok(c);
@@ -316,6 +385,6 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 }
             }
         }
-        Err(SegmentError::Failure(FailureReason::WindingNumberTooLarge))
+        Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
     }
 }

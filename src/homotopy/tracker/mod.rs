@@ -54,181 +54,30 @@
 //!   number, `x(s) = x* + Σ a_j s^{j/c}`), and the mean of the samples is the Cauchy
 //!   integral `x* = (1/2πi)∮ x(τ) dτ/τ` in `τ = s^{1/c}` (trapezoid rule, spectrally
 //!   accurate). Two successive estimates agreeing gives a finite singular endpoint.
+//!
+//! The pieces: [`options`] (the knobs and presets), [`step`] (one predictor–corrector
+//! step and the step-size control), [`precision`] (double / double-double evaluations
+//! and the switching rule), [`endpoint`] (Newton's method at a fixed `t`), [`endgame`]
+//! (the classification near `t = 1`); this module holds the loop along a route and
+//! the result types. Along a route the tracker reports only reached, diverged or
+//! failed; only the endgame classifies a path as at infinity.
 
 use super::homotopies::Homotopy;
-use super::linalg::{DdLuWorkspace, LuWorkspace};
 use crate::C64;
+use precision::{Evaluation, NewtonUpdate, Precision, RETURN_TO_DOUBLE_CONDITION};
 use serde::{Deserialize, Serialize};
+use step::{step_factor, step_floor, step_fraction};
 
 mod endgame;
+mod endpoint;
+mod options;
+mod precision;
+mod step;
 
-/// Every knob of the tracker and endgame, with presets [`TrackerOptions::fast`],
-/// [`TrackerOptions::default`] and [`TrackerOptions::conservative`].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TrackerOptions {
-    /// First step length in `t`.
-    pub initial_step: f64,
-    /// Largest step length in `t`.
-    pub max_step: f64,
-    /// Smallest step, as a fraction of the segment being tracked; below it the path fails.
-    pub min_step_fraction: f64,
-    /// Maximal number of predictor–corrector steps per path (endgame included).
-    pub max_steps: usize,
-    /// Target relative predictor error `‖Δ₀‖/(1 + ‖x‖)` that sets the step size.
-    pub prediction_tolerance: f64,
-    /// Relative Newton tolerance along the path.
-    pub corrector_tolerance: f64,
-    /// Newton updates allowed per step.
-    pub max_corrector_iterations: usize,
-    /// Largest accepted contraction `‖Δ_{k+1}‖/‖Δ_k‖` of the corrector.
-    pub max_contraction: f64,
-    /// Relative noise floor of the corrector: two successive Newton updates below it
-    /// (the second below this, the first below ten times this) accept the step even
-    /// without contraction. At condition numbers κ with `κ·ε > corrector_tolerance`
-    /// Newton's updates stagnate at rounding level and would otherwise reject every
-    /// step until the step size underflows.
-    pub corrector_noise_tolerance: f64,
-    /// Adaptive precision: after this many consecutive rejected steps at a condition
-    /// number above 10⁶ the tracker switches to extended precision (residuals, Jacobians and LU solves in
-    /// double-double, see the module documentation). At condition numbers κ with
-    /// `κ·ε` near or above the corrector tolerance — e.g. critical points far out along
-    /// an isotropic direction — double-precision velocities and Newton updates are
-    /// noise and no useful step size is accepted. 0 switches only when the step
-    /// underflows `min_step_fraction`.
-    #[serde(default = "default_extended_after_rejections")]
-    pub extended_after_rejections: usize,
-    /// Whether extended precision computes in double-double (`true`, the default):
-    /// residuals, Jacobians and linear solves. `false` keeps double precision, so
-    /// extended mode only changes the step control (for comparisons).
-    #[serde(default = "default_extended_residual")]
-    pub extended_residual: bool,
-    /// Every this many accepted steps in extended precision the tracker checks the
-    /// condition number and returns to double precision if `κ ≤ 10⁶` (it switches
-    /// again after `extended_after_rejections` rejections).
-    #[serde(default = "default_extended_accepted_steps")]
-    pub extended_accepted_steps: usize,
-    /// Step budget in extended precision (each such step costs about ten double
-    /// steps): a path that needs more fails with [`FailureReason::TooManySteps`].
-    #[serde(default = "default_max_extended_steps")]
-    pub max_extended_steps: usize,
-    /// Endgame zone starts at `s = 1 − t = endgame_start`.
-    pub endgame_start: f64,
-    /// Geometric ratio `r` of the endgame radii `s_k = s₀ r^k`.
-    pub endgame_ratio: f64,
-    /// Smallest endgame radius before the path is declared failed.
-    pub endgame_min_radius: f64,
-    /// Sample points per loop of the Cauchy endgame.
-    pub cauchy_samples_per_loop: usize,
-    /// Largest winding number the Cauchy endgame tries.
-    pub max_winding_number: usize,
-    /// Relative agreement of two successive Cauchy estimates that ends the endgame.
-    pub endgame_tolerance: f64,
-    /// Paths whose max-norm exceeds this are declared at infinity.
-    pub at_infinity_norm: f64,
-    /// Stable valuation below `−valuation_threshold` (with large norm) ⇒ at infinity.
-    pub valuation_threshold: f64,
-    /// Condition estimate above which the direct finish to `t = 1` is skipped and the
-    /// Cauchy endgame used.
-    pub direct_finish_condition: f64,
-    /// Endpoints with a 1-norm condition estimate above this are singular.
-    pub singular_condition: f64,
-    /// Newton iterations that refine a finite endpoint at `t = 1`.
-    pub refinement_iterations: usize,
-    /// A singular (Cauchy) endpoint must have `‖H(x, 1)‖∞` below this (relative).
-    pub endpoint_residual: f64,
-    /// The endgame of Breiding and Timme ("HomotopyContinuation.jl: a package for
-    /// homotopy continuation in Julia", 2018) for badly scaled systems: a stable
-    /// negative valuation means divergence only for a coordinate grown by
-    /// `MIN_COORDINATE_GROWTH` since the endgame began (or below `s = DEEP_RADIUS`), a
-    /// grown coordinate's valuation may drift towards a negative limit, an endgame
-    /// stopped with stable negative valuations is at infinity, and accepted steps
-    /// below the step floor fail instead of crawling. On for `solve`
-    /// ([`crate::homotopy::SolveOptions`]); off (the classic power-series test) in the
-    /// presets, which the curve pipeline's near-degenerate designs are tuned for.
-    #[serde(default)]
-    pub growth_before_divergence: bool,
-}
-
-fn default_extended_after_rejections() -> usize {
-    3
-}
-
-fn default_extended_residual() -> bool {
-    true
-}
-
-fn default_max_extended_steps() -> usize {
-    1000
-}
-
-fn default_extended_accepted_steps() -> usize {
-    16
-}
-
-impl Default for TrackerOptions {
-    /// Balanced preset: reliable on the katsura/cyclic benchmarks and singdist's systems.
-    fn default() -> Self {
-        TrackerOptions {
-            initial_step: 0.05,
-            max_step: 0.1,
-            min_step_fraction: 1e-10,
-            max_steps: 20_000,
-            prediction_tolerance: 1e-6,
-            corrector_tolerance: 1e-9,
-            max_corrector_iterations: 3,
-            max_contraction: 0.25,
-            corrector_noise_tolerance: 1e-8,
-            extended_after_rejections: default_extended_after_rejections(),
-            extended_accepted_steps: default_extended_accepted_steps(),
-            max_extended_steps: default_max_extended_steps(),
-            extended_residual: default_extended_residual(),
-            endgame_start: 0.1,
-            endgame_ratio: 0.25,
-            endgame_min_radius: 1e-13,
-            cauchy_samples_per_loop: 8,
-            max_winding_number: 16,
-            endgame_tolerance: 1e-8,
-            at_infinity_norm: 1e8,
-            valuation_threshold: 0.1,
-            direct_finish_condition: 1e8,
-            singular_condition: 1e10,
-            refinement_iterations: 6,
-            endpoint_residual: 1e-8,
-            growth_before_divergence: false,
-        }
-    }
-}
-
-impl TrackerOptions {
-    /// Larger steps and looser contraction: for well-conditioned families (e.g. a
-    /// parameter homotopy between nearby poses). About twice as fast as the default.
-    pub fn fast() -> Self {
-        TrackerOptions {
-            initial_step: 0.1,
-            max_step: 0.2,
-            prediction_tolerance: 1e-5,
-            max_contraction: 0.3,
-            ..Self::default()
-        }
-    }
-
-    /// Small steps, strict contraction, long endgame: for re-running failed paths.
-    pub fn conservative() -> Self {
-        TrackerOptions {
-            initial_step: 0.01,
-            max_step: 0.02,
-            min_step_fraction: 1e-13,
-            max_steps: 10_000,
-            prediction_tolerance: 1e-8,
-            corrector_tolerance: 1e-10,
-            max_contraction: 0.1,
-            endgame_ratio: 0.3,
-            endgame_min_radius: 1e-15,
-            max_winding_number: 32,
-            ..Self::default()
-        }
-    }
-}
+pub use options::{
+    CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
+    CURVE_PREDICTION_TOLERANCE, EndgameOptions, PrecisionOptions, StepOptions, TrackerOptions,
+};
 
 /// Why a path failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -241,6 +90,10 @@ pub enum FailureReason {
     TooManySteps,
     /// The path diverged before the endgame zone (a non-generic γ or start system).
     DivergedBeforeEndgame,
+    /// The path's norm passed `at_infinity_norm` on a route tracked without endgame
+    /// ([`Tracker::track_between`]): a pole passed on the way, or a root at infinity of
+    /// the end system; only an endgame can tell which.
+    DivergedOnRoute,
     /// The Cauchy loop did not close within `max_winding_number` loops.
     WindingNumberTooLarge,
     /// The endgame reached `endgame_min_radius` without two agreeing estimates.
@@ -314,10 +167,6 @@ impl PathResult {
     }
 }
 
-/// Condition number below which extended mode returns to double precision
-/// (κ·ε ≈ 2·10⁻¹⁰, well under the corrector tolerance).
-const RETURN_TO_DOUBLE_CONDITION: f64 = 1e6;
-
 /// Newton updates of [`Tracker::correct_at`].
 pub const CORRECT_AT_ITERATIONS: usize = 8;
 
@@ -336,11 +185,6 @@ pub const CORRECT_AT_CONTRACTION: f64 = 1.0;
 /// valuation (see [`Tracker::endgame`]); the divergence test itself only looks at
 /// coordinates of modulus ≥ 1.
 const DIRECT_FINISH_FLOOR: f64 = 0.1;
-
-/// Smallest step in `t` (absolute): `t` near 1 is resolved to `ε ≈ 2.2·10⁻¹⁶`, and
-/// steps below a few of its units no longer move the path (they only re-evaluate the
-/// homotopy at the same rounded `t`).
-const MIN_ABSOLUTE_STEP: f64 = 1e-15;
 
 /// Largest rise (relative) of a grown coordinate's valuation between two radii that
 /// still counts as stable; any fall does (see [`MIN_COORDINATE_GROWTH`]).
@@ -364,180 +208,16 @@ fn max_norm(x: &[C64]) -> f64 {
     x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
 }
 
-/// Scratch for evaluations and linear solves.
-struct Evaluation {
-    work: Vec<C64>,
-    h: Vec<C64>,
-    jac: Vec<C64>,
-    dh: Vec<C64>,
-    lu: LuWorkspace,
-    /// [`TrackerOptions::extended_residual`].
-    extended_residual: bool,
-    /// Extended mode: Jacobians in double-double, solves by `dd_lu`.
-    extended: bool,
-    /// Trailing parts of the double-double Jacobian in `jac`.
-    jac_low: Vec<C64>,
-    dd_lu: DdLuWorkspace,
-    /// The current factorisation is `dd_lu`'s (else `lu`'s).
-    dd_current: bool,
-    /// `lu` does not hold the factorisation of `jac` (extended mode factors only
-    /// `dd_lu`; [`Evaluation::condition_estimate`] factors `lu` on demand).
-    lu_stale: bool,
-}
-
-/// Result of a Newton update.
-enum NewtonUpdate {
-    Step(f64),
-    Singular,
-}
-
-impl Evaluation {
-    fn new(n: usize, work_len: usize, extended_residual: bool) -> Self {
-        let z = C64::new(0.0, 0.0);
-        Evaluation {
-            extended_residual,
-            extended: false,
-            jac_low: vec![z; n * n],
-            dd_lu: DdLuWorkspace::new(n),
-            dd_current: false,
-            lu_stale: false,
-            work: vec![z; work_len],
-            h: vec![z; n],
-            jac: vec![z; n * n],
-            dh: vec![z; n],
-            lu: LuWorkspace::new(n),
-        }
-    }
-
-    /// `out ← dx/du = −J⁻¹ ∂H/∂t · dt` at `(x, t)`. In extended mode (`self.extended`)
-    /// `J` and `∂H/∂t` are evaluated in double-double and the solve is the
-    /// double-double LU: velocities keep their accuracy up to κ ≈ 10²⁵.
-    fn velocity<H: Homotopy + ?Sized>(
-        &mut self,
-        homotopy: &H,
-        x: &[C64],
-        t: C64,
-        dt: C64,
-        out: &mut [C64],
-    ) -> bool {
-        if self.extended && self.extended_residual {
-            homotopy.evaluate_with_jacobian_and_time_derivative_extended(
-                x,
-                t,
-                &mut self.work,
-                &mut self.h,
-                (&mut self.jac, &mut self.jac_low),
-                &mut self.dh,
-            );
-            if !self.dd_lu.factor(&self.jac, &self.jac_low) {
-                return false;
-            }
-            self.dd_current = true;
-            self.lu_stale = true;
-        } else {
-            homotopy.evaluate_with_jacobian_and_time_derivative(
-                x,
-                t,
-                &mut self.work,
-                &mut self.h,
-                &mut self.jac,
-                &mut self.dh,
-            );
-            if !self.lu.factor(&self.jac) {
-                return false;
-            }
-            self.dd_current = false;
-            self.lu_stale = false;
-        }
-        self.solve_velocity(dt, out)
-    }
-
-    /// 1-norm condition estimate of the last Jacobian (`jac`, rounded to double where
-    /// it was evaluated in double-double); factors it in double if only the
-    /// double-double factorisation is current.
-    fn condition_estimate(&mut self) -> f64 {
-        if self.lu_stale {
-            if !self.lu.factor(&self.jac) {
-                return f64::INFINITY;
-            }
-            self.lu_stale = false;
-        }
-        self.lu.condition_estimate()
-    }
-
-    /// `out ← −J⁻¹ dh · dt` with the current factorisation and `self.dh`.
-    fn solve_velocity(&mut self, dt: C64, out: &mut [C64]) -> bool {
-        for (o, d) in out.iter_mut().zip(&self.dh) {
-            *o = -d * dt;
-        }
-        if self.dd_current {
-            self.dd_lu.solve_in_place(out);
-        } else {
-            self.lu.solve_in_place(out);
-        }
-        out.iter().all(|v| v.re.is_finite() && v.im.is_finite())
-    }
-
-    /// One Newton update `x ← x − J⁻¹ H(x, t)`; returns `‖Δ‖∞`. In extended mode the
-    /// residual is evaluated in double-double, and with the double-double LU also the
-    /// Jacobian and the solve.
-    fn newton<H: Homotopy + ?Sized>(
-        &mut self,
-        homotopy: &H,
-        x: &mut [C64],
-        t: C64,
-        extended: bool,
-    ) -> NewtonUpdate {
-        let factored = if extended && self.extended_residual {
-            homotopy.evaluate_with_jacobian_extended(
-                x,
-                t,
-                &mut self.work,
-                &mut self.h,
-                (&mut self.jac, &mut self.jac_low),
-            );
-            self.dd_current = true;
-            self.lu_stale = true;
-            self.dd_lu.factor(&self.jac, &self.jac_low)
-        } else {
-            homotopy.evaluate_with_jacobian(x, t, &mut self.work, &mut self.h, &mut self.jac);
-            if extended && self.extended_residual {
-                // Residual beyond double precision: the update is then limited by κ·ε
-                // of the linear solve, not by the rounding noise of H.
-                homotopy.evaluate_extended(x, t, &mut self.work, &mut self.h);
-            }
-            self.dd_current = false;
-            self.lu_stale = false;
-            self.lu.factor(&self.jac)
-        };
-        if !factored {
-            return NewtonUpdate::Singular;
-        }
-        for (d, h) in self.dh.iter_mut().zip(&self.h) {
-            *d = -h;
-        }
-        if self.dd_current {
-            self.dd_lu.solve_in_place(&mut self.dh);
-        } else {
-            self.lu.solve_in_place(&mut self.dh);
-        }
-        let mut norm: f64 = 0.0;
-        for (xi, d) in x.iter_mut().zip(&self.dh) {
-            *xi += d;
-            norm = norm.max(crate::modulus(*d));
-        }
-        if norm.is_finite() {
-            NewtonUpdate::Step(norm)
-        } else {
-            NewtonUpdate::Singular
-        }
-    }
-}
-
-/// Failure inside a segment.
+/// Why the tracker stopped before the end of a route (one segment or a chain of them).
+/// The tracking layer reports only three outcomes: the route's end was reached (`Ok`),
+/// the path diverged (its norm passed [`EndgameOptions::at_infinity_norm`]), or the
+/// tracker failed. Whether a divergence is a solution at infinity — rather than a pole
+/// passed on the way — is not the tracker's to say: only the endgame
+/// ([`Tracker::track`]'s last stretch to `t = 1`) classifies a path as
+/// [`PathStatus::AtInfinity`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum SegmentError {
-    Failure(FailureReason),
+enum RouteStop {
+    Failed(FailureReason),
     Diverged,
 }
 
@@ -557,33 +237,13 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     k4: Vec<C64>,
     x_saved: Vec<C64>,
     x_checkpoint: Vec<C64>,
-    cauchy_sum: Vec<C64>,
-    estimate: Vec<C64>,
-    previous_estimate: Vec<C64>,
-    valuations: Vec<f64>,
-    previous_valuations: Vec<f64>,
-    log_sum: Vec<f64>,
-    log_mean: Vec<f64>,
-    previous_log_mean: Vec<f64>,
-    loop_valuations: Vec<f64>,
-    previous_loop_valuations: Vec<f64>,
-    /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
-    endgame_origin: Vec<f64>,
-    /// Change of each valuation between the last two radii of the endgame.
-    valuation_changes: Vec<f64>,
-    /// The endgame's last valuation check found stable negative valuations.
-    divergence_evidence: bool,
+    /// The endgame's estimates and valuations ([`endgame::EndgameState`]).
+    state: endgame::EndgameState,
     step: f64,
     steps: usize,
-    /// Steps taken in extended precision.
-    extended_steps: usize,
     rejected: usize,
-    extended: bool,
-    used_extended: bool,
-    /// Rejected steps since the last accepted one.
-    consecutive_rejections: usize,
-    /// Accepted steps since extended precision was switched on.
-    extended_streak: usize,
+    /// Double or double-double arithmetic, and the counters that switch between them.
+    precision: Precision,
     winding: usize,
     /// `eval.lu` holds J at (≈ x, t) of the current point (set after an accepted step).
     factorization_current: bool,
@@ -598,7 +258,11 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let z = C64::new(0.0, 0.0);
         Tracker {
             homotopy,
-            eval: Evaluation::new(n, homotopy.workspace_len(), options.extended_residual),
+            eval: Evaluation::new(
+                n,
+                homotopy.workspace_len(),
+                options.precision.extended_residual,
+            ),
             options,
             n,
             x: vec![z; n],
@@ -610,27 +274,11 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             k4: vec![z; n],
             x_saved: vec![z; n],
             x_checkpoint: vec![z; n],
-            cauchy_sum: vec![z; n],
-            estimate: vec![z; n],
-            previous_estimate: vec![z; n],
-            valuations: vec![0.0; n],
-            previous_valuations: vec![0.0; n],
-            log_sum: vec![0.0; n],
-            log_mean: vec![0.0; n],
-            previous_log_mean: vec![0.0; n],
-            loop_valuations: vec![0.0; n],
-            previous_loop_valuations: vec![0.0; n],
-            endgame_origin: vec![1.0; n],
-            valuation_changes: vec![f64::NAN; n],
-            divergence_evidence: false,
+            state: endgame::EndgameState::new(n),
             step: 0.0,
             steps: 0,
-            extended_steps: 0,
             rejected: 0,
-            extended: false,
-            used_extended: false,
-            consecutive_rejections: 0,
-            extended_streak: 0,
+            precision: Precision::default(),
             winding: 1,
             factorization_current: false,
             t: C64::new(0.0, 0.0),
@@ -642,18 +290,14 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         &self.options
     }
 
-    fn reset(&mut self, start: &[C64], t0: f64) {
+    pub(super) fn reset(&mut self, start: &[C64], t0: f64) {
         self.x.copy_from_slice(start);
         self.t = C64::new(t0, 0.0);
-        self.step = self.options.initial_step;
+        self.step = self.options.step.initial_step;
         self.steps = 0;
-        self.extended_steps = 0;
         self.rejected = 0;
-        self.extended = false;
+        self.precision = Precision::default();
         self.eval.extended = false;
-        self.used_extended = false;
-        self.consecutive_rejections = 0;
-        self.extended_streak = 0;
         self.winding = 1;
     }
 
@@ -663,12 +307,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.reset(start, 0.0);
         let endgame_start = {
             let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
-            self.options.endgame_start.min(0.5 * (1.0 - last))
+            self.options.endgame.endgame_start.min(0.5 * (1.0 - last))
         };
         let status = match self.track_real_interval(0.0, 1.0 - endgame_start) {
             Ok(()) => self.endgame(endgame_start),
-            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish(path_index, status)
     }
@@ -681,7 +325,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.reset(start, 0.0);
         let endgame_start = {
             let last = self.homotopy.breakpoints().last().copied().unwrap_or(0.0);
-            self.options.endgame_start.min(0.5 * (1.0 - last))
+            self.options.endgame.endgame_start.min(0.5 * (1.0 - last))
         };
         let end = C64::new(1.0 - endgame_start, 0.0);
         let mut from = C64::new(0.0, 0.0);
@@ -695,8 +339,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let status = match outcome {
             Ok(()) => self.endgame(endgame_start),
-            Err(SegmentError::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedBeforeEndgame),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish(path_index, status)
     }
@@ -704,7 +348,10 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     /// Tracks `start` from `t0` to `t1` (real, either direction) without endgame, e.g.
     /// a monodromy loop or a parameter homotopy between generic parameters. The
     /// endpoint is Newton-refined and returned as `Nonsingular` (or `Singular` if its
-    /// condition exceeds `singular_condition`).
+    /// condition exceeds `singular_condition`). A path whose norm passes
+    /// `at_infinity_norm` on the way is `Failed(DivergedOnRoute)`, never `AtInfinity`:
+    /// without an endgame a pole passed on the way cannot be told from a root at
+    /// infinity of the end system.
     pub fn track_between(
         &mut self,
         start: &[C64],
@@ -717,99 +364,16 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             Ok(()) => {
                 let (converged, _) = self.refine_at(C64::new(t1, 0.0));
                 let condition = self.condition_at(C64::new(t1, 0.0));
-                if converged && condition < self.options.singular_condition {
+                if converged && condition < self.options.endgame.singular_condition {
                     PathStatus::Nonsingular
                 } else {
                     PathStatus::Singular
                 }
             }
-            Err(SegmentError::Diverged) => PathStatus::AtInfinity,
-            Err(SegmentError::Failure(reason)) => PathStatus::Failed(reason),
+            Err(RouteStop::Diverged) => PathStatus::Failed(FailureReason::DivergedOnRoute),
+            Err(RouteStop::Failed(reason)) => PathStatus::Failed(reason),
         };
         self.finish_at(path_index, status, C64::new(t1, 0.0))
-    }
-
-    /// Newton's method at `t` from `prediction` (an approximation of a nonsingular
-    /// solution of `H(x, t) = 0`, e.g. extrapolated from the solutions at neighbouring
-    /// parameters), without path tracking: `x ← x − J⁻¹H(x, t)` while the updates
-    /// contract (`‖Δ_{k+1}‖ ≤ ½‖Δ_k‖`), at most [`CORRECT_AT_ITERATIONS`] updates, until
-    /// `‖Δ‖ ≤ 10⁻¹¹(1 + ‖x‖∞)`, in double precision. Where the updates contract to
-    /// below [`CORRECT_AT_EXTENDED_START`] and then stagnate above `10⁻⁹(1 + ‖x‖∞)`
-    /// (the rounding floor of the double-precision residual of a far-out point), up to
-    /// [`CORRECT_AT_EXTENDED_ITERATIONS`] more updates run in double-double (residual,
-    /// Jacobian and LU). `Nonsingular` if the limit has condition below
-    /// `singular_condition`, `Singular` above it, else `Failed(CorrectorDidNotConverge)`.
-    ///
-    /// Which solution Newton's method converges to is not controlled (no path is
-    /// followed): callers must check the set of limits, e.g. that they are distinct
-    /// and as many as the generic solution count.
-    pub fn correct_at(&mut self, prediction: &[C64], t: f64, path_index: usize) -> PathResult {
-        self.reset(prediction, t);
-        let t = C64::new(t, 0.0);
-        let failed = PathStatus::Failed(FailureReason::CorrectorDidNotConverge);
-        let mut previous = f64::INFINITY;
-        let mut status = failed;
-        let mut condition = f64::INFINITY;
-        let mut residual = f64::INFINITY;
-        let mut extended = false;
-        let mut extended_left = CORRECT_AT_EXTENDED_ITERATIONS;
-        let mut double_left = CORRECT_AT_ITERATIONS;
-        while if extended {
-            extended_left > 0
-        } else {
-            double_left > 0
-        } {
-            if extended {
-                extended_left -= 1;
-            } else {
-                double_left -= 1;
-            }
-            self.x_saved.copy_from_slice(&self.x);
-            self.steps += 1;
-            let NewtonUpdate::Step(norm) =
-                self.eval.newton(self.homotopy, &mut self.x, t, extended)
-            else {
-                break;
-            };
-            let scale = 1.0 + max_norm(&self.x);
-            let stagnated = norm > CORRECT_AT_CONTRACTION * previous;
-            if stagnated {
-                // Updates at the rounding level of an ill-conditioned limit stop
-                // contracting: below 1e-9 relative that is the attainable accuracy
-                // (as in the endpoint refinement), keep the previous iterate.
-                self.x.copy_from_slice(&self.x_saved);
-                if previous > 1e-9 * scale {
-                    if !extended && previous <= CORRECT_AT_EXTENDED_START * scale {
-                        // Converging, but double precision's rounding floor (residual
-                        // terms of a far-out point) is above the tolerance: go on in
-                        // double-double from the last contracting iterate.
-                        extended = true;
-                        self.used_extended = true;
-                        previous = f64::INFINITY;
-                        continue;
-                    }
-                    break;
-                }
-            }
-            if stagnated || norm <= 1e-11 * scale {
-                // `eval.lu` holds J at the previous iterate, within 1e-9 of the limit.
-                condition = self.eval.condition_estimate();
-                status = if condition < self.options.singular_condition {
-                    PathStatus::Nonsingular
-                } else {
-                    PathStatus::Singular
-                };
-                break;
-            }
-            previous = norm;
-        }
-        if status.is_finite() {
-            self.homotopy
-                .evaluate(&self.x, t, &mut self.eval.work, &mut self.eval.h);
-            residual = max_norm(&self.eval.h);
-        }
-        self.t = t;
-        self.result(path_index, status, residual, condition)
     }
 
     fn finish(&mut self, path_index: usize, status: PathStatus) -> PathResult {
@@ -848,66 +412,13 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             multiplicity: 1,
             steps: self.steps,
             rejected_steps: self.rejected,
-            used_extended_precision: self.used_extended,
+            used_extended_precision: self.precision.used,
             last_t: self.t,
         }
     }
 
-    fn condition_at(&mut self, t: C64) -> f64 {
-        let e = &mut self.eval;
-        self.homotopy
-            .evaluate_with_jacobian(&self.x, t, &mut e.work, &mut e.h, &mut e.jac);
-        if e.lu.factor(&e.jac) {
-            e.lu.condition_estimate()
-        } else {
-            f64::INFINITY
-        }
-    }
-
-    /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
-    /// In double precision (unless the tracker is in extended mode) while the updates
-    /// contract; where they stagnate above `10⁻¹³` relative (rounding noise of an
-    /// ill-conditioned point) the remaining iterations run in extended precision.
-    fn refine_at(&mut self, t: C64) -> (bool, f64) {
-        let mut previous = f64::INFINITY;
-        let mut converged = false;
-        let mut extended = self.extended;
-        for _ in 0..self.options.refinement_iterations {
-            self.x_saved.copy_from_slice(&self.x);
-            match self.eval.newton(self.homotopy, &mut self.x, t, extended) {
-                NewtonUpdate::Singular => {
-                    self.x.copy_from_slice(&self.x_saved);
-                    break;
-                }
-                NewtonUpdate::Step(norm) => {
-                    let scale = 1.0 + max_norm(&self.x);
-                    if norm > previous && norm > 1e-14 * scale {
-                        // No longer contracting: keep the previous iterate. In double
-                        // precision try again in extended precision; there, if the
-                        // updates were already at rounding level for the condition of
-                        // the point (below 1e-9 relative), that is the attainable
-                        // accuracy: converged.
-                        self.x.copy_from_slice(&self.x_saved);
-                        if !extended {
-                            extended = true;
-                            continue;
-                        }
-                        converged = previous <= 1e-9 * scale;
-                        break;
-                    }
-                    if norm <= 1e-13 * scale {
-                        converged = true;
-                        break;
-                    }
-                    previous = norm;
-                }
-            }
-        }
-        (converged, previous)
-    }
-
     /// Tracks along the real interval `[t0, t1]`, stopping at the homotopy's breakpoints.
-    fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), SegmentError> {
+    fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), RouteStop> {
         let mut a = t0;
         let forward = t1 >= t0;
         let breakpoints: Vec<f64> = {
@@ -931,7 +442,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
     }
 
     /// Tracks `self.x` along the straight segment from `ta` to `tb` in the complex plane.
-    fn track_segment(&mut self, ta: C64, tb: C64) -> Result<(), SegmentError> {
+    fn track_segment(&mut self, ta: C64, tb: C64) -> Result<(), RouteStop> {
         let dt = tb - ta;
         let length = dt.norm();
         if length == 0.0 {
@@ -939,30 +450,19 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let mut u = 0.0f64;
         self.factorization_current = false;
-        let floor = if self.options.growth_before_divergence {
-            self.options
-                .min_step_fraction
-                .max(MIN_ABSOLUTE_STEP / length)
-        } else {
-            self.options.min_step_fraction
-        };
+        let floor = step_floor(&self.options, length);
         while u < 1.0 {
-            if self.steps >= self.options.max_steps
-                || self.extended_steps >= self.options.max_extended_steps
+            if self.steps >= self.options.step.max_steps
+                || self.precision.budget_spent(&self.options)
             {
-                return Err(SegmentError::Failure(FailureReason::TooManySteps));
+                return Err(RouteStop::Failed(FailureReason::TooManySteps));
             }
-            let mut h = (self.step.min(self.options.max_step) / length).min(1.0 - u);
-            if 1.0 - u - h < 0.05 * h {
-                h = 1.0 - u;
-            }
+            let mut h = step_fraction(self.step, self.options.step.max_step, length, u);
             let t = ta + dt * u;
             let t_mid = ta + dt * (u + 0.5 * h);
             let t_new = ta + dt * (u + h);
             self.steps += 1;
-            if self.extended {
-                self.extended_steps += 1;
-            }
+            self.precision.count_step();
             let accepted = if self.predict(t, t_mid, t_new, dt, h).is_some() {
                 self.correct(t_new)
             } else {
@@ -975,19 +475,13 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     u = if h >= 1.0 - u { 1.0 } else { u + h };
                     self.t = ta + dt * u;
                     let scale = 1.0 + max_norm(&self.x);
-                    if scale > self.options.at_infinity_norm {
-                        return Err(SegmentError::Diverged);
+                    if scale > self.options.endgame.at_infinity_norm {
+                        return Err(RouteStop::Diverged);
                     }
-                    let error = first_update / scale;
-                    let factor = if error > 0.0 {
-                        (0.9 * (self.options.prediction_tolerance / error).powf(0.2))
-                            .clamp(0.5, 2.0)
-                    } else {
-                        2.0
-                    };
-                    self.step = (h * length * factor).min(self.options.max_step);
-                    self.consecutive_rejections = 0;
-                    if self.options.growth_before_divergence
+                    let factor =
+                        step_factor(first_update / scale, self.options.step.prediction_tolerance);
+                    self.step = (h * length * factor).min(self.options.step.max_step);
+                    if self.options.endgame.growth_before_divergence
                         && u < 1.0
                         && self.step < floor * length
                     {
@@ -995,35 +489,26 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         // tolerance shrink the step as surely as rejections do (noise of
                         // the velocities at a large, ill-conditioned point); below the
                         // floor `u + h` would no longer advance.
-                        if self.extended {
-                            return Err(SegmentError::Failure(FailureReason::StepSizeTooSmall));
+                        if self.precision.extended {
+                            return Err(RouteStop::Failed(FailureReason::StepSizeTooSmall));
                         }
                         self.switch_to_extended();
                         self.step *= 4.0;
                     }
-                    if self.extended {
-                        self.extended_streak += 1;
-                        if self.extended_streak >= self.options.extended_accepted_steps
-                            && self.options.extended_after_rejections > 0
-                        {
-                            // Back to double precision once the ill-conditioned stretch
-                            // is behind (κ·ε ≤ 1e-10): switching back inside it costs
-                            // rejected steps and an 8-fold smaller step each time.
-                            self.extended_streak = 0;
-                            if self.eval.condition_estimate() <= RETURN_TO_DOUBLE_CONDITION {
-                                self.extended = false;
-                                self.eval.extended = false;
-                            }
-                        }
+                    // Back to double precision once the ill-conditioned stretch is
+                    // behind (κ·ε ≤ 1e-10): switching back inside it costs rejected
+                    // steps and an 8-fold smaller step each time.
+                    if self.precision.accepted(&self.options)
+                        && self.eval.condition_estimate() <= RETURN_TO_DOUBLE_CONDITION
+                    {
+                        self.precision.extended = false;
+                        self.eval.extended = false;
                     }
                 }
                 None => {
                     self.rejected += 1;
-                    self.consecutive_rejections += 1;
                     h *= 0.5;
-                    if !self.extended
-                        && self.options.extended_after_rejections > 0
-                        && self.consecutive_rejections >= self.options.extended_after_rejections
+                    if self.precision.rejected(&self.options)
                         && self.eval.condition_estimate() > RETURN_TO_DOUBLE_CONDITION
                     {
                         // Only where double precision is the likely culprit: below
@@ -1032,7 +517,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                         self.switch_to_extended();
                     }
                     if h < floor {
-                        if !self.extended {
+                        if !self.precision.extended {
                             self.switch_to_extended();
                             h *= 4.0;
                         } else {
@@ -1040,7 +525,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                                 .x
                                 .iter()
                                 .any(|v| !(v.re.is_finite() && v.im.is_finite()));
-                            return Err(SegmentError::Failure(if bad {
+                            return Err(RouteStop::Failed(if bad {
                                 FailureReason::NonFiniteValue
                             } else {
                                 FailureReason::StepSizeTooSmall
@@ -1054,93 +539,121 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         Ok(())
     }
 
+    /// Switches to extended (double-double) precision ([`precision`]).
     fn switch_to_extended(&mut self) {
-        self.extended = true;
+        self.precision.switch_to_extended();
         self.eval.extended = true;
-        self.used_extended = true;
-        self.extended_streak = 0;
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    use crate::homotopy::ParameterHomotopy;
+    use crate::system::{CompiledSystem, Expr, System};
+
+    /// `q·x − 1 = 0`, one unknown `x` and one parameter `q`.
+    pub(crate) fn reciprocal_family() -> CompiledSystem {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        System::new(["x"], ["q"], vec![q * x - Expr::one()])
+            .unwrap()
+            .compile()
     }
 
-    /// RK4 prediction from `(x, t)` to `t_new` into `x_predicted`.
-    fn predict(&mut self, t: C64, t_mid: C64, t_new: C64, dt: C64, h: f64) -> Option<()> {
-        let hom = self.homotopy;
-        let e = &mut self.eval;
-        if self.factorization_current {
-            // The corrector's last factorisation is of J at a point within the corrector
-            // tolerance of (x, t): reuse it, only ∂H/∂t is new.
-            hom.evaluate_time_derivative(&self.x, t, &mut e.work, &mut e.dh);
-            if !e.solve_velocity(dt, &mut self.k1) {
-                return None;
-            }
-        } else if !e.velocity(hom, &self.x, t, dt, &mut self.k1) {
-            return None;
-        }
-        self.factorization_current = false;
-        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k1) {
-            *s = x + k * (0.5 * h);
-        }
-        if !e.velocity(hom, &self.x_stage, t_mid, dt, &mut self.k2) {
-            return None;
-        }
-        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k2) {
-            *s = x + k * (0.5 * h);
-        }
-        if !e.velocity(hom, &self.x_stage, t_mid, dt, &mut self.k3) {
-            return None;
-        }
-        for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k3) {
-            *s = x + k * h;
-        }
-        if !e.velocity(hom, &self.x_stage, t_new, dt, &mut self.k4) {
-            return None;
-        }
-        let w = h / 6.0;
-        for i in 0..self.n {
-            self.x_predicted[i] =
-                self.x[i] + (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]) * w;
-        }
-        Some(())
+    /// `x² − q = 0`, one unknown `x` and one parameter `q`.
+    pub(crate) fn square_root_family() -> CompiledSystem {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        System::new(["x"], ["q"], vec![x.clone() * x - q])
+            .unwrap()
+            .compile()
     }
 
-    /// Newton corrector on `x_predicted` at `t`; `Some(‖Δ₀‖)` if accepted.
-    fn correct(&mut self, t: C64) -> Option<f64> {
-        let mut first = 0.0;
-        let mut previous = 0.0;
-        for k in 0..self.options.max_corrector_iterations.max(1) {
-            let norm =
-                match self
-                    .eval
-                    .newton(self.homotopy, &mut self.x_predicted, t, self.extended)
-                {
-                    NewtonUpdate::Step(norm) => norm,
-                    NewtonUpdate::Singular => return None,
-                };
-            let scale = 1.0 + max_norm(&self.x_predicted);
-            let tolerance = self.options.corrector_tolerance * scale;
-            if k == 0 {
-                first = norm;
-                if norm <= tolerance {
-                    return Some(first);
-                }
-            } else {
-                // Noise floor: at an ill-conditioned point (κ·ε above the tolerance)
-                // the updates stop contracting once they only reflect rounding; two
-                // successive updates below the noise tolerance mean the iterate is as
-                // accurate as the arithmetic allows, and far too close to its path for
-                // a jump to another one.
-                let noise = self.options.corrector_noise_tolerance * scale;
-                if norm <= noise && previous <= 10.0 * noise {
-                    return Some(first);
-                }
-                if norm > self.options.max_contraction * previous {
-                    return None;
-                }
-                if norm <= tolerance {
-                    return Some(first);
-                }
-            }
-            previous = norm;
+    fn real_segment(
+        system: &CompiledSystem,
+        from: f64,
+        to: f64,
+    ) -> ParameterHomotopy<'_, CompiledSystem> {
+        ParameterHomotopy::segment(system, &[C64::new(from, 0.0)], &[C64::new(to, 0.0)])
+    }
+
+    /// `H(x, t) = (p − t)·x − 1` ([`reciprocal_family`] with `q` from `p` to
+    /// `p − 1`): the path `x(t) = 1/(p − t)` from `x(0) = 1/p` has a pole at `t = p`
+    /// (a divergence mid-route for `p < 1`, a root at infinity of `H(·, 1)` for
+    /// `p = 1`).
+    pub(crate) fn pole(system: &CompiledSystem, p: f64) -> ParameterHomotopy<'_, CompiledSystem> {
+        real_segment(system, p, p - 1.0)
+    }
+
+    /// `H(x, t) = x² − (1 + t)` ([`square_root_family`] with `q` from 1 to 2): the
+    /// paths `x(t) = ±√(1 + t)`.
+    pub(crate) fn square(system: &CompiledSystem) -> ParameterHomotopy<'_, CompiledSystem> {
+        real_segment(system, 1.0, 2.0)
+    }
+
+    /// Runs `test` on a tracker with the default options for [`square`], reset to
+    /// `x = start` at `t = t0`.
+    pub(crate) fn on_square<R>(
+        start: f64,
+        t0: f64,
+        test: impl FnOnce(&mut Tracker<'_, ParameterHomotopy<'_, CompiledSystem>>) -> R,
+    ) -> R {
+        let system = square_root_family();
+        let homotopy = square(&system);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        tracker.reset(&[C64::new(start, 0.0)], t0);
+        test(&mut tracker)
+    }
+
+    /// The path of [`pole`] from `x(0) = 1/p`, tracked with `options` to `t = 1`
+    /// with the endgame ([`Tracker::track`]) or without ([`Tracker::track_between`]).
+    fn along_pole(p: f64, options: TrackerOptions, endgame: bool) -> PathResult {
+        let system = reciprocal_family();
+        let homotopy = pole(&system, p);
+        let mut tracker = Tracker::new(&homotopy, options);
+        let start = [C64::new(1.0 / p, 0.0)];
+        if endgame {
+            tracker.track(&start, 0)
+        } else {
+            tracker.track_between(&start, 0.0, 1.0, 0)
         }
-        None
+    }
+
+    /// Steps of at most 0.01 and divergence at `‖x‖ > 10`: the tracker lands within
+    /// `|t − p| < 0.1` of a pole instead of stepping across it (a simple pole of a
+    /// rational path is no obstacle to the RK4 predictor).
+    fn near_pole_options() -> TrackerOptions {
+        let mut options = TrackerOptions::default();
+        options.step.initial_step = 0.01;
+        options.step.max_step = 0.01;
+        options.endgame.at_infinity_norm = 10.0;
+        options
+    }
+
+    /// A pole at `t = ½` is a divergence on the route, a failure whether the route
+    /// ends with the endgame or not, never a point at infinity.
+    #[test]
+    fn a_divergence_on_the_route_is_a_failure_not_a_point_at_infinity() {
+        for (endgame, reason) in [
+            (false, FailureReason::DivergedOnRoute),
+            (true, FailureReason::DivergedBeforeEndgame),
+        ] {
+            let result = along_pole(0.5, near_pole_options(), endgame);
+            assert_eq!(result.status, PathStatus::Failed(reason), "{result:?}");
+            assert!(result.last_t.re < 0.5, "{result:?}");
+        }
+    }
+
+    #[test]
+    fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
+        let result = along_pole(1.0, TrackerOptions::default(), true);
+        assert_eq!(result.status, PathStatus::AtInfinity, "{result:?}");
+    }
+
+    #[test]
+    fn a_route_without_a_pole_reaches_its_end() {
+        let result = along_pole(2.0, TrackerOptions::default(), false);
+        assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
+        assert!((result.solution[0] - 1.0).norm() < 1e-12, "{result:?}");
     }
 }

@@ -86,56 +86,21 @@ fn default_self_check() -> bool {
     true
 }
 
-/// Step budget per path of the curve's trackers. On the built-in example (`plate/rigid`)
-/// paths take 18 steps (median), 114 (90 %) and 500 (99 %); the longest follow
-/// critical points far out along isotropic directions (‖x‖ ~ 10⁴–10⁶, κ ~ 10¹⁴–10¹⁶)
-/// in extended precision, which has its own budget
-/// ([`TrackerOptions::max_extended_steps`]). Paths that exhaust it are re-run, then
-/// reported as lost, never dropped silently.
-pub const CURVE_MAX_STEPS: usize = 1500;
-
-/// [`TrackerOptions::extended_after_rejections`] of the curve's first-run trackers: 0,
-/// extended precision only where the step size underflows. In isotropic coordinates
-/// the far-out critical points are well-conditioned up to scaling, and on the built-in
-/// example extended precision switched on after rejections changed no step of any
-/// path (same step counts, same JSON for seeds 1–8) while costing 11 % of the time.
-/// The conservative re-runs keep switching after rejections. (Tracking in Cartesian
-/// coordinates needs the switch after 3 rejections, as in [`TrackerOptions::fast`]:
-/// without it the `rigid/rigid` seed → pose paths near τ = −1 are lost.)
-pub const CURVE_EXTENDED_AFTER_REJECTIONS: usize = 0;
-
-/// [`TrackerOptions::prediction_tolerance`] of the curve's seed-stage and seed → pose
-/// tracker: 10⁻⁴ instead of the fast preset's 10⁻⁵. Path jumps it may cause are caught
-/// (crossings, completeness) and re-run. Measured on the built-in example, seeds 1–8:
-/// 12–16 % fewer LU factorisations over the whole curve, the same distances (to
-/// 3·10⁻¹⁴), and seed 5's lost `rigid/rigid` seed path is found.
-pub const CURVE_PREDICTION_TOLERANCE: f64 = 1e-4;
-
-/// [`TrackerOptions::at_infinity_norm`] of the curve's first-run trackers: 10¹²
-/// instead of 10⁸. On the built-in example the `rigid/rigid` critical points pass close
-/// to infinity near τ ≈ −0.8 (a pole near the real axis): at poses 3 and 4 one of them
-/// is finite with norm between 10⁸ and 10¹⁰ (normalised frame), which 10⁸ classified
-/// at infinity, sending those poses to the seed route; in isotropic coordinates such
-/// points are well-conditioned enough to track. Seeds 1–8: 5 % fewer LU
-/// factorisations, the same distances.
-pub const CURVE_AT_INFINITY_NORM: f64 = 1e12;
+/// The curve's tuned tracker settings, kept with the presets they define
+/// ([`TrackerOptions::curve`], [`TrackerOptions::curve_neighbour`],
+/// [`TrackerOptions::curve_retry`]).
+pub use crate::homotopy::tracker::{
+    CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
+    CURVE_PREDICTION_TOLERANCE,
+};
 
 impl Default for CurveOptions {
     fn default() -> Self {
         CurveOptions {
             seed: 1,
-            tracker: TrackerOptions {
-                max_steps: CURVE_MAX_STEPS,
-                extended_after_rejections: CURVE_EXTENDED_AFTER_REJECTIONS,
-                prediction_tolerance: CURVE_PREDICTION_TOLERANCE,
-                at_infinity_norm: CURVE_AT_INFINITY_NORM,
-                ..TrackerOptions::fast()
-            },
+            tracker: TrackerOptions::curve(),
             neighbour_tracker: default_neighbour_tracker(),
-            retry_tracker: TrackerOptions {
-                max_steps: CURVE_MAX_STEPS,
-                ..TrackerOptions::conservative()
-            },
+            retry_tracker: TrackerOptions::curve_retry(),
             retry_attempts: 1,
             seed_retry_attempts: default_seed_retry_attempts(),
             chain_length: default_chain_length(),
@@ -155,14 +120,7 @@ fn default_seed_retry_attempts() -> usize {
 }
 
 fn default_neighbour_tracker() -> TrackerOptions {
-    TrackerOptions {
-        max_steps: CURVE_MAX_STEPS,
-        initial_step: 0.25,
-        max_step: 0.5,
-        at_infinity_norm: CURVE_AT_INFINITY_NORM,
-        extended_after_rejections: CURVE_EXTENDED_AFTER_REJECTIONS,
-        ..TrackerOptions::fast()
-    }
+    TrackerOptions::curve_neighbour()
 }
 
 fn default_coordinates() -> Coordinates {

@@ -308,13 +308,13 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     let crossed = crossings(&paths);
     let diverged_mid_path =
         |p: &PathResult| p.status == PathStatus::Failed(FailureReason::DivergedBeforeEndgame);
-    // Without the endgame, "at infinity" only means the norm grew past
-    // `at_infinity_norm` somewhere along the route: re-run with the endgame to tell a
-    // point at infinity of the target from a pole passed on the way.
+    // Without the endgame a divergence (`DivergedOnRoute`) only means the norm grew
+    // past `at_infinity_norm` somewhere along the route: re-run with the endgame to
+    // tell a point at infinity of the target from a pole passed on the way.
     let rerun = |p: &PathResult, crossed: bool| {
         (matches!(p.status, PathStatus::Failed(_)) && !diverged_mid_path(p))
             || crossed
-            || (!endgame && p.status == PathStatus::AtInfinity)
+            || p.status == PathStatus::Failed(FailureReason::DivergedOnRoute)
     };
     if paths.iter().zip(&crossed).any(|(p, &c)| rerun(p, c)) {
         let mut careful = Tracker::new(&reference, retry_tracker.clone());
