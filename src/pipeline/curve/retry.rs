@@ -435,13 +435,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         let per_path = LAST_CHANCE_STEPS / long_runs.len().max(1);
         if !long_runs.is_empty()
             && long_runs.len() <= LAST_CHANCE_PATHS
-            && per_path > retry_tracker.max_steps
+            && per_path > retry_tracker.step.max_steps
         {
-            let long = TrackerOptions {
-                max_steps: per_path,
-                max_extended_steps: per_path.max(retry_tracker.max_extended_steps),
-                ..retry_tracker.clone()
-            };
+            let mut long = retry_tracker.clone();
+            long.step.max_steps = per_path;
+            long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
             let mut patient = Tracker::new(&reference, long);
             let mut reference_at_infinity = count_at_infinity(&paths);
             for i in long_runs {
