@@ -287,15 +287,18 @@ pub fn rrr_seed_stage(
         prepared: &prepared,
         seeds: &seeds,
     };
+    // Whole detours at every seed point.
     let policy = SeedPolicy {
-        points: SEED_POINTS,
-        seed: options.seed,
-        tracker: &options.tracker,
-        retry_tracker: &options.retry_tracker,
-        attempts: options.seed_retry_attempts,
         confirm_lost_paths_first: false,
+        ..SeedPolicy::new(
+            SEED_POINTS,
+            options.seed,
+            (&options.tracker, &options.retry_tracker),
+            options.seed_retry_attempts,
+        )
     };
-    let (seeded, failures, paths_tracked) = split_seeded(seed_family(&family, &policy));
+    let seeded = seed_family(&family, &policy);
+    let (seeded, failures, paths_tracked) = split_seeded(seeded);
     let problems = prepared
         .into_iter()
         .zip(seeded)

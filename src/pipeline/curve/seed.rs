@@ -309,14 +309,13 @@ pub fn seed_stage(
         seed: options.seed,
         prepared: &prepared,
     };
-    let policy = SeedPolicy {
-        points: SEED_POINTS,
-        seed: options.seed,
-        tracker: &options.tracker,
-        retry_tracker: &options.retry_tracker,
-        attempts: options.seed_retry_attempts,
-        confirm_lost_paths_first: true,
-    };
+    let trackers = (&options.tracker, &options.retry_tracker);
+    let policy = SeedPolicy::new(
+        SEED_POINTS,
+        options.seed,
+        trackers,
+        options.seed_retry_attempts,
+    );
     let (seeded, failures, paths_tracked) = split_seeded(seed_family(&family, &policy));
     let problems = prepared
         .into_iter()

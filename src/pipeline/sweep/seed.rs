@@ -41,6 +41,26 @@ pub struct SeedPolicy<'a> {
     pub confirm_lost_paths_first: bool,
 }
 
+impl<'a> SeedPolicy<'a> {
+    /// `points` seed points, tracked with `tracker` (re-runs with `retry_tracker`)
+    /// and `attempts` detours, confirming with lost paths first.
+    pub fn new(
+        points: usize,
+        seed: u64,
+        (tracker, retry_tracker): (&'a TrackerOptions, &'a TrackerOptions),
+        attempts: usize,
+    ) -> Self {
+        SeedPolicy {
+            points,
+            seed,
+            tracker,
+            retry_tracker,
+            attempts,
+            confirm_lost_paths_first: true,
+        }
+    }
+}
+
 /// One problem at its chosen seed point.
 pub struct Seeded<S> {
     /// The seed point chosen (the one with the most solutions, the earliest of them).
