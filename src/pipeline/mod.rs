@@ -5,6 +5,7 @@ pub mod ab_initio;
 pub mod ab_initio_stage;
 pub mod bisection;
 pub mod curve;
+pub mod family;
 pub mod postprocess;
 pub mod rrr_ab_initio;
 pub mod rrr_curve;
@@ -12,6 +13,7 @@ pub mod rrr_seed;
 pub mod rrr_window;
 pub mod start_file;
 pub mod start_pair;
+pub mod sweep;
 
 /// Start-solution files embedded at build time from `supplementary/start/` (see `build.rs`).
 pub mod embedded {

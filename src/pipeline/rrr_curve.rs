@@ -31,12 +31,12 @@
 //!    the four (Kapilavai and Nawratil, Remark 11).
 
 use super::bisection::bisect_sign_change;
-use super::curve::{Retried, TrackingPlan, track_with_retries};
 use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
 use super::rrr_seed::route;
 pub use super::rrr_seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
 pub use super::rrr_window::RrrCurveRun;
 use super::start_file::StartSolutions;
+use super::sweep::{Retried, TrackingPlan, track_with_retries};
 use crate::C64;
 use crate::homotopy::TrackerOptions;
 use crate::mechanism::rrr::{

@@ -24,17 +24,18 @@
 //!   (another `τ*` and perturbation, reached along another route) finds exactly as many,
 //!   otherwise the shortfall is a seed-stage failure.
 
-use super::curve::{Retried, TrackingPlan, split_seed_results, track_with_retries};
+use super::family::Family;
 use super::rrr_ab_initio::RrrAbInitioError;
 use super::rrr_curve::{RrrCurveError, RrrCurveOptions, RrrPathFailure};
 use super::start_file::StartSolutions;
+use super::sweep::{SeedPolicy, detour_point, seed_family, split_seeded};
+pub use super::sweep::{distinct_solutions, seed_count_confirmed};
 use crate::C64;
-use crate::homotopy::{PolylinePath, same_point};
+use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory};
 use crate::problem::rrr::{RrrProblem, RrrSubProblem};
 use crate::random;
-use rayon::prelude::*;
-use std::collections::BTreeMap;
+use crate::system::CompiledSystem;
 
 /// The similarity `K ↦ (K − c)/s` of the run's normalised frame (module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -144,16 +145,6 @@ pub struct RrrSeedStage {
 /// finite count below the generic one.
 pub const SEED_POINTS: usize = 4;
 
-/// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal
-/// per coordinate, `ε = 0.1·(1 + ‖target‖∞)`.
-fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
-    let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
-    target
-        .iter()
-        .map(|v| v + random::complex_normal(rng) * scale)
-        .collect()
-}
-
 /// The route of attempt `attempt` from `from` to `to`: the straight segment for attempt
 /// 0, else the polyline through a random complex detour point near `to` (seeded by
 /// `(seed, stream, attempt)`).
@@ -167,7 +158,7 @@ pub(crate) fn route(
     let mut points = vec![from.to_vec()];
     if attempt > 0 {
         let mut rng = random::stream(seed, stream.wrapping_mul(16).wrapping_add(attempt as u64));
-        points.push(detour_point(to, &mut rng));
+        points.push(detour_point(to, to.len(), &mut rng));
     }
     points.push(to.to_vec());
     PolylinePath::new(points)
@@ -204,33 +195,47 @@ pub fn seed_configuration(
     Ok((tau, k))
 }
 
-/// Relative distance under which two endpoints are the same point.
-const SAME_ENDPOINT: f64 = 1e-8;
+/// A sub-problem ready for the user homotopy: its system, generic point and start set.
+type PreparedProblem = (RrrProblem, Vec<C64>, Vec<Vec<C64>>);
 
-/// The distinct points of `endpoints`, at most `limit` of them (a parameter homotopy
-/// starts from simple points, and no parameter has more than the generic count).
-pub fn distinct_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
-    let mut out: Vec<Vec<C64>> = Vec::new();
-    for x in endpoints {
-        if out.len() < limit && !out.iter().any(|y| same_point(y, &x, SAME_ENDPOINT)) {
-            out.push(x);
-        }
+/// The four prepared sub-problems (system, generic point, start set) as a
+/// [`Family`] whose seed points are common to all of them.
+struct SeedFamily<'a> {
+    prepared: &'a [PreparedProblem],
+    seeds: &'a [(Option<C64>, Vec<C64>)],
+}
+
+impl Family for SeedFamily<'_> {
+    type Seed = ();
+
+    fn problems(&self) -> usize {
+        self.prepared.len()
     }
-    out
-}
 
-/// One solve of a sub-problem at one seed point.
-struct SeedRun {
-    parameters: Vec<C64>,
-    solutions: Vec<Vec<C64>>,
-    reasons: BTreeMap<String, usize>,
-}
+    fn name(&self, problem: usize) -> String {
+        self.prepared[problem].0.kind().name()
+    }
 
-/// Whether the seed runs' counts (in order) settle the count: the generic count
-/// reached, or the largest count found by at least two seed points.
-pub fn seed_count_confirmed(counts: &[usize], generic: usize) -> bool {
-    let most = counts.iter().copied().max().unwrap_or(0);
-    most == generic || counts.iter().filter(|&&c| c == most).count() >= 2
+    fn system(&self, problem: usize) -> &CompiledSystem {
+        self.prepared[problem].0.evaluator()
+    }
+
+    fn generic_start(&self, problem: usize) -> (&[C64], &[Vec<C64>]) {
+        let (_, source, starts) = &self.prepared[problem];
+        (source, starts)
+    }
+
+    fn seed(&self, _problem: usize, point: usize) -> ((), Vec<C64>) {
+        ((), self.seeds[point].1.clone())
+    }
+
+    fn moving_parameters(&self) -> usize {
+        CONFIGURATION_LEN
+    }
+
+    fn detour_stream(&self, stream: u64, attempt: usize) -> u64 {
+        stream.wrapping_mul(16).wrapping_add(attempt as u64)
+    }
 }
 
 /// Stage 1: builds the four sub-problems, takes their start solutions from `provider`
@@ -278,14 +283,33 @@ pub fn rrr_seed_stage(
         }
         prepared.push((problem, source, start.solutions));
     }
-    let tracked: Vec<(RrrSeededProblem, Option<RrrPathFailure>, usize)> = prepared
-        .into_par_iter()
-        .enumerate()
-        .map(|(index, (problem, source, starts))| {
-            seed_problem(index, problem, &source, &starts, &seeds, options)
+    let family = SeedFamily {
+        prepared: &prepared,
+        seeds: &seeds,
+    };
+    // Whole detours at every seed point.
+    let policy = SeedPolicy {
+        confirm_lost_paths_first: false,
+        ..SeedPolicy::new(
+            SEED_POINTS,
+            options.seed,
+            (&options.tracker, &options.retry_tracker),
+            options.seed_retry_attempts,
+        )
+    };
+    let seeded = seed_family(&family, &policy);
+    let (seeded, failures, paths_tracked) = split_seeded(seeded);
+    let problems = prepared
+        .into_iter()
+        .zip(seeded)
+        .map(|((problem, _, _), at_seed)| RrrSeededProblem {
+            problem,
+            seed_parameters: at_seed.parameters,
+            start_count: at_seed.solutions.len(),
+            seed_solutions: at_seed.solutions,
+            generic_count: at_seed.generic_count,
         })
         .collect();
-    let (problems, failures, paths_tracked) = split_seed_results(tracked);
     Ok(RrrSeedStage {
         problems,
         tau_star: seeds[0].0,
@@ -293,77 +317,4 @@ pub fn rrr_seed_stage(
         failures,
         paths_tracked,
     })
-}
-
-/// One sub-problem at the seed points (the common one first, the others only while the
-/// count is not settled, [`seed_count_confirmed`]).
-fn seed_problem(
-    index: usize,
-    problem: RrrProblem,
-    source: &[C64],
-    starts: &[Vec<C64>],
-    seeds: &[(Option<C64>, Vec<C64>)],
-    options: &RrrCurveOptions,
-) -> (RrrSeededProblem, Option<RrrPathFailure>, usize) {
-    let generic = starts.len();
-    let mut runs: Vec<SeedRun> = Vec::new();
-    let mut tracked = 0;
-    for (point, (_, parameters)) in seeds.iter().enumerate() {
-        let stream = ((index as u64) << 32) + ((point as u64) << 24);
-        let Retried {
-            endpoints,
-            tracked: count,
-            reasons,
-            ..
-        } = track_with_retries(
-            problem.evaluator(),
-            starts,
-            |attempt| route(source, parameters, options.seed, stream, attempt),
-            options.seed_retry_attempts,
-            TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
-        );
-        tracked += count;
-        runs.push(SeedRun {
-            parameters: parameters.clone(),
-            solutions: distinct_solutions(endpoints, generic),
-            reasons,
-        });
-        let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
-        if seed_count_confirmed(&counts, generic) {
-            break;
-        }
-    }
-    let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
-    let most = counts.iter().copied().max().unwrap_or(0);
-    let confirmed = seed_count_confirmed(&counts, generic);
-    let chosen = runs
-        .into_iter()
-        .find(|r| r.solutions.len() == most)
-        .unwrap_or_else(|| unreachable!("at least one seed point is solved"));
-    let failure = (!confirmed).then(|| {
-        let mut reasons = chosen.reasons.clone();
-        reasons.insert(
-            format!("SeedCountsDisagree{counts:?}").replace(' ', ""),
-            generic - most,
-        );
-        RrrPathFailure {
-            pose_index: None,
-            tau: None,
-            problem: problem.kind().name(),
-            expected: generic,
-            accounted: most,
-            reasons,
-        }
-    });
-    (
-        RrrSeededProblem {
-            problem,
-            seed_parameters: chosen.parameters,
-            start_count: chosen.solutions.len(),
-            seed_solutions: chosen.solutions,
-            generic_count: generic,
-        },
-        failure,
-        tracked,
-    )
 }

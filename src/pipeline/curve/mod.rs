@@ -77,8 +77,8 @@ use super::start_file::StartSolutions;
 use crate::C64;
 use crate::certify::distance::{self as certification, SubproblemCertificate};
 use crate::homotopy::{
-    FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus,
-    PolylinePath, Tracker, TrackerOptions,
+    Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PolylinePath, Tracker,
+    TrackerOptions,
 };
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
@@ -95,17 +95,19 @@ mod certificates;
 mod chain;
 mod jump;
 mod options;
-mod retry;
 mod seed;
 mod self_check;
 mod window;
+pub use crate::pipeline::sweep::PathFailure;
+use crate::pipeline::sweep::{
+    Retried, TrackingPlan, crossings, detour_point, distinct_solutions, same_endpoint,
+    simple_endpoint, track_with_retries,
+};
 use certificates::*;
 pub use chain::solve_pose;
 use chain::*;
 use jump::*;
 pub use options::*;
-use retry::*;
-pub(crate) use retry::{Retried, TrackingPlan, track_with_retries};
 pub use seed::*;
 pub use self_check::{SELF_CHECK_TOLERANCE, SelfCheck};
 pub use window::{CurveHeader, CurveRun, CurveWindow, collect_curve, window_ranges};
@@ -147,28 +149,6 @@ pub enum PipelineError {
 /// tests may supply their own). Errors are plain messages.
 pub type StartProvider<'a> =
     &'a (dyn Fn(ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> + Sync);
-
-/// A path (or group of paths) lost at some pose, reported instead of dropped.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PathFailure {
-    /// Index of the pose (`None` for the seed stage, which affects every pose).
-    pub pose_index: Option<usize>,
-    /// τ of the pose.
-    pub tau: Option<f64>,
-    /// `PLATFORM/BASE:SUBPROBLEM`.
-    pub problem: String,
-    /// Start-solution count.
-    pub expected: usize,
-    /// Paths whose endpoint was classified (finite, or at infinity), best attempt; the
-    /// difference to `expected` is the number of paths that failed.
-    pub accounted: usize,
-    /// Why paths were unaccounted for on the reference route after the careful
-    /// re-runs, by reason: a [`FailureReason`] name (e.g. `TooManySteps`), or
-    /// `PathCrossing` for a path that ended on another one's endpoint. The detours may
-    /// have recovered some of them since.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub reasons: BTreeMap<String, usize>,
-}
 
 /// Result at one pose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -710,7 +690,7 @@ fn generic_route(
                     options.seed,
                     (stream.wrapping_mul(16) + 12 + attempt as u64) ^ 0x9e37_79b9,
                 );
-                points.push(detour_point(parameters, &mut rng));
+                points.push(detour_point(parameters, 12, &mut rng));
             }
             points.push(parameters.to_vec());
             PolylinePath::new(points)
@@ -719,7 +699,7 @@ fn generic_route(
         TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker).lost_paths_only(),
     );
     Retried {
-        endpoints: distinct_seed_solutions(retried.endpoints, seeded.generic_count),
+        endpoints: distinct_solutions(retried.endpoints, seeded.generic_count),
         ..retried
     }
 }

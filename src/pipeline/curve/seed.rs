@@ -2,7 +2,10 @@
 
 use super::*;
 use crate::metric::Part;
+use crate::pipeline::family::Family;
+use crate::pipeline::sweep::{SeedPolicy, seed_family, split_seeded};
 use crate::problem::{equilateral, pedal};
+use crate::system::CompiledSystem;
 
 /// One sub-problem prepared at the seed.
 pub struct SeededProblem {
@@ -18,7 +21,7 @@ pub struct SeededProblem {
     pub labels: [usize; 3],
     /// This sub-problem's seed: the stage's common one ([`SeedStage::seed`]), or an
     /// independent one where the common one's finite count could not be confirmed
-    /// ([`seed_stage`]).
+    /// (the seed stage of [`crate::pipeline::sweep`]).
     pub seed: SeedPoint,
     /// Seed parameters `p* = (K*, shape constants)` in the normalised frame.
     pub seed_parameters: Vec<C64>,
@@ -151,22 +154,6 @@ fn seed_point_in_stream(design: &Design, motion: &Motion, seed: u64, stream: u64
     }
 }
 
-/// Splits the per-problem results of a seed stage into the seeded problems, their
-/// failures and the total number of paths tracked.
-pub(crate) fn split_seed_results<T>(
-    tracked: Vec<(T, Option<PathFailure>, usize)>,
-) -> (Vec<T>, Vec<PathFailure>, usize) {
-    let mut problems = Vec::new();
-    let mut failures = Vec::new();
-    let mut paths_tracked = 0;
-    for (problem, failure, count) in tracked {
-        problems.push(problem);
-        failures.extend(failure);
-        paths_tracked += count;
-    }
-    (problems, failures, paths_tracked)
-}
-
 /// Independent seed points a sub-problem may use (the stage's common one first) to
 /// confirm a finite count below the generic one.
 pub const SEED_POINTS: usize = 5;
@@ -191,158 +178,59 @@ fn seed_configuration(
     k
 }
 
-/// The distinct finite endpoints of a seed solve, at most `limit` of them (a
-/// generic parameter has no more isolated solutions; endpoints reached with winding
-/// are kept once: a parameter homotopy can only start from simple points).
-pub(super) fn distinct_seed_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
-    let mut out: Vec<Vec<C64>> = Vec::new();
-    for x in endpoints {
-        if out.len() < limit && !out.iter().any(|y| same_endpoint(y, &x)) {
-            out.push(x);
-        }
-    }
-    out
-}
-
-/// One solve of a sub-problem at one seed point.
-struct SeedRun {
-    seed: SeedPoint,
-    parameters: Vec<C64>,
-    solutions: Vec<Vec<C64>>,
-    reasons: BTreeMap<String, usize>,
-}
-
-/// A prepared sub-problem at the seed (the user homotopy). Its start file holds the
-/// generic count `G` of finite critical points. The solutions at the common seed
-/// count only when all `G` are found, or when an independent seed point (another
-/// τ* and perturbation: a different parameter, reached along a different route)
-/// finds exactly as many: the design's fixed rigid shapes can send critical points
-/// to infinity, but then they do so at every seed, while a path lost or wrongly
-/// classified at infinity at one seed is not lost at another. The seed point with
-/// the most solutions serves the poses; a count no two seed points agree on (of
-/// [`SEED_POINTS`]) is a seed-stage [`PathFailure`] (expected `G`).
-#[allow(clippy::too_many_arguments)]
-fn seed_problem(
-    motion: &Motion,
+/// The prepared sub-problems of a design as a [`Family`]: seed point 0 is the
+/// stage's common one, the others are drawn per sub-problem, each with its
+/// normalised seed configuration `N(K(seed)) + δ` and the design's shape constants.
+struct SeedFamily<'a> {
+    motion: &'a Motion,
     normalization: Normalization,
-    common: &SeedPoint,
-    index: usize,
-    (id, problem, (design, labels), source, starts): PreparedProblem,
-    options: &CurveOptions,
-) -> (SeededProblem, Option<PathFailure>, usize) {
-    let design = &design;
-    let generic = starts.len();
-    let generic_start = (source.clone(), starts.clone());
-    // A seed point after the first confirms (or not) a count: its detours first
-    // re-track only its own lost paths; only where that does not confirm an earlier
-    // point's count are they repeated with whole detours (the first point's whole
-    // detours try to reach the generic count outright).
-    let plans = [
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker).lost_paths_only(),
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
-    ];
-    let mut runs: Vec<SeedRun> = Vec::new();
-    let mut tracked = 0;
-    for point in 0..SEED_POINTS {
-        let seed = if point == 0 {
-            common.clone()
-        } else {
-            let stream = 0x5eed_0000_0000 + ((index as u64) << 8) + point as u64;
-            seed_point_in_stream(design, motion, options.seed, stream)
-        };
-        let k_star = seed_configuration(design, motion, &seed, normalization);
-        let parameters = normalized_parameters(&problem, design, &k_star, normalization);
-        let stream = ((index as u64) << 32) + ((point as u64) << 24);
-        let track = |plan: &TrackingPlan<'_>| {
-            track_with_retries(
-                problem.evaluator(),
-                &starts,
-                |attempt| {
-                    let mut points = vec![source.clone()];
-                    if attempt > 0 {
-                        let mut rng = random::stream(options.seed, stream + attempt as u64);
-                        points.push(detour_point(&parameters, &mut rng));
-                    }
-                    points.push(parameters.clone());
-                    PolylinePath::new(points)
-                },
-                options.seed_retry_attempts,
-                *plan,
-            )
-        };
-        // Whether `count` would end the search: the generic count, or the largest
-        // count so far, found by an earlier point too.
-        let confirms = |count: usize| {
-            let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
-            count == generic || (count >= most && runs.iter().any(|r| r.solutions.len() == count))
-        };
-        let mut retried = track(&plans[if point == 0 { 1 } else { 0 }]);
-        tracked += retried.tracked;
-        let mut solutions = distinct_seed_solutions(retried.endpoints, generic);
-        if point > 0 && retried.accounted < generic && !confirms(solutions.len()) {
-            retried = track(&plans[1]);
-            tracked += retried.tracked;
-            solutions = distinct_seed_solutions(retried.endpoints, generic);
-        }
-        let count = solutions.len();
-        runs.push(SeedRun {
-            seed,
-            parameters,
-            solutions,
-            reasons: retried.reasons,
-        });
-        let agreeing = runs.iter().filter(|r| r.solutions.len() == count).count();
-        let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
-        if count == generic || (count == most && agreeing >= 2) {
-            break;
-        }
+    common: &'a SeedPoint,
+    seed: u64,
+    prepared: &'a [PreparedProblem],
+}
+
+impl Family for SeedFamily<'_> {
+    type Seed = SeedPoint;
+
+    fn problems(&self) -> usize {
+        self.prepared.len()
     }
-    let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
-    let confirmed =
-        most == generic || runs.iter().filter(|r| r.solutions.len() == most).count() >= 2;
-    let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
-    let chosen = runs
-        .into_iter()
-        .find(|r| r.solutions.len() == most)
-        .expect("at least one seed point is solved");
-    let failure = (!confirmed).then(|| {
-        let mut reasons = chosen.reasons.clone();
-        // The shortfall no second seed point confirmed: counted as lost.
-        reasons.insert(
-            format!("SeedCountsDisagree{counts:?}").replace(' ', ""),
-            generic - most,
-        );
-        PathFailure {
-            pose_index: None,
-            tau: None,
-            problem: id.name(),
-            expected: generic,
-            accounted: most,
-            reasons,
-        }
-    });
-    (
-        SeededProblem {
-            id,
-            problem,
-            design: *design,
-            labels,
-            seed: chosen.seed,
-            seed_parameters: chosen.parameters,
-            start_count: chosen.solutions.len(),
-            seed_solutions: chosen.solutions,
-            generic_count: generic,
-            generic_start,
-        },
-        failure,
-        tracked,
-    )
+
+    fn name(&self, problem: usize) -> String {
+        self.prepared[problem].0.name()
+    }
+
+    fn system(&self, problem: usize) -> &CompiledSystem {
+        self.prepared[problem].1.evaluator()
+    }
+
+    fn generic_start(&self, problem: usize) -> (&[C64], &[Vec<C64>]) {
+        let (_, _, _, source, starts) = &self.prepared[problem];
+        (source, starts)
+    }
+
+    fn seed(&self, problem: usize, point: usize) -> (SeedPoint, Vec<C64>) {
+        let (_, lagrange, (design, _), _, _) = &self.prepared[problem];
+        let seed = if point == 0 {
+            self.common.clone()
+        } else {
+            let stream = 0x5eed_0000_0000 + ((problem as u64) << 8) + point as u64;
+            seed_point_in_stream(design, self.motion, self.seed, stream)
+        };
+        let k_star = seed_configuration(design, self.motion, &seed, self.normalization);
+        let parameters = normalized_parameters(lagrange, design, &k_star, self.normalization);
+        (seed, parameters)
+    }
+
+    fn moving_parameters(&self) -> usize {
+        12
+    }
 }
 
 /// Stage 1, the user homotopy: builds every needed sub-problem, fetches its start
 /// solutions from `provider` and tracks them to the seed (in parallel), confirming
 /// every count below the generic one at an independent seed point
-/// (`seed_problem`).
+/// (the seed stage of [`crate::pipeline::sweep`]).
 pub fn seed_stage(
     design: &Design,
     motion: &Motion,
@@ -414,14 +302,39 @@ pub fn seed_stage(
             None => not_applicable.push(id.name()),
         }
     }
-    let tracked: Vec<(SeededProblem, Option<PathFailure>, usize)> = prepared
-        .into_par_iter()
-        .enumerate()
-        .map(|(index, prepared)| {
-            seed_problem(motion, normalization, &seed, index, prepared, options)
-        })
+    let family = SeedFamily {
+        motion,
+        normalization,
+        common: &seed,
+        seed: options.seed,
+        prepared: &prepared,
+    };
+    let trackers = (&options.tracker, &options.retry_tracker);
+    let policy = SeedPolicy::new(
+        SEED_POINTS,
+        options.seed,
+        trackers,
+        options.seed_retry_attempts,
+    );
+    let (seeded, failures, paths_tracked) = split_seeded(seed_family(&family, &policy));
+    let problems = prepared
+        .into_iter()
+        .zip(seeded)
+        .map(
+            |((id, problem, (design, labels), source, starts), at_seed)| SeededProblem {
+                id,
+                problem,
+                design,
+                labels,
+                seed: at_seed.seed,
+                seed_parameters: at_seed.parameters,
+                start_count: at_seed.solutions.len(),
+                seed_solutions: at_seed.solutions,
+                generic_count: at_seed.generic_count,
+                generic_start: (source, starts),
+            },
+        )
         .collect();
-    let (problems, failures, paths_tracked) = split_seed_results(tracked);
     let closed_form_systems = closed_form
         .iter()
         .map(|&id| {

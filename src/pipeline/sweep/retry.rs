@@ -1,12 +1,20 @@
 //! Robust tracking of a group of paths and its bookkeeping: re-runs, arcs around
 //! divergences, detours, crossings, and which paths are accounted for.
 
-use super::*;
+use crate::C64;
+use crate::homotopy::{
+    FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, Tracker,
+    TrackerOptions,
+};
+use crate::random;
+use crate::system::Evaluator;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
 
 /// Tracks every start solution through `homotopy` (with the endgame, or without:
 /// [`Tracker::track_between`] `0 → 1`, Newton at the end); returns the path results in
 /// order.
-pub(super) fn track_all<H: Homotopy + ?Sized>(
+pub(crate) fn track_all<H: Homotopy + ?Sized>(
     homotopy: &H,
     starts: &[Vec<C64>],
     options: &TrackerOptions,
@@ -41,7 +49,7 @@ pub(super) fn track_all<H: Homotopy + ?Sized>(
 
 /// Why paths of one run are unaccounted for ([`accounted`]): per failure reason (its
 /// name), and `PathCrossing` for each path beyond the first on a shared endpoint.
-pub(super) fn unaccounted_reasons(paths: &[PathResult]) -> BTreeMap<String, usize> {
+pub(crate) fn unaccounted_reasons(paths: &[PathResult]) -> BTreeMap<String, usize> {
     let mut reasons = BTreeMap::new();
     for p in paths {
         if let PathStatus::Failed(reason) = p.status {
@@ -69,9 +77,9 @@ pub(crate) struct Retried {
 }
 
 /// Relative distance under which two endpoints are the same point.
-pub(super) const SAME_ENDPOINT: f64 = 1e-8;
+pub(crate) const SAME_ENDPOINT: f64 = 1e-8;
 
-pub(super) fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
+pub(crate) fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
     // Squared moduli: this runs for every pair of endpoints of every run.
     let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt();
     let tolerance = (SAME_ENDPOINT * scale).powi(2);
@@ -84,7 +92,7 @@ pub(super) fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
 /// 1): nonsingular endpoints, and those classified singular only because their
 /// condition number is large (e.g. far out along an isotropic line, where the unscaled
 /// condition number exceeds `singular_condition` although the point is simple).
-pub(super) fn simple_endpoint(path: &PathResult) -> bool {
+pub(crate) fn simple_endpoint(path: &PathResult) -> bool {
     path.status.is_finite() && path.winding_number == 1
 }
 
@@ -96,7 +104,7 @@ pub(super) fn simple_endpoint(path: &PathResult) -> bool {
 /// singular endpoint reached without winding is reported as a crossing, which can only
 /// cost a re-run, never hide a lost path. Paths classified at infinity on the same
 /// point at the same `t` cross too ([`shared_endpoints`]).
-pub(super) fn crossings(paths: &[PathResult]) -> Vec<bool> {
+pub(crate) fn crossings(paths: &[PathResult]) -> Vec<bool> {
     let mut crossed = vec![false; paths.len()];
     for group in shared_endpoints(paths) {
         for i in group {
@@ -112,7 +120,7 @@ pub(super) fn crossings(paths: &[PathResult]) -> Vec<bool> {
 /// before `t = 1` (and the branches of one Puiseux cycle are apart at any one radius),
 /// so a shared point at infinity means one path jumped onto another one's divergent
 /// path, hiding the critical point it should have reached.
-pub(super) fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
+pub(crate) fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
     let shareable = |a: &PathResult, b: &PathResult| {
         (simple_endpoint(a) && simple_endpoint(b))
             || (a.status == PathStatus::AtInfinity
@@ -179,7 +187,7 @@ pub(super) fn shared_endpoints(paths: &[PathResult]) -> Vec<Vec<usize>> {
 /// critical point that does not exist at these parameters, classified by the endgame),
 /// less one per extra path on a shared endpoint ([`shared_endpoints`]: a path crossing
 /// hides a missed critical point just as a failed path does).
-pub(super) fn accounted(paths: &[PathResult]) -> usize {
+pub(crate) fn accounted(paths: &[PathResult]) -> usize {
     let classified = paths
         .iter()
         .filter(|p| !matches!(p.status, PathStatus::Failed(_)))
@@ -191,7 +199,7 @@ pub(super) fn accounted(paths: &[PathResult]) -> usize {
 /// The distinct finite endpoints: every endpoint reached with winding (shared ones
 /// count with their multiplicity of paths, as the start count does) and each simple
 /// endpoint ([`simple_endpoint`]) once.
-pub(super) fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
+pub(crate) fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
     let mut out: Vec<Vec<C64>> = Vec::new();
     for p in paths.iter().filter(|p| p.status.is_finite()) {
         let duplicate = simple_endpoint(p) && out.iter().any(|x| same_endpoint(x, &p.solution));
@@ -202,15 +210,16 @@ pub(super) fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
     out
 }
 
-/// Random complex detour point near `target`: `target + ε·ξ`, ξ standard complex normal,
-/// `ε = 0.1·(1 + ‖target‖∞)` (only the first twelve parameters, the configuration).
-pub(super) fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
+/// Random complex detour point near `target`: `target + ε·ξ` on its first `moving`
+/// coordinates (the ones the motion moves; the others, e.g. a rigid part's shape
+/// constants, stay), ξ standard complex normal, `ε = 0.1·(1 + ‖target‖∞)`.
+pub(crate) fn detour_point(target: &[C64], moving: usize, rng: &mut random::SeededRng) -> Vec<C64> {
     let scale = 0.1 * (1.0 + target.iter().fold(0.0f64, |m, v| m.max(v.norm())));
     target
         .iter()
         .enumerate()
         .map(|(i, v)| {
-            if i < 12 {
+            if i < moving {
                 v + random::complex_normal(rng) * scale
             } else {
                 *v
@@ -221,7 +230,7 @@ pub(super) fn detour_point(target: &[C64], rng: &mut random::SeededRng) -> Vec<C
 
 /// Half-width in `t` of the arcs around a point where a path diverged before the
 /// endgame zone ([`track_with_retries`]).
-pub(super) const DIVERGENCE_ARC: f64 = 0.05;
+pub(crate) const DIVERGENCE_ARC: f64 = 0.05;
 
 /// Steps shared by the last re-run of a route's paths that are still lost after the
 /// detours ([`track_with_retries`]): each gets `LAST_CHANCE_STEPS / lost` steps when

@@ -1,0 +1,41 @@
+//! The sweep engine shared by every mechanism: given a parametrised family over a
+//! motion ([`super::family::Family`]), it tracks the family's start set to a seed
+//! point (the user homotopy of Kapilavai and Nawratil, *Singularity distance
+//! computations for 3-RPR manipulators using extrinsic metrics*, Eqs. 65–66) with the
+//! robust path-group tracking and its accounting ([`track_with_retries`]): re-runs,
+//! arcs around divergences, detours, path crossings, and every path either finite, at
+//! infinity, or reported as lost ([`PathFailure`]).
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+mod retry;
+mod seed;
+pub(crate) use retry::*;
+pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
+pub(crate) use seed::{seed_family, split_seeded};
+
+/// A path (or group of paths) lost at some pose, reported instead of dropped.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PathFailure {
+    /// Index of the pose (`None` for the seed stage, which affects every pose).
+    pub pose_index: Option<usize>,
+    /// τ of the pose.
+    pub tau: Option<f64>,
+    /// The problem's name, e.g. `PLATFORM/BASE:SUBPROBLEM` or `rrr:leg2`.
+    pub problem: String,
+    /// Start-solution count.
+    pub expected: usize,
+    /// Paths whose endpoint was classified (finite, or at infinity), best attempt; the
+    /// difference to `expected` is the number of paths that failed.
+    pub accounted: usize,
+    /// Why paths were unaccounted for on the reference route after the careful
+    /// re-runs, by reason: a [`crate::homotopy::FailureReason`] name (e.g.
+    /// `TooManySteps`), or `PathCrossing` for a path that ended on another one's
+    /// endpoint. The detours may have recovered some of them since.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub reasons: BTreeMap<String, usize>,
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,227 @@
+//! The seed stage of the sweep engine, one implementation for every family: the
+//! generic start set of each problem tracked to a seed point, at most the generic
+//! count of distinct solutions kept, a lower count only when an independent seed
+//! point confirms it.
+//!
+//! The start set holds the generic number `G` of finite isolated solutions; by
+//! coefficient-parameter theory no parameter of the family has more (Morgan and
+//! Sommese, *Coefficient-parameter polynomial continuation*, Appl. Math. Comput. 29,
+//! 1989), so the distinct finite endpoints are kept only up to `G`. A design's fixed
+//! data (e.g. a rigid part's shape) can send solutions to infinity at every seed, but
+//! a path lost or wrongly classified at infinity at one seed is not lost at another:
+//! a count below `G` counts only when two seed points (different parameters, reached
+//! along different routes) agree on it, otherwise the shortfall is a seed-stage
+//! [`PathFailure`].
+
+use super::{PathFailure, Retried, TrackingPlan, detour_point, same_endpoint, track_with_retries};
+use crate::C64;
+use crate::homotopy::{PolylinePath, TrackerOptions};
+use crate::pipeline::family::Family;
+use crate::random;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+
+/// How the seed stage tracks and confirms.
+#[derive(Clone, Copy)]
+pub struct SeedPolicy<'a> {
+    /// Independent seed points a problem may use (the common one first).
+    pub points: usize,
+    /// Seed of every random choice (detours).
+    pub seed: u64,
+    /// Tracker settings of the first runs and the detours.
+    pub tracker: &'a TrackerOptions,
+    /// Tracker settings of the re-runs.
+    pub retry_tracker: &'a TrackerOptions,
+    /// Detours of a route that lost paths.
+    pub attempts: usize,
+    /// Whether a seed point after the first, which only confirms (or not) a count,
+    /// re-tracks just its own lost paths along the detours first, and repeats them
+    /// with whole detours only where that does not confirm an earlier point's count
+    /// (`false`: whole detours at every seed point).
+    pub confirm_lost_paths_first: bool,
+}
+
+impl<'a> SeedPolicy<'a> {
+    /// `points` seed points, tracked with `tracker` (re-runs with `retry_tracker`)
+    /// and `attempts` detours, confirming with lost paths first.
+    pub fn new(
+        points: usize,
+        seed: u64,
+        (tracker, retry_tracker): (&'a TrackerOptions, &'a TrackerOptions),
+        attempts: usize,
+    ) -> Self {
+        SeedPolicy {
+            points,
+            seed,
+            tracker,
+            retry_tracker,
+            attempts,
+            confirm_lost_paths_first: true,
+        }
+    }
+}
+
+/// One problem at its chosen seed point.
+pub struct Seeded<S> {
+    /// The seed point chosen (the one with the most solutions, the earliest of them).
+    pub seed: S,
+    /// Its parameters.
+    pub parameters: Vec<C64>,
+    /// Distinct finite solutions there, at most [`Seeded::generic_count`].
+    pub solutions: Vec<Vec<C64>>,
+    /// The generic count `G` (the start set's size).
+    pub generic_count: usize,
+    /// The shortfall no second seed point confirmed.
+    pub failure: Option<PathFailure>,
+    /// Paths tracked at every seed point.
+    pub tracked: usize,
+}
+
+/// The distinct points of `endpoints`, at most `limit` of them (a parameter homotopy
+/// starts from simple points, and no parameter has more than the generic count).
+pub fn distinct_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {
+    let mut out: Vec<Vec<C64>> = Vec::new();
+    for x in endpoints {
+        if out.len() < limit && !out.iter().any(|y| same_endpoint(y, &x)) {
+            out.push(x);
+        }
+    }
+    out
+}
+
+/// Whether the seed points' counts (in order) settle the count: the generic count
+/// reached, or the largest count found by at least two seed points.
+pub fn seed_count_confirmed(counts: &[usize], generic: usize) -> bool {
+    let most = counts.iter().copied().max().unwrap_or(0);
+    most == generic || counts.iter().filter(|&&c| c == most).count() >= 2
+}
+
+/// One solve of a problem at one seed point.
+struct SeedRun<S> {
+    seed: S,
+    parameters: Vec<C64>,
+    solutions: Vec<Vec<C64>>,
+    reasons: BTreeMap<String, usize>,
+}
+
+/// Problem `problem` of `family` at its seed points, the common one first, the others
+/// only while the count is not settled ([`seed_count_confirmed`]). Each route is the
+/// straight segment from the generic point to the seed's parameters, its detours
+/// through a random complex point near the seed ([`detour_point`]).
+pub(crate) fn seed_problem<F: Family>(
+    family: &F,
+    problem: usize,
+    policy: &SeedPolicy<'_>,
+) -> Seeded<F::Seed> {
+    let (source, starts) = family.generic_start(problem);
+    let generic = starts.len();
+    let plans = [
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).lost_paths_only(),
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker),
+    ];
+    let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
+    let mut tracked = 0;
+    for point in 0..policy.points {
+        let (seed, parameters) = family.seed(problem, point);
+        let stream = ((problem as u64) << 32) + ((point as u64) << 24);
+        let track = |plan: &TrackingPlan<'_>| {
+            track_with_retries(
+                family.system(problem),
+                starts,
+                |attempt| {
+                    let mut points = vec![source.to_vec()];
+                    if attempt > 0 {
+                        let stream = family.detour_stream(stream, attempt);
+                        let mut rng = random::stream(policy.seed, stream);
+                        let moving = family.moving_parameters();
+                        points.push(detour_point(&parameters, moving, &mut rng));
+                    }
+                    points.push(parameters.clone());
+                    PolylinePath::new(points)
+                },
+                policy.attempts,
+                *plan,
+            )
+        };
+        // Whether `count` would end the search: the generic count, or the largest
+        // count so far, found by an earlier point too.
+        let confirms = |count: usize| {
+            let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+            count == generic || (count >= most && runs.iter().any(|r| r.solutions.len() == count))
+        };
+        let lost_first = point > 0 && policy.confirm_lost_paths_first;
+        let mut retried: Retried = track(&plans[if lost_first { 0 } else { 1 }]);
+        tracked += retried.tracked;
+        let mut solutions = distinct_solutions(retried.endpoints, generic);
+        if lost_first && retried.accounted < generic && !confirms(solutions.len()) {
+            retried = track(&plans[1]);
+            tracked += retried.tracked;
+            solutions = distinct_solutions(retried.endpoints, generic);
+        }
+        runs.push(SeedRun {
+            seed,
+            parameters,
+            solutions,
+            reasons: retried.reasons,
+        });
+        let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
+        if seed_count_confirmed(&counts, generic) {
+            break;
+        }
+    }
+    let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
+    let most = counts.iter().copied().max().unwrap_or(0);
+    let confirmed = seed_count_confirmed(&counts, generic);
+    let chosen = runs
+        .into_iter()
+        .find(|r| r.solutions.len() == most)
+        .expect("at least one seed point is solved");
+    let failure = (!confirmed).then(|| {
+        let mut reasons = chosen.reasons.clone();
+        // The shortfall no second seed point confirmed: counted as lost.
+        reasons.insert(
+            format!("SeedCountsDisagree{counts:?}").replace(' ', ""),
+            generic - most,
+        );
+        PathFailure {
+            pose_index: None,
+            tau: None,
+            problem: family.name(problem),
+            expected: generic,
+            accounted: most,
+            reasons,
+        }
+    });
+    Seeded {
+        seed: chosen.seed,
+        parameters: chosen.parameters,
+        solutions: chosen.solutions,
+        generic_count: generic,
+        failure,
+        tracked,
+    }
+}
+
+/// Every problem of `family` at its seed ([`seed_problem`]), in parallel, in order.
+pub(crate) fn seed_family<F: Family>(family: &F, policy: &SeedPolicy<'_>) -> Vec<Seeded<F::Seed>> {
+    (0..family.problems())
+        .into_par_iter()
+        .map(|problem| seed_problem(family, problem, policy))
+        .collect()
+}
+
+/// Splits seed results into the seeded problems, their failures and the total number
+/// of paths tracked.
+pub(crate) fn split_seeded<S>(seeded: Vec<Seeded<S>>) -> (Vec<Seeded<S>>, Vec<PathFailure>, usize) {
+    let mut failures = Vec::new();
+    let mut paths_tracked = 0;
+    let problems = seeded
+        .into_iter()
+        .map(|mut s| {
+            failures.extend(s.failure.take());
+            paths_tracked += s.tracked;
+            s
+        })
+        .collect();
+    (problems, failures, paths_tracked)
+}

@@ -1,0 +1,88 @@
+use super::*;
+use crate::C64;
+use crate::homotopy::{PathResult, PathStatus};
+
+fn path(index: usize, status: PathStatus, point: [f64; 2]) -> PathResult {
+    PathResult {
+        path_index: index,
+        solution: point.iter().map(|&v| C64::new(v, 0.5)).collect(),
+        status,
+        residual: 0.0,
+        condition: 1.0,
+        winding_number: 1,
+        multiplicity: 1,
+        steps: 10,
+        rejected_steps: 0,
+        used_extended_precision: false,
+        last_t: C64::new(1.0, 0.0),
+    }
+}
+
+/// Two paths on one nonsingular endpoint are a crossing (one critical point
+/// missed): both are flagged, one is unaccounted for and the point is listed once;
+/// two paths on one singular endpoint reached with winding (Cauchy endgame,
+/// winding number 2) are a double root (both accounted for); two paths on one
+/// endpoint classified singular only by its condition number (winding number 1,
+/// e.g. far out along an isotropic line) are a crossing too.
+#[test]
+fn path_crossings_are_unaccounted_and_shared_singular_endpoints_are_not() {
+    use PathStatus::{AtInfinity, Failed, Nonsingular, Singular};
+    let winding = |mut p: PathResult| {
+        p.winding_number = 2;
+        p
+    };
+    let paths = vec![
+        path(0, Nonsingular, [1.0, 2.0]),
+        path(1, Nonsingular, [1.0, 2.0 + 1e-12]),
+        path(2, Nonsingular, [3.0, 4.0]),
+        winding(path(3, Singular, [5.0, 6.0])),
+        winding(path(4, Singular, [5.0, 6.0])),
+        path(5, AtInfinity, [1e9, 0.0]),
+        path(
+            6,
+            Failed(crate::homotopy::FailureReason::TooManySteps),
+            [7.0, 7.0],
+        ),
+        path(7, Singular, [8.0, 9.0]),
+        path(8, Singular, [8.0, 9.0]),
+    ];
+    assert_eq!(
+        crossings(&paths),
+        vec![true, true, false, false, false, false, false, true, true]
+    );
+    // 9 paths: one failed, one extra on each of the two crossings.
+    assert_eq!(accounted(&paths), 6);
+    assert_eq!(finite_solutions(&paths).len(), 5);
+    // The three unaccounted paths, by reason (as `PathFailure::reasons`).
+    let reasons = unaccounted_reasons(&paths);
+    assert_eq!(
+        reasons.into_iter().collect::<Vec<_>>(),
+        vec![
+            ("PathCrossing".to_string(), 2),
+            ("TooManySteps".to_string(), 1)
+        ]
+    );
+    assert!(unaccounted_reasons(&paths[..3]).len() == 1);
+    assert!(unaccounted_reasons(&paths[2..6]).is_empty());
+}
+
+/// Two paths classified at infinity on the same point at the same `t` cross (one
+/// jumped onto the other's divergent path); at different `t`, or on different
+/// points, they do not.
+#[test]
+fn paths_diverging_together_are_a_crossing() {
+    use PathStatus::{AtInfinity, Nonsingular};
+    let at = |mut p: PathResult, t: f64| {
+        p.last_t = C64::new(t, 0.0);
+        p
+    };
+    let paths = vec![
+        at(path(0, AtInfinity, [146.6, 3.0]), 0.9999755859375),
+        at(path(1, AtInfinity, [146.6, 3.0]), 0.9999755859375),
+        at(path(2, AtInfinity, [146.6, 3.0]), 0.99990234375),
+        at(path(3, AtInfinity, [70.0, 3.0]), 0.9999755859375),
+        path(4, Nonsingular, [1.0, 2.0]),
+    ];
+    assert_eq!(crossings(&paths), vec![true, true, false, false, false]);
+    assert_eq!(accounted(&paths), 4);
+}
