@@ -6,14 +6,18 @@
 //!
 //! ```text
 //! cargo bench --bench phc_demo_suite -- [--dir DIR] [--max-degree N] [--timeout S]
-//!     [--only NAME,NAME] [--seed SEED] [--singdist PATH]
+//!     [--only NAME,NAME] [--seed SEED] [--singdist PATH] [--start START]
 //! ```
+//!
+//! `START` (or the environment variable `SINGDIST_START`) is passed to
+//! `singdist solve --start` (`total-degree`, `multi-homogeneous`, `auto`,
+//! `polyhedral`); without it singdist uses its default.
 //!
 //! `DIR` defaults to `/usr/share/doc/phcpack/examples` (Debian package `phcpack`, files
 //! possibly gzipped); systems of total degree above `N` (default 1000) are skipped; each
 //! solver run is killed after `S` seconds (default 120). Skips cleanly when `phc` is not
 //! installed. Per system the table gives the Bézout number, singdist's counts (paths
-//! reported nonsingular, distinct nonsingular roots after refinement, singular, at
+//! tracked, paths reported nonsingular, distinct nonsingular roots after refinement, singular, at
 //! infinity, failed), PHCpack's distinct nonsingular roots, the union of both (the
 //! true count unless both miss a root), who is right, and the phc/singdist time ratio.
 
@@ -33,6 +37,9 @@ const NONSINGULAR_CONDITION: f64 = 1e11;
 /// 10·κ·ε) are the same root.
 const SAME_ROOT_TOLERANCE: f64 = 1e-10;
 
+/// Six characters standing for the distinct-root count until it is known.
+const DISTINCT_MARK: &str = "<dist>";
+
 struct Arguments {
     dir: PathBuf,
     max_degree: u128,
@@ -40,6 +47,7 @@ struct Arguments {
     only: Vec<String>,
     seed: Option<u64>,
     singdist: PathBuf,
+    start: Option<String>,
 }
 
 fn arguments() -> Arguments {
@@ -50,6 +58,7 @@ fn arguments() -> Arguments {
         only: Vec::new(),
         seed: None,
         singdist: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/release/singdist"),
+        start: std::env::var("SINGDIST_START").ok(),
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -64,6 +73,7 @@ fn arguments() -> Arguments {
             "--only" => a.only = value().split(',').map(str::to_string).collect(),
             "--seed" => a.seed = Some(value().parse().expect("--seed: integer")),
             "--singdist" => a.singdist = PathBuf::from(value()),
+            "--start" => a.start = Some(value()),
             "--bench" => {}
             other => panic!("unknown argument {other}"),
         }
@@ -200,6 +210,9 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
     if let Some(seed) = args.seed {
         ours.args(["--seed", &seed.to_string()]);
     }
+    if let Some(start) = &args.start {
+        ours.args(["--start", start]);
+    }
     let (our_time, our_code, our_out) = run_timed(&mut ours, args.timeout);
     let mut theirs = Command::new("phc");
     theirs.arg("-b").arg("-t1").arg(&phc_file).arg(&phc_out);
@@ -239,9 +252,10 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
             let s = &v["summary"];
             let count = |field: &str| s[field].as_u64().unwrap_or(0);
             let summary = format!(
-                "{:>6} {:>6} {:>5} {:>6} {:>6}",
+                "{:>6} {:>6} {:>6} {:>5} {:>6} {:>6}",
+                count("paths"),
                 count("nonsingular"),
-                "",
+                DISTINCT_MARK,
                 count("singular"),
                 count("at_infinity"),
                 count("failed")
@@ -278,9 +292,9 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
     let true_count = groups.iter().enumerate().filter(|&(i, &g)| i == g).count();
 
     let ours_text = match &ours_summary {
-        Some(s) => s.replacen("      ", &format!("{our_distinct:>6}"), 1),
+        Some(s) => s.replacen(DISTINCT_MARK, &format!("{our_distinct:>6}"), 1),
         None => format!(
-            "{:>34}",
+            "{:>41}",
             if our_code.is_none() {
                 "timeout"
             } else {
@@ -350,9 +364,10 @@ fn main() {
     let work = std::env::temp_dir().join(format!("phc_demo_suite.{}", std::process::id()));
     std::fs::create_dir_all(&work).expect("create the work directory");
     println!(
-        "{:<12} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
+        "{:<12} {:>6} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
         "system",
         "bezout",
+        "paths",
         "ns",
         "dist",
         "sing",

@@ -16,9 +16,9 @@ use singdist::homotopy::multihomogeneous::{
     MonomialSupports, PartitionSearchOptions, SearchMethod, total_degree_paths,
 };
 use singdist::homotopy::{
-    FailureReason, MonodromyOptions, PathStatus, SolveOptions, SolveResult, SolveSummary,
-    StartChoice, StartRequest, choose_start_system, solve_by_monodromy, solve_multihomogeneous,
-    solve_total_degree,
+    FailureReason, MonodromyOptions, PathStatus, PolyhedralSolve, SolveOptions, SolveResult,
+    SolveSummary, StartChoice, StartRequest, Supports, choose_start_system, solve_by_monodromy,
+    solve_multihomogeneous, solve_polyhedral, solve_total_degree,
 };
 use singdist::system::{System, bertini};
 use std::collections::BTreeMap;
@@ -62,6 +62,9 @@ pub enum StartArg {
     TotalDegree,
     /// Products of linear forms over the best variable grouping found.
     MultiHomogeneous,
+    /// Polyhedral homotopy: as many paths as the mixed volume of the Newton
+    /// polytopes, each with the origin added (roots with zero coordinates included).
+    Polyhedral,
 }
 
 /// The start system in the JSON output.
@@ -85,6 +88,12 @@ struct StartOutput {
     /// `exhaustive` or `local`. when searched.
     #[serde(skip_serializing_if = "Option::is_none")]
     partition_search: Option<&'static str>,
+    /// Mixed volume of the supports with the origin (polyhedral only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mixed_volume: Option<u128>,
+    /// Number of mixed cells (polyhedral only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mixed_cells: Option<usize>,
 }
 
 impl StartOutput {
@@ -111,14 +120,34 @@ impl StartOutput {
             total_degree_paths,
             multihomogeneous_paths: search.map(|s| s.bezout_number),
             partition_search: search.map(|s| search_name(s.method)),
+            mixed_volume: None,
+            mixed_cells: None,
+        }
+    }
+
+    fn polyhedral(solve: &PolyhedralSolve, total_degree_paths: u128) -> Self {
+        StartOutput {
+            name: "polyhedral",
+            partition: None,
+            paths: solve.mixed_volume,
+            total_degree_paths,
+            multihomogeneous_paths: None,
+            described: Some(format!(
+                "polyhedral, mixed volume {} in {} cells",
+                solve.mixed_volume, solve.cells
+            )),
+            partition_search: None,
+            mixed_volume: Some(solve.mixed_volume),
+            mixed_cells: Some(solve.cells),
         }
     }
 
     /// The `start system` lines of the text summary.
     fn text(&self) -> String {
-        let described = match &self.described {
-            Some(groups) => format!("multi-homogeneous {groups}"),
-            None => self.name.to_string(),
+        let described = match (&self.described, self.mixed_volume) {
+            (Some(text), Some(_)) => text.clone(),
+            (Some(groups), None) => format!("multi-homogeneous {groups}"),
+            (None, _) => self.name.to_string(),
         };
         let best = match (self.partition.is_none(), self.multihomogeneous_paths) {
             (true, Some(b)) => format!(", best multi-homogeneous {b}"),
@@ -269,13 +298,14 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     }
     let pool = builder.build().context("cannot start the thread pool")?;
     let started = Instant::now();
-    let choice = if args.monodromy {
+    let polyhedral = args.start == Some(StartArg::Polyhedral);
+    let choice = if args.monodromy || polyhedral {
         None
     } else {
         let request = match args.start.unwrap_or(StartArg::TotalDegree) {
             StartArg::Auto => StartRequest::Auto,
             StartArg::TotalDegree => StartRequest::TotalDegree,
-            StartArg::MultiHomogeneous => StartRequest::MultiHomogeneous,
+            StartArg::MultiHomogeneous | StartArg::Polyhedral => StartRequest::MultiHomogeneous,
         };
         let supports = match request {
             StartRequest::TotalDegree => None,
@@ -291,7 +321,18 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             .with_context(|| format!("{}: --start", args.file.display()))?,
         )
     };
+    let mut polyhedral_output = None;
     let (result, trace_residual): (SolveResult, Option<f64>) = pool.install(|| match &choice {
+        None if polyhedral => {
+            let supports = Supports::from_system(&system)
+                .with_context(|| format!("{}: --start polyhedral", args.file.display()))?;
+            let solved = solve_polyhedral(&compiled, &supports, &[], &options)?;
+            polyhedral_output = Some(StartOutput::polyhedral(
+                &solved,
+                total_degree_paths(&degrees),
+            ));
+            Ok::<_, anyhow::Error>((solved.result, None))
+        }
         None => {
             let (monodromy, solved) =
                 solve_by_monodromy(&compiled, &[], &MonodromyOptions::default(), &options)?;
@@ -308,7 +349,8 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     })?;
     let start_output = choice
         .as_ref()
-        .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()));
+        .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()))
+        .or(polyhedral_output);
     let seconds = started.elapsed().as_secs_f64();
     let s = &result.summary;
     if args.json {

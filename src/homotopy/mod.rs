@@ -4,7 +4,8 @@
 //!
 //! Read in this order: [`linalg`] (the LU of the hot loop), [`homotopies`] (what is
 //! tracked), [`start`] (total-degree start systems), [`multihomogeneous`]
-//! (multi-homogeneous start systems and the automatic choice), [`tracker`] (predictor, corrector,
+//! (multi-homogeneous start systems and the automatic choice), [`polyhedral`]
+//! (polyhedral start systems with the mixed volume of paths), [`tracker`] (predictor, corrector,
 //! step control, endgame, classification), [`solve`] (many paths in parallel, with
 //! re-runs of failed paths), [`monodromy`] (solutions of parametric families from one
 //! start pair, certified by a trace test).
@@ -14,6 +15,7 @@ pub mod linalg;
 pub mod monodromy;
 pub mod multihomogeneous;
 pub mod newton;
+pub mod polyhedral;
 pub mod refine;
 pub mod solve;
 pub mod start;
@@ -33,6 +35,7 @@ pub use multihomogeneous::{
     solve_multihomogeneous,
 };
 pub use newton::{NewtonBuffers, NewtonOptions, NewtonOutcome, NewtonStop, newton};
+pub use polyhedral::{PolyhedralSolve, PolyhedralStartSystem, Supports, solve_polyhedral};
 pub use refine::{
     Refinement, contains_point, distinct_nonsingular_roots, group_roots, newton_refine, same_point,
     same_root,

@@ -1,0 +1,241 @@
+//! Polyhedral homotopies: start systems with as many paths as the mixed volume of the
+//! Newton polytopes (the BKK bound) instead of the Bézout number, for sparse systems.
+//!
+//! Read in this order: [`supports`] (supports, the origin for roots in `C^n`, random
+//! integer liftings), [`lp`] (the LP feasibility test), [`cells`] (mixed cells of the
+//! lifted supports and the mixed volume), [`binomial`] (the start system of a cell,
+//! solved exactly by Hermite normal form), [`random_system`] (the random-coefficient
+//! system `Q` on the supports), [`cell_homotopy`] (the homotopy from a cell's binomial
+//! system to `Q`), [`start`] (all of it for one system).
+//!
+//! [`solve_polyhedral`] runs two stages (Huber and Sturmfels, "A polyhedral method for
+//! solving sparse polynomial systems", Math. Comp. 1995; Verschelde, Verlinden and
+//! Cools, "Homotopies exploiting Newton polytopes for solving sparse polynomial
+//! systems", SIAM J. Numer. Anal. 1994; Li, "Numerical solution of polynomial systems
+//! by homotopy continuation methods", Handbook of Numerical Analysis XI, 2003):
+//! 1. per mixed cell, the cell homotopy from the roots of its binomial system at
+//!    `s = 0` to roots of `Q` at `s = 1` — together exactly the `MV` roots of `Q`;
+//!    failed or repeated endpoints are re-tracked with conservative options, and the
+//!    roots still missing are reported as failed paths;
+//! 2. the straight-line homotopy `(1 − t)γQ + tF` from those roots to the target `F`
+//!    (a coefficient-parameter homotopy with the γ-trick), with the path classification,
+//!    re-runs and endgame of [`crate::homotopy::solve`].
+//!
+//! With the origin added to every support the number of paths bounds the isolated
+//! roots in `C^n`, so no root with zero coordinates is lost (Li and Wang, "The BKK root
+//! count in C^n", Math. Comp. 1996).
+
+pub mod binomial;
+pub mod cell_homotopy;
+pub mod cells;
+pub mod lp;
+pub mod random_system;
+pub mod start;
+pub mod supports;
+
+pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells};
+pub use start::{PolyhedralError, PolyhedralStartSystem};
+pub use supports::{Supports, random_lifting};
+
+use super::refine::{group_roots, newton_refine};
+use super::solve::{
+    HomotopyError, SolveOptions, SolveResult, check_square, check_target_parameters,
+    solve_from_start_system,
+};
+use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
+use crate::C64;
+use crate::system::Evaluator;
+use rayon::prelude::*;
+
+/// Most paths a polyhedral run tracks.
+const MAX_PATHS: u128 = 1 << 32;
+/// Relative Newton tolerance and grouping tolerance of the stage-one duplicate test.
+const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
+const DUPLICATE_TOLERANCE: f64 = 1e-10;
+/// The stage-one endgame zone starts at `1 − s = ENDGAME_SCALE / max e`.
+const ENDGAME_SCALE: f64 = 0.1;
+
+/// A polyhedral solve: the result of the second stage, with the stage-one paths that
+/// did not reach a root of `Q` appended as failed paths, and the counts of the start.
+#[derive(Clone, Debug)]
+pub struct PolyhedralSolve {
+    /// All paths (`paths.len()` is the mixed volume) and the summary.
+    pub result: SolveResult,
+    /// Mixed volume of the supports with the origin.
+    pub mixed_volume: u128,
+    /// Number of mixed cells.
+    pub cells: usize,
+    /// Stage-one paths re-tracked with conservative options.
+    pub start_retracked: usize,
+    /// Stage-one paths lost (failed or repeated after the re-runs).
+    pub start_failed: usize,
+}
+
+/// Solves `F(x; p) = 0` (parameters fixed at `target_parameters`; `supports` the
+/// supports of F's equations in its unknowns) by the two-stage polyhedral homotopy
+/// (see the module documentation), every random choice from `options.seed`.
+pub fn solve_polyhedral<F: Evaluator + ?Sized>(
+    system: &F,
+    supports: &Supports,
+    target_parameters: &[C64],
+    options: &SolveOptions,
+) -> Result<PolyhedralSolve, HomotopyError> {
+    check_square(system)?;
+    check_target_parameters(system, target_parameters)?;
+    if supports.num_variables() != system.num_variables()
+        || supports.num_equations() != system.num_equations()
+    {
+        return Err(HomotopyError::InvalidDegrees(
+            "the supports do not match the system".into(),
+        ));
+    }
+    let start = PolyhedralStartSystem::new(supports, options.seed)
+        .map_err(|e| HomotopyError::InvalidDegrees(format!("polyhedral start system: {e}")))?;
+    solve_from_polyhedral_start(system, &start, target_parameters, options)
+}
+
+/// [`solve_polyhedral`] from a built start system.
+pub fn solve_from_polyhedral_start<F: Evaluator + ?Sized>(
+    system: &F,
+    start: &PolyhedralStartSystem,
+    target_parameters: &[C64],
+    options: &SolveOptions,
+) -> Result<PolyhedralSolve, HomotopyError> {
+    let mixed_volume = start.mixed_volume();
+    if mixed_volume > MAX_PATHS {
+        return Err(HomotopyError::InvalidDegrees(
+            "mixed volume too large".into(),
+        ));
+    }
+    let (roots, lost, start_retracked) = start_roots(start, mixed_volume as usize, options);
+    let mut result = solve_from_start_system(
+        start.system(),
+        system,
+        roots.len(),
+        |index, x| x.copy_from_slice(&roots[index]),
+        target_parameters,
+        options,
+    );
+    let start_failed = lost.len();
+    for mut p in lost {
+        p.path_index = result.paths.len();
+        p.multiplicity = 0;
+        result.paths.push(p);
+    }
+    result.summary.paths += start_failed;
+    result.summary.failed += start_failed;
+    Ok(PolyhedralSolve {
+        result,
+        mixed_volume,
+        cells: start.subdivision().cells.len(),
+        start_retracked,
+        start_failed,
+    })
+}
+
+/// Stage one: tracks the `count` cell-homotopy paths; returns the distinct roots of `Q`
+/// reached (in path order), the paths that did not reach a new one, and the number of
+/// paths re-tracked.
+fn start_roots(
+    start: &PolyhedralStartSystem,
+    count: usize,
+    options: &SolveOptions,
+) -> (Vec<Vec<C64>>, Vec<PathResult>, usize) {
+    let n = start.supports().num_variables();
+    let homotopies: Vec<_> = (0..start.subdivision().cells.len())
+        .map(|c| start.cell_homotopy(c))
+        .collect();
+    // A term with power e matters only for 1 − s ≲ 1/e: the endgame zone (whose
+    // circles around s = 1 would blow s^e up) starts beyond that.
+    let endgame_start: Vec<f64> = homotopies
+        .iter()
+        .map(|h| ENDGAME_SCALE / h.powers().iter().copied().fold(1.0, f64::max))
+        .collect();
+    let track = |indices: &[usize], tracker_options: &TrackerOptions| -> Vec<PathResult> {
+        indices
+            .par_iter()
+            .map_init(
+                || vec![C64::new(0.0, 0.0); n],
+                |y, &index| {
+                    let (c, _) = start.locate(index as u64);
+                    start.start_solution(index as u64, y);
+                    let mut cell_options = tracker_options.clone();
+                    cell_options.endgame.endgame_start =
+                        cell_options.endgame.endgame_start.min(endgame_start[c]);
+                    Tracker::new(&homotopies[c], cell_options).track(y, index)
+                },
+            )
+            .collect()
+    };
+    let mut first = options.tracker.clone();
+    first.endgame.growth_before_divergence = false;
+    let all: Vec<usize> = (0..count).collect();
+    let mut paths = track(&all, &first);
+    let mut retracked = 0;
+    if options.retry_failed {
+        let groups = root_groups(start, &paths);
+        let suspicious: Vec<usize> = (0..count)
+            .filter(|&i| paths[i].status != PathStatus::Nonsingular || groups[i] != Some(i))
+            .chain((0..count).filter(|&i| {
+                // The first member of a repeated root is suspicious too.
+                groups[i] == Some(i) && groups.iter().filter(|g| **g == Some(i)).count() > 1
+            }))
+            .collect();
+        if !suspicious.is_empty() {
+            retracked = suspicious.len();
+            let mut conservative = TrackerOptions::conservative();
+            conservative.step.max_steps = conservative.step.max_steps.max(first.step.max_steps);
+            conservative.endgame.growth_before_divergence = false;
+            for redo in track(&suspicious, &conservative) {
+                let index = redo.path_index;
+                paths[index] = redo;
+            }
+        }
+    }
+    let groups = root_groups(start, &paths);
+    let mut roots = Vec::with_capacity(count);
+    let mut lost = Vec::new();
+    for (i, mut p) in paths.into_iter().enumerate() {
+        if p.status == PathStatus::Nonsingular && groups[i] == Some(i) {
+            roots.push(p.solution);
+        } else {
+            if p.status == PathStatus::Nonsingular {
+                p.status = PathStatus::Failed(FailureReason::PathJumped);
+            } else if !matches!(p.status, PathStatus::Failed(_)) {
+                // A root of Q at infinity or singular means the path went astray.
+                p.status = PathStatus::Failed(FailureReason::EndgameDidNotConverge);
+            }
+            lost.push(p);
+        }
+    }
+    (roots, lost, retracked)
+}
+
+/// For every stage-one path, the group (index of its first path) of its nonsingular
+/// endpoint after Newton refinement on `Q`; `None` for other statuses.
+fn root_groups(start: &PolyhedralStartSystem, paths: &[PathResult]) -> Vec<Option<usize>> {
+    let q = start.system();
+    let nonsingular: Vec<&PathResult> = paths
+        .iter()
+        .filter(|p| p.status == PathStatus::Nonsingular)
+        .collect();
+    let refined: Vec<(Vec<C64>, f64)> = nonsingular
+        .par_iter()
+        .map(|p| {
+            let r = newton_refine(q, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
+            if r.converged {
+                (r.point, r.condition.max(p.condition))
+            } else {
+                (p.solution.clone(), p.condition)
+            }
+        })
+        .collect();
+    let mut groups = vec![None; paths.len()];
+    for (k, g) in group_roots(&refined, DUPLICATE_TOLERANCE)
+        .into_iter()
+        .enumerate()
+    {
+        groups[nonsingular[k].path_index] = Some(nonsingular[g].path_index);
+    }
+    groups
+}
