@@ -12,17 +12,24 @@
 //! polytopes for solving sparse polynomial systems", SIAM J. Numer. Anal. 1994).
 //! The roots of all cells are all the roots of `Q`, each once.
 //!
-//! The exponents are divided by the least positive one, `t = s^{1/g_min}`
-//! (`H_i = Σ_a c_{ia} y^a s^{e_{ia}}`, `e = g / g_min`), so that the smallest power of
-//! the path parameter is 1 and `∂H/∂s` is finite at `s = 0`, where the paths start.
-//! Powers `s^e = exp(e log s)` use the principal logarithm (the tracker moves on
-//! `[0, 1]` and on small circles around 1).
+//! The exponents are divided by the least positive one (`e = g / g_min`, so the least
+//! positive power is 1) and the path is followed in logarithmic time: the tracker's
+//! parameter `τ ∈ [0, 1]` stands for `t = exp(−L(1 − τ))` with [`LOG_RANGE`] `= L`,
+//! so `t^e = exp(−eL(1 − τ))`. At `τ = 0` every term off the cell's pair is below
+//! `e^{−L} ≈ 2·10⁻¹⁶` relative, so the binomial roots are the path's start to rounding
+//! level; a term of power e switches on near `1 − τ ≈ 1/(eL)`, so terms of different
+//! powers come in one after another over `[0, 1]` instead of crowding at `t = 0` (where
+//! fractional powers have unbounded derivatives) and near `t = 1` (where high powers
+//! switch on abruptly). `exp` is entire, so complex `τ` (the endgame's circles) needs no
+//! branch of the logarithm. This is the logarithmic parametrisation used for
+//! polyhedral homotopies by HomotopyContinuation.jl (Breiding and Timme,
+//! "HomotopyContinuation.jl: a package for homotopy continuation in Julia", ICMS 2018).
 
 use super::random_system::RandomCoefficientSystem;
 use crate::C64;
 use crate::homotopy::Homotopy;
 
-/// `H_i(y, s) = Σ_a c_{ia} y^a s^{e_{ia}}` of one mixed cell.
+/// `H_i(y, τ) = Σ_a c_{ia} y^a exp(−e_{ia}L(1 − τ))` of one mixed cell.
 #[derive(Clone, Debug)]
 pub struct CellHomotopy<'a> {
     system: &'a RandomCoefficientSystem,
@@ -30,23 +37,21 @@ pub struct CellHomotopy<'a> {
     powers: Vec<f64>,
 }
 
-/// `(s^e, d(s^e)/ds)`, with `0^0 = 1`.
-fn power_and_derivative(s: C64, log_s: C64, e: f64) -> (C64, C64) {
-    let zero = C64::new(0.0, 0.0);
-    let one = C64::new(1.0, 0.0);
+/// `L`: the path parameter `τ ∈ [0, 1]` stands for `t = exp(−L(1 − τ))`.
+pub const LOG_RANGE: f64 = 36.0;
+
+/// `(t^e, d(t^e)/dτ)` at `t = exp(−L(1 − τ))`: `(exp(−eL(1 − τ)), eL·t^e)`.
+fn power_and_derivative(tau: C64, e: f64) -> (C64, C64) {
     if e == 0.0 {
-        return (one, zero);
+        return (C64::new(1.0, 0.0), C64::new(0.0, 0.0));
     }
-    if s == zero {
-        return (zero, if e == 1.0 { one } else { zero });
-    }
-    if s.im == 0.0 && s.re > 0.0 {
-        // The tracker's real segment: a real power.
-        let value = s.re.powf(e);
-        return (C64::new(value, 0.0), C64::new(value * e / s.re, 0.0));
-    }
-    let value = (log_s * e).exp();
-    (value, value * e / s)
+    let rate = e * LOG_RANGE;
+    let value = if tau.im == 0.0 {
+        C64::new((-rate * (1.0 - tau.re)).exp(), 0.0)
+    } else {
+        ((C64::new(1.0, 0.0) - tau) * -rate).exp()
+    };
+    (value, value * rate)
 }
 
 impl<'a> CellHomotopy<'a> {
@@ -77,7 +82,6 @@ impl<'a> CellHomotopy<'a> {
         let terms = self.system.terms();
         let n = terms.num_variables();
         let coefficients = self.system.coefficients();
-        let log_s = if s == C64::new(0.0, 0.0) { s } else { s.ln() };
         let (table, scratch) = terms.tabulate(x, work);
         if let Some(jac) = jac.as_deref_mut() {
             jac.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
@@ -86,7 +90,7 @@ impl<'a> CellHomotopy<'a> {
             let mut value = C64::new(0.0, 0.0);
             let mut derivative = C64::new(0.0, 0.0);
             for t in terms.equation(i) {
-                let (power, power_derivative) = power_and_derivative(s, log_s, self.powers[t]);
+                let (power, power_derivative) = power_and_derivative(s, self.powers[t]);
                 let c = coefficients[t];
                 let monomial = match jac.as_deref_mut() {
                     Some(jac) => terms.value_and_gradient(
@@ -150,5 +154,72 @@ impl Homotopy for CellHomotopy<'_> {
         dh: &mut [C64],
     ) {
         self.evaluate_all(x, t, work, h, Some(jac), Some(dh));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::homotopy::polyhedral::{PolyhedralStartSystem, Supports};
+
+    /// `x²y + 3xy² − 1`, `x³ − y + 2` style supports: two equations, mixed volume > 1.
+    fn start_system() -> PolyhedralStartSystem {
+        let supports = Supports::new(
+            2,
+            vec![
+                vec![vec![2, 1], vec![1, 2], vec![0, 0]],
+                vec![vec![3, 0], vec![0, 1], vec![0, 0], vec![1, 1]],
+            ],
+        );
+        PolyhedralStartSystem::new(&supports, 11).unwrap()
+    }
+
+    #[test]
+    fn start_points_are_roots_at_log_time_zero_and_derivatives_match_differences() {
+        let start = start_system();
+        let mut checked = 0;
+        for index in 0..start.mixed_volume() as u64 {
+            let (c, _) = start.locate(index);
+            let h = start.cell_homotopy(c);
+            let n = h.dimension();
+            let mut work = vec![C64::new(0.0, 0.0); h.workspace_len()];
+            let mut y = vec![C64::new(0.0, 0.0); n];
+            start.start_solution(index, &mut y);
+            let mut value = vec![C64::new(0.0, 0.0); n];
+            h.evaluate(&y, C64::new(0.0, 0.0), &mut work, &mut value);
+            let scale = 1.0 + y.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for v in &value {
+                assert!(v.norm() < 1e-12 * scale.powi(4), "residual {v} at τ = 0");
+            }
+            // Derivatives at an interior complex point against central differences.
+            let tau = C64::new(0.8, 0.01);
+            let x: Vec<C64> = y.iter().map(|v| v * C64::new(1.1, -0.2)).collect();
+            let (mut jac, mut dh) = (vec![C64::new(0.0, 0.0); n * n], vec![C64::new(0.0, 0.0); n]);
+            h.evaluate_with_jacobian_and_time_derivative(
+                &x, tau, &mut work, &mut value, &mut jac, &mut dh,
+            );
+            let step = 1e-6;
+            let (mut plus, mut minus) = (vec![C64::new(0.0, 0.0); n], vec![C64::new(0.0, 0.0); n]);
+            h.evaluate(&x, tau + step, &mut work, &mut plus);
+            h.evaluate(&x, tau - step, &mut work, &mut minus);
+            for i in 0..n {
+                let difference = (plus[i] - minus[i]) / (2.0 * step);
+                assert!((difference - dh[i]).norm() <= 1e-5 * (1.0 + dh[i].norm()));
+            }
+            for j in 0..n {
+                let mut shifted = x.clone();
+                shifted[j] += step;
+                h.evaluate(&shifted, tau, &mut work, &mut plus);
+                shifted[j] -= 2.0 * step;
+                h.evaluate(&shifted, tau, &mut work, &mut minus);
+                for i in 0..n {
+                    let difference = (plus[i] - minus[i]) / (2.0 * step);
+                    let exact = jac[i * n + j];
+                    assert!((difference - exact).norm() <= 1e-5 * (1.0 + exact.norm()));
+                }
+            }
+            checked += 1;
+        }
+        assert!(checked >= 2, "mixed volume {}", start.mixed_volume());
     }
 }

@@ -111,7 +111,6 @@ pub fn mixed_cells(
         edge_offset: Vec::new(),
         words: 0,
         relation: Vec::new(),
-        related: Vec::new(),
         known: Vec::new(),
     };
     search.edges = (0..n).map(|i| search.lower_edges(i)).collect();
@@ -161,8 +160,6 @@ struct Search<'a> {
     /// Row-major bit sets: bit f of row e is set when edges e and f (of different
     /// supports) are lower edges for a common inner normal.
     relation: Vec<u64>,
-    /// `related[e·n + j]`: row e of the relation is filled for the edges of support j.
-    related: Vec<bool>,
     /// Bit sets like `relation`: the pairs already decided.
     known: Vec<u64>,
 }
@@ -217,7 +214,7 @@ impl Search<'_> {
         edges
     }
 
-    /// Sizes of the relation table (filled lazily by [`Search::relate`]).
+    /// Sizes of the relation table (decided lazily by [`Search::relate`]).
     fn relation_table(&mut self) {
         let n = self.n;
         self.edge_offset = Vec::with_capacity(n + 1);
@@ -229,25 +226,22 @@ impl Search<'_> {
         self.edge_offset.push(total);
         self.words = total.div_ceil(64);
         self.relation = vec![0u64; total * self.words];
-        self.related = vec![false; total * n];
         self.known = vec![0u64; total * self.words];
     }
 
-    /// Fills the relation of edge `e` of support i with every lower edge of support j
-    /// (one LP per pair), once.
-    fn relate(&mut self, i: usize, e: usize, j: usize) {
+    /// Decides the relation of edge `e` of support i with every lower edge of support j
+    /// that is still a candidate (one LP per pair not yet decided): edges the search has
+    /// already excluded need no test, since the child's candidates are an intersection
+    /// with `candidates`.
+    fn relate(&mut self, i: usize, e: usize, j: usize, candidates: &[u64]) {
         let u = self.edge_offset[i] + e;
-        if self.related[u * self.n + j] {
-            return;
-        }
-        self.related[u * self.n + j] = true;
         let saved = self.rhs.len();
         self.push_rows(i, self.edges[i][e]);
         let base = self.rhs.len();
         let w = self.words;
         for f in 0..self.edges[j].len() {
             let v = self.edge_offset[j] + f;
-            if has_bit(&self.known[u * w..(u + 1) * w], v) {
+            if !has_bit(candidates, v) || has_bit(&self.known[u * w..(u + 1) * w], v) {
                 continue;
             }
             set_bit(&mut self.known[u * w..(u + 1) * w], v);
@@ -296,7 +290,7 @@ impl Search<'_> {
                 continue;
             }
             for &j in remaining.iter() {
-                self.relate(i, e, j);
+                self.relate(i, e, j, candidates);
             }
             let w = self.words;
             for (c, (a, b)) in child

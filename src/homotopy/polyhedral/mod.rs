@@ -33,6 +33,7 @@ pub mod random_system;
 pub mod start;
 pub mod supports;
 
+pub use cell_homotopy::LOG_RANGE;
 pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells};
 pub use start::{PolyhedralError, PolyhedralStartSystem};
 pub use supports::{Supports, random_lifting};
@@ -69,6 +70,8 @@ pub struct PolyhedralSolve {
     pub start_retracked: usize,
     /// Stage-one paths lost (failed or repeated after the re-runs).
     pub start_failed: usize,
+    /// Predictor–corrector steps of stage one (re-runs included).
+    pub start_steps: usize,
 }
 
 /// Solves `F(x; p) = 0` (parameters fixed at `target_parameters`; `supports` the
@@ -107,7 +110,8 @@ pub fn solve_from_polyhedral_start<F: Evaluator + ?Sized>(
             "mixed volume too large".into(),
         ));
     }
-    let (roots, lost, start_retracked) = start_roots(start, mixed_volume as usize, options);
+    let stage_one = start_roots(start, mixed_volume as usize, options);
+    let (roots, lost, start_retracked) = (stage_one.roots, stage_one.lost, stage_one.retracked);
     let mut result = solve_from_start_system(
         start.system(),
         system,
@@ -130,26 +134,34 @@ pub fn solve_from_polyhedral_start<F: Evaluator + ?Sized>(
         cells: start.subdivision().cells.len(),
         start_retracked,
         start_failed,
+        start_steps: stage_one.steps,
     })
 }
 
-/// Stage one: tracks the `count` cell-homotopy paths; returns the distinct roots of `Q`
-/// reached (in path order), the paths that did not reach a new one, and the number of
-/// paths re-tracked.
-fn start_roots(
-    start: &PolyhedralStartSystem,
-    count: usize,
-    options: &SolveOptions,
-) -> (Vec<Vec<C64>>, Vec<PathResult>, usize) {
+/// What stage one reached.
+struct StageOne {
+    /// The distinct roots of `Q` reached, in path order.
+    roots: Vec<Vec<C64>>,
+    /// The paths that did not reach a new root.
+    lost: Vec<PathResult>,
+    /// Paths re-tracked with conservative options.
+    retracked: usize,
+    /// Predictor–corrector steps, re-runs included.
+    steps: usize,
+}
+
+/// Stage one: tracks the `count` cell-homotopy paths to the roots of `Q`.
+fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptions) -> StageOne {
     let n = start.supports().num_variables();
     let homotopies: Vec<_> = (0..start.subdivision().cells.len())
         .map(|c| start.cell_homotopy(c))
         .collect();
-    // A term with power e matters only for 1 − s ≲ 1/e: the endgame zone (whose
-    // circles around s = 1 would blow s^e up) starts beyond that.
+    // The factor exp(−eL(1 − τ)) of a term with power e grows like exp(eL·r) on the
+    // endgame's circles of radius r around τ = 1: the endgame zone starts within
+    // 1/(eL) of the end.
     let endgame_start: Vec<f64> = homotopies
         .iter()
-        .map(|h| ENDGAME_SCALE / h.powers().iter().copied().fold(1.0, f64::max))
+        .map(|h| ENDGAME_SCALE / (LOG_RANGE * h.powers().iter().copied().fold(1.0, f64::max)))
         .collect();
     let track = |indices: &[usize], tracker_options: &TrackerOptions| -> Vec<PathResult> {
         indices
@@ -171,6 +183,7 @@ fn start_roots(
     first.endgame.growth_before_divergence = false;
     let all: Vec<usize> = (0..count).collect();
     let mut paths = track(&all, &first);
+    let mut steps: usize = paths.iter().map(|p| p.steps).sum();
     let mut retracked = 0;
     if options.retry_failed {
         let groups = root_groups(start, &paths);
@@ -187,6 +200,7 @@ fn start_roots(
             conservative.step.max_steps = conservative.step.max_steps.max(first.step.max_steps);
             conservative.endgame.growth_before_divergence = false;
             for redo in track(&suspicious, &conservative) {
+                steps += redo.steps;
                 let index = redo.path_index;
                 paths[index] = redo;
             }
@@ -208,7 +222,12 @@ fn start_roots(
             lost.push(p);
         }
     }
-    (roots, lost, retracked)
+    StageOne {
+        roots,
+        lost,
+        retracked,
+        steps,
+    }
 }
 
 /// For every stage-one path, the group (index of its first path) of its nonsingular

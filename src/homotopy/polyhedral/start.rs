@@ -16,9 +16,12 @@ use super::supports::{Supports, random_lifting};
 use crate::C64;
 
 /// Lifting values are drawn from `0..LIFTING_RANGE`: wide enough that ties (a
-/// non-generic lifting, redrawn) are rare, narrow enough that the powers of the cell
-/// homotopies stay moderate.
-pub const LIFTING_RANGE: u64 = 1 << 10;
+/// non-generic lifting, redrawn with the whole enumeration) are rare — at `2^10`
+/// virasoro needed 5 liftings and katsura8's cells lost 4 paths — and small enough
+/// that the exact `i128` arithmetic of the cells cannot overflow for the supports
+/// met in practice (an overflow is reported, not wrapped). The cell homotopies are
+/// tracked in logarithmic time, so the size of the powers costs few steps.
+pub const LIFTING_RANGE: u64 = 1 << 22;
 /// Liftings tried before giving up on genericity.
 const MAX_LIFTINGS: u64 = 16;
 /// Random streams of the seed: liftings use `LIFTING_STREAM + attempt`.
