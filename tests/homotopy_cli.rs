@@ -138,6 +138,20 @@ fn start_option_reports_the_start_system_and_its_paths() {
         ),
         "{text}"
     );
+    // Polyhedral: the mixed volume of the triangles {xy, x, 1} and {xy, y, 1} is
+    // area(P₁ + P₂) − area(P₁) − area(P₂) = 3 − 1/2 − 1/2 = 2 paths, both roots.
+    let out = singdist(&["solve", path, "--start", "polyhedral", "--json"]);
+    assert_success(&out);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let start = &value["start_system"];
+    assert_eq!(start["name"], "polyhedral");
+    assert_eq!(
+        (start["paths"].as_u64(), start["mixed_volume"].as_u64()),
+        (Some(2), Some(2))
+    );
+    assert_eq!(value["summary"]["paths"], 2);
+    assert_eq!(value["summary"]["nonsingular"], 2);
+    assert_eq!(value["summary"]["failed"], 0);
     let out = singdist(&["solve", path, "--monodromy", "--start", "auto"]);
     assert!(!out.status.success(), "--monodromy and --start conflict");
 }
