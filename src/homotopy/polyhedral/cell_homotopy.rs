@@ -28,6 +28,7 @@
 use super::random_system::RandomCoefficientSystem;
 use crate::C64;
 use crate::homotopy::Homotopy;
+use crate::system::Evaluator;
 
 /// `H_i(y, τ) = Σ_a c_{ia} y^a exp(−e_{ia}L(1 − τ))` of one mixed cell.
 #[derive(Clone, Debug)]
@@ -69,47 +70,23 @@ impl<'a> CellHomotopy<'a> {
         &self.powers
     }
 
-    /// `h ← H`, and with `jac` the Jacobian, with `dh` the s-derivative.
-    fn evaluate_all(
+    /// Splits the workspace into the term family's parameters `c ⊙ t^e`, their
+    /// τ-derivatives `c ⊙ eL·t^e` (filled at `tau`), and the family's scratch.
+    fn parameters<'w>(
         &self,
-        x: &[C64],
-        s: C64,
-        work: &mut [C64],
-        h: &mut [C64],
-        mut jac: Option<&mut [C64]>,
-        mut dh: Option<&mut [C64]>,
-    ) {
-        let terms = self.system.terms();
-        let n = terms.num_variables();
+        tau: C64,
+        work: &'w mut [C64],
+    ) -> (&'w [C64], &'w [C64], &'w mut [C64]) {
+        let count = self.powers.len();
+        let (values, rest) = work.split_at_mut(count);
+        let (derivatives, scratch) = rest.split_at_mut(count);
         let coefficients = self.system.coefficients();
-        let (table, scratch) = terms.tabulate(x, work);
-        if let Some(jac) = jac.as_deref_mut() {
-            jac.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        for t in 0..count {
+            let (power, power_derivative) = power_and_derivative(tau, self.powers[t]);
+            values[t] = coefficients[t] * power;
+            derivatives[t] = coefficients[t] * power_derivative;
         }
-        for i in 0..n {
-            let mut value = C64::new(0.0, 0.0);
-            let mut derivative = C64::new(0.0, 0.0);
-            for t in terms.equation(i) {
-                let (power, power_derivative) = power_and_derivative(s, self.powers[t]);
-                let c = coefficients[t];
-                let monomial = match jac.as_deref_mut() {
-                    Some(jac) => terms.value_and_gradient(
-                        t,
-                        table,
-                        scratch,
-                        c * power,
-                        &mut jac[i * n..(i + 1) * n],
-                    ),
-                    None => terms.value(t, table),
-                };
-                value += c * power * monomial;
-                derivative += c * power_derivative * monomial;
-            }
-            h[i] = value;
-            if let Some(dh) = dh.as_deref_mut() {
-                dh[i] = derivative;
-            }
-        }
+        (values, derivatives, scratch)
     }
 }
 
@@ -119,11 +96,12 @@ impl Homotopy for CellHomotopy<'_> {
     }
 
     fn workspace_len(&self) -> usize {
-        self.dimension() + self.system.terms().workspace_len()
+        2 * self.powers.len() + self.system.family().workspace_len()
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        self.evaluate_all(x, t, work, h, None, None);
+        let (values, _, scratch) = self.parameters(t, work);
+        self.system.family().evaluate(x, values, scratch, h);
     }
 
     fn evaluate_with_jacobian(
@@ -134,14 +112,16 @@ impl Homotopy for CellHomotopy<'_> {
         h: &mut [C64],
         jac: &mut [C64],
     ) {
-        self.evaluate_all(x, t, work, h, Some(jac), None);
+        let (values, _, scratch) = self.parameters(t, work);
+        self.system
+            .family()
+            .evaluate_with_jacobian(x, values, scratch, h, jac);
     }
 
     fn evaluate_time_derivative(&self, x: &[C64], t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let n = self.dimension();
-        // H itself is not wanted: it goes to the head of the scratch.
-        let (value, rest) = work.split_at_mut(n);
-        self.evaluate_all(x, t, rest, value, None, Some(dh));
+        // G is linear in its parameters: ∂H/∂τ = G(x; c ⊙ eL·t^e).
+        let (_, derivatives, scratch) = self.parameters(t, work);
+        self.system.family().evaluate(x, derivatives, scratch, dh);
     }
 
     fn evaluate_with_jacobian_and_time_derivative(
@@ -153,7 +133,10 @@ impl Homotopy for CellHomotopy<'_> {
         jac: &mut [C64],
         dh: &mut [C64],
     ) {
-        self.evaluate_all(x, t, work, h, Some(jac), Some(dh));
+        let (values, derivatives, scratch) = self.parameters(t, work);
+        let family = self.system.family();
+        family.evaluate_with_jacobian(x, values, scratch, h, jac);
+        family.evaluate(x, derivatives, scratch, dh);
     }
 }
 
