@@ -155,3 +155,36 @@ fn start_option_reports_the_start_system_and_its_paths() {
     let out = singdist(&["solve", path, "--monodromy", "--start", "auto"]);
     assert!(!out.status.success(), "--monodromy and --start conflict");
 }
+
+/// `--start auto` takes the polyhedral start system where the mixed volume is at most
+/// half of the best Bézout number (chemequ: 16 paths against a total degree of 108),
+/// and keeps the total degree where it is not (katsura-6: mixed volume 64 = 2⁶).
+#[test]
+fn automatic_start_takes_the_polyhedral_system_where_it_halves_the_paths() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
+    let out = singdist(&[
+        "solve",
+        &format!("{dir}/chemequ.input"),
+        "--start",
+        "auto",
+        "--json",
+    ]);
+    assert_success(&out);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["start_system"]["name"], "polyhedral");
+    assert_eq!(value["start_system"]["mixed_volume"], 16);
+    assert_eq!(value["summary"]["paths"], 16);
+    assert_eq!(value["summary"]["nonsingular"], 16);
+    assert_eq!(value["summary"]["failed"], 0);
+    let out = singdist(&[
+        "solve",
+        &format!("{dir}/katsura6.input"),
+        "--start",
+        "auto",
+        "--json",
+    ]);
+    assert_success(&out);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["start_system"]["name"], "total-degree");
+    assert_eq!(value["summary"]["nonsingular"], 64);
+}

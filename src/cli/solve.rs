@@ -16,9 +16,10 @@ use singdist::homotopy::multihomogeneous::{
     MonomialSupports, PartitionSearchOptions, SearchMethod, total_degree_paths,
 };
 use singdist::homotopy::{
-    FailureReason, MonodromyOptions, PathStatus, PolyhedralSolve, SolveOptions, SolveResult,
-    SolveSummary, StartChoice, StartRequest, Supports, choose_start_system, solve_by_monodromy,
-    solve_multihomogeneous, solve_polyhedral, solve_total_degree,
+    FailureReason, MonodromyOptions, PathStatus, PolyhedralSolve, PolyhedralStartSystem,
+    SolveOptions, SolveResult, SolveSummary, StartChoice, StartRequest, Supports,
+    choose_start_system, polyhedral_if_fewer_paths, solve_by_monodromy,
+    solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
 };
 use singdist::system::{System, bertini};
 use std::collections::BTreeMap;
@@ -44,8 +45,10 @@ pub struct SolveArgs {
     pub monodromy: bool,
     /// Start system (default `total-degree`): `auto` takes the multi-homogeneous one
     /// of the variable grouping of least Bézout number when it has strictly fewer
-    /// paths than the total degree. Not the default yet: on two of PHCpack's demo
-    /// systems (`chemequs`, `des22_24`) it misses a root without a failed path.
+    /// paths than the total degree, and the polyhedral one instead when its mixed
+    /// volume is at most half of that and its mixed cells are found cheaply. Not the
+    /// default yet: on two of PHCpack's demo systems (`chemequs`, `des22_24`) the
+    /// multi-homogeneous one misses a root without a failed path.
     #[arg(long, value_enum)]
     pub start: Option<StartArg>,
     /// Value of a parameter, `NAME=VALUE` (VALUE like `1.5` or `0.5+2*I`).
@@ -56,7 +59,9 @@ pub struct SolveArgs {
 /// `--start`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum StartArg {
-    /// Multi-homogeneous when it beats the total degree, else total degree.
+    /// Polyhedral when the mixed volume is at most half of the best Bézout number
+    /// (and its cells are cheap), else multi-homogeneous when it beats the total
+    /// degree, else total degree.
     Auto,
     /// `x_i^{d_i} − 1`.
     TotalDegree,
@@ -298,8 +303,8 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     }
     let pool = builder.build().context("cannot start the thread pool")?;
     let started = Instant::now();
-    let polyhedral = args.start == Some(StartArg::Polyhedral);
-    let choice = if args.monodromy || polyhedral {
+    let forced_polyhedral = args.start == Some(StartArg::Polyhedral);
+    let choice = if args.monodromy || forced_polyhedral {
         None
     } else {
         let request = match args.start.unwrap_or(StartArg::TotalDegree) {
@@ -321,36 +326,53 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             .with_context(|| format!("{}: --start", args.file.display()))?,
         )
     };
+    // The polyhedral start system: when asked for, or under `auto` when it has at most
+    // half the paths of the best Bézout-type one and its mixed cells come cheaply.
+    let polyhedral_start = if forced_polyhedral {
+        let supports = Supports::from_system(&system)
+            .with_context(|| format!("{}: --start polyhedral", args.file.display()))?;
+        Some(
+            PolyhedralStartSystem::new(&supports, options.seed)
+                .with_context(|| format!("{}: --start polyhedral", args.file.display()))?,
+        )
+    } else if args.start == Some(StartArg::Auto) {
+        let paths = choice.as_ref().map_or(u128::MAX, StartChoice::paths);
+        Supports::from_system(&system)
+            .ok()
+            .and_then(|supports| polyhedral_if_fewer_paths(&supports, options.seed, paths))
+    } else {
+        None
+    };
     let mut polyhedral_output = None;
-    let (result, trace_residual): (SolveResult, Option<f64>) = pool.install(|| match &choice {
-        None if polyhedral => {
-            let supports = Supports::from_system(&system)
-                .with_context(|| format!("{}: --start polyhedral", args.file.display()))?;
-            let solved = solve_polyhedral(&compiled, &supports, &[], &options)?;
-            polyhedral_output = Some(StartOutput::polyhedral(
-                &solved,
-                total_degree_paths(&degrees),
-            ));
-            Ok::<_, anyhow::Error>((solved.result, None))
-        }
-        None => {
-            let (monodromy, solved) =
-                solve_by_monodromy(&compiled, &[], &MonodromyOptions::default(), &options)?;
-            Ok::<_, anyhow::Error>((solved, monodromy.trace_residual))
-        }
-        Some(StartChoice::TotalDegree { .. }) => Ok((
-            solve_total_degree(&compiled, &degrees, &[], &options)?,
-            None,
-        )),
-        Some(StartChoice::MultiHomogeneous { search, degrees }) => Ok((
-            solve_multihomogeneous(&compiled, &search.partition, degrees, &[], &options)?,
-            None,
-        )),
-    })?;
-    let start_output = choice
-        .as_ref()
-        .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()))
-        .or(polyhedral_output);
+    let (result, trace_residual): (SolveResult, Option<f64>) =
+        pool.install(|| match (&polyhedral_start, &choice) {
+            (Some(start), _) => {
+                let solved = solve_from_polyhedral_start(&compiled, start, &[], &options)?;
+                polyhedral_output = Some(StartOutput::polyhedral(
+                    &solved,
+                    total_degree_paths(&degrees),
+                ));
+                Ok::<_, anyhow::Error>((solved.result, None))
+            }
+            (None, None) => {
+                let (monodromy, solved) =
+                    solve_by_monodromy(&compiled, &[], &MonodromyOptions::default(), &options)?;
+                Ok::<_, anyhow::Error>((solved, monodromy.trace_residual))
+            }
+            (None, Some(StartChoice::TotalDegree { .. })) => Ok((
+                solve_total_degree(&compiled, &degrees, &[], &options)?,
+                None,
+            )),
+            (None, Some(StartChoice::MultiHomogeneous { search, degrees })) => Ok((
+                solve_multihomogeneous(&compiled, &search.partition, degrees, &[], &options)?,
+                None,
+            )),
+        })?;
+    let start_output = polyhedral_output.or_else(|| {
+        choice
+            .as_ref()
+            .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()))
+    });
     let seconds = started.elapsed().as_secs_f64();
     let s = &result.summary;
     if args.json {

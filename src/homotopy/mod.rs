@@ -35,7 +35,10 @@ pub use multihomogeneous::{
     solve_multihomogeneous,
 };
 pub use newton::{NewtonBuffers, NewtonOptions, NewtonOutcome, NewtonStop, newton};
-pub use polyhedral::{PolyhedralSolve, PolyhedralStartSystem, Supports, solve_polyhedral};
+pub use polyhedral::{
+    PolyhedralSolve, PolyhedralStartSystem, Supports, polyhedral_if_fewer_paths,
+    solve_from_polyhedral_start, solve_polyhedral,
+};
 pub use refine::{
     Refinement, contains_point, distinct_nonsingular_roots, group_roots, newton_refine, same_point,
     same_root,

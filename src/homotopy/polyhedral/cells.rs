@@ -52,6 +52,9 @@ pub enum CellError {
     /// An exact determinant overflowed `i128`.
     #[error("an exact determinant overflowed")]
     Overflow,
+    /// The enumeration needed more LP feasibility tests than it was allowed.
+    #[error("the mixed-cell search passed its budget of {0} LP tests")]
+    OverBudget(usize),
 }
 
 /// One mixed cell.
@@ -85,6 +88,17 @@ pub fn mixed_cells(
     supports: &Supports,
     lifting: &[Vec<i64>],
 ) -> Result<MixedSubdivision, CellError> {
+    mixed_cells_within(supports, lifting, usize::MAX)
+}
+
+/// [`mixed_cells`], giving up with [`CellError::OverBudget`] once the search has run
+/// more than `max_lp_tests` LP feasibility tests (so a caller choosing between start
+/// systems can bound what the polyhedral one costs to find out).
+pub fn mixed_cells_within(
+    supports: &Supports,
+    lifting: &[Vec<i64>],
+    max_lp_tests: usize,
+) -> Result<MixedSubdivision, CellError> {
     let n = supports.num_variables();
     if supports.num_equations() != n {
         return Err(CellError::NotSquare {
@@ -107,6 +121,7 @@ pub fn mixed_cells(
         chosen: vec![(0, 0); n],
         cells: Vec::new(),
         lp_tests: 0,
+        max_lp_tests,
         edges: Vec::new(),
         edge_offset: Vec::new(),
         words: 0,
@@ -151,6 +166,8 @@ struct Search<'a> {
     chosen: Vec<(usize, usize)>,
     cells: Vec<MixedCell>,
     lp_tests: usize,
+    /// [`CellError::OverBudget`] past this many LP tests.
+    max_lp_tests: usize,
     /// Lower edges of each support.
     edges: Vec<Vec<(usize, usize)>>,
     /// Global number of the first edge of each support.
@@ -269,6 +286,9 @@ impl Search<'_> {
         if remaining.is_empty() {
             return self.leaf();
         }
+        if self.lp_tests > self.max_lp_tests {
+            return Err(CellError::OverBudget(self.max_lp_tests));
+        }
         let count = |i: usize| {
             (0..self.edges[i].len())
                 .filter(|&e| has_bit(candidates, self.edge_offset[i] + e))
@@ -303,6 +323,9 @@ impl Search<'_> {
                 (0..self.edges[j].len()).all(|f| !has_bit(&child, self.edge_offset[j] + f))
             }) {
                 continue;
+            }
+            if self.lp_tests > self.max_lp_tests {
+                return Err(CellError::OverBudget(self.max_lp_tests));
             }
             let edge = self.edges[i][e];
             self.push_rows(i, edge);
@@ -468,6 +491,26 @@ mod tests {
         let s = Supports::new(2, vec![dense.clone(), dense]);
         assert_eq!(mv(&s, 1), 4);
         assert_eq!(mv(&s, 2), 4);
+    }
+
+    #[test]
+    fn a_search_past_its_lp_budget_gives_up() {
+        let dense: Vec<Vec<i64>> = vec![
+            vec![0, 0],
+            vec![1, 0],
+            vec![0, 1],
+            vec![2, 0],
+            vec![1, 1],
+            vec![0, 2],
+        ];
+        let s = Supports::new(2, vec![dense.clone(), dense]);
+        let lifting = random_lifting(&s, 1, 0, 1 << 12);
+        let full = mixed_cells(&s, &lifting).unwrap();
+        assert_eq!(
+            mixed_cells_within(&s, &lifting, full.lp_tests / 2),
+            Err(CellError::OverBudget(full.lp_tests / 2))
+        );
+        assert_eq!(mixed_cells_within(&s, &lifting, full.lp_tests), Ok(full));
     }
 
     #[test]

@@ -34,7 +34,7 @@ pub mod start;
 pub mod supports;
 
 pub use cell_homotopy::LOG_RANGE;
-pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells};
+pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells, mixed_cells_within};
 pub use start::{PolyhedralError, PolyhedralStartSystem};
 pub use supports::{Supports, random_lifting};
 
@@ -55,6 +55,30 @@ const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
 const DUPLICATE_TOLERANCE: f64 = 1e-10;
 /// The stage-one endgame zone starts at `1 − s = ENDGAME_SCALE / max e`.
 const ENDGAME_SCALE: f64 = 0.1;
+
+/// LP feasibility tests the automatic start-system choice may spend on the mixed cells,
+/// per path of the start system they would replace (an LP test costs about as much as
+/// 25 µs, a path some 100 predictor–corrector steps of 5 µs) …
+pub const AUTOMATIC_LP_TESTS_PER_PATH: usize = 20;
+/// … and in addition to those.
+pub const AUTOMATIC_LP_TESTS: usize = 20_000;
+
+/// The polyhedral start system of `supports` (random choices from `seed`) when it has
+/// at most half of `paths` paths — it tracks every path twice, through the cell
+/// homotopies and then to the target — and its mixed cells are found within
+/// `AUTOMATIC_LP_TESTS + AUTOMATIC_LP_TESTS_PER_PATH · paths` LP tests; `None` otherwise.
+pub fn polyhedral_if_fewer_paths(
+    supports: &Supports,
+    seed: u64,
+    paths: u128,
+) -> Option<PolyhedralStartSystem> {
+    let per_path = usize::try_from(paths)
+        .unwrap_or(usize::MAX)
+        .saturating_mul(AUTOMATIC_LP_TESTS_PER_PATH);
+    let budget = AUTOMATIC_LP_TESTS.saturating_add(per_path);
+    let start = PolyhedralStartSystem::within_budget(supports, seed, budget).ok()?;
+    (start.mixed_volume().saturating_mul(2) <= paths).then_some(start)
+}
 
 /// A polyhedral solve: the result of the second stage, with the stage-one paths that
 /// did not reach a root of `Q` appended as failed paths, and the counts of the start.

@@ -10,7 +10,7 @@
 
 use super::binomial::{BinomialError, BinomialSystem};
 use super::cell_homotopy::CellHomotopy;
-use super::cells::{CellError, MixedSubdivision, mixed_cells};
+use super::cells::{CellError, MixedSubdivision, mixed_cells_within};
 use super::random_system::RandomCoefficientSystem;
 use super::supports::{Supports, random_lifting};
 use crate::C64;
@@ -58,13 +58,23 @@ impl PolyhedralStartSystem {
     /// The start system of the system with supports `supports` (the origin is added to
     /// each), random choices from `seed`.
     pub fn new(supports: &Supports, seed: u64) -> Result<Self, PolyhedralError> {
+        Self::within_budget(supports, seed, usize::MAX)
+    }
+
+    /// [`PolyhedralStartSystem::new`], giving up with [`CellError::OverBudget`] when the
+    /// mixed-cell search of a lifting passes `max_lp_tests` LP feasibility tests.
+    pub fn within_budget(
+        supports: &Supports,
+        seed: u64,
+        max_lp_tests: usize,
+    ) -> Result<Self, PolyhedralError> {
         let supports = supports.with_origin();
         let system = RandomCoefficientSystem::new(&supports, seed, COEFFICIENT_STREAM);
         let mut attempt = 0;
         let subdivision = loop {
             let lifting = random_lifting(&supports, seed, LIFTING_STREAM + attempt, LIFTING_RANGE);
             attempt += 1;
-            match mixed_cells(&supports, &lifting) {
+            match mixed_cells_within(&supports, &lifting, max_lp_tests) {
                 Err(CellError::NonGenericLifting) if attempt < MAX_LIFTINGS => continue,
                 other => break other?,
             }
