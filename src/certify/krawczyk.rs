@@ -34,7 +34,7 @@
 //! two different solutions; a pair of overlapping boxes is reported, since both may hold
 //! the same solution.
 
-use super::midrad::MidpointRadius;
+use super::midrad::{MidpointRadius, negated_product};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
 use crate::homotopy::newton::{NewtonBuffers, NewtonOptions, NewtonStop, newton};
@@ -317,16 +317,7 @@ impl<'a> Krawczyk<'a> {
         // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
         // ("Verification methods", §13.1) grows a box E around it until
         // z + (I − Y·J(c + E))·E lies inside E.
-        for (i, z) in b.step.iter_mut().enumerate() {
-            let row = &b.inverse[i * n..(i + 1) * n];
-            *z = -row
-                .iter()
-                .zip(&b.f_box)
-                .fold(ComplexInterval::default(), |sum, (&y, f)| {
-                    sum + f.times_point(y)
-                });
-        }
-        if b.step.iter().any(|v| !v.is_bounded()) {
+        if !negated_product(&b.inverse, &b.f_box, &mut b.step) {
             return None;
         }
         b.offsets.copy_from_slice(&b.step);

@@ -103,26 +103,6 @@ impl Interval {
         Some(Interval::from_rounded(1.0 / self.hi, 1.0 / self.lo))
     }
 
-    /// `[a, a]·self`, equal to `Interval::point(a) * self` (two corner products
-    /// instead of four, the others being the same).
-    #[inline]
-    pub fn times_point(self, a: f64) -> Interval {
-        if a.is_nan() {
-            return Interval::ENTIRE;
-        }
-        let (p, q) = (a * self.lo, a * self.hi);
-        if p.is_nan() || q.is_nan() {
-            return Interval::ENTIRE;
-        }
-        if a == 0.0 || (self.lo == 0.0 && self.hi == 0.0) {
-            return Interval::point(0.0);
-        }
-        Interval {
-            lo: next_down(min(p, q)),
-            hi: next_up(max(p, q)),
-        }
-    }
-
     /// `sqrt` of the non-negative part (`None` if the interval is entirely negative).
     pub fn sqrt(&self) -> Option<Interval> {
         if self.hi < 0.0 {
@@ -274,16 +254,6 @@ impl ComplexInterval {
         ComplexInterval {
             re: self.re * s,
             im: self.im * s,
-        }
-    }
-
-    /// `{z}·self`, equal to `ComplexInterval::point(z) * self` with half the real
-    /// products.
-    #[inline]
-    pub fn times_point(&self, z: C64) -> ComplexInterval {
-        ComplexInterval {
-            re: self.re.times_point(z.re) - self.im.times_point(z.im),
-            im: self.im.times_point(z.re) + self.re.times_point(z.im),
         }
     }
 
@@ -475,49 +445,6 @@ mod tests {
         for &x in &boxes {
             for &y in &boxes {
                 assert_eq!(bits(x * y), bits(reference(x, y)), "{x:?} × {y:?}");
-            }
-        }
-    }
-
-    #[test]
-    fn point_times_interval_is_the_interval_product() {
-        let specials = [0.0, -0.0, 1.5, -2.25, 1e-310, f64::INFINITY, f64::NAN];
-        let boxes = [
-            Interval::point(0.0),
-            Interval { lo: -0.0, hi: 0.0 },
-            Interval { lo: -2.0, hi: 3.0 },
-            Interval { lo: 0.1, hi: 0.7 },
-            Interval {
-                lo: -5.0,
-                hi: -1e-300,
-            },
-            Interval {
-                lo: 0.0,
-                hi: f64::INFINITY,
-            },
-            Interval::ENTIRE,
-        ];
-        let mut rng = crate::random::stream(3, 1);
-        let mut values: Vec<f64> = specials.to_vec();
-        values.extend((0..20).map(|_| crate::random::uniform(&mut rng, -3.0, 3.0)));
-        for &a in &values {
-            for &x in &boxes {
-                let (got, want) = (x.times_point(a), Interval::point(a) * x);
-                assert!(
-                    got == want || (got.lo.is_nan() && want.lo.is_nan()),
-                    "{a} × {x:?}: {got:?} ≠ {want:?}"
-                );
-            }
-        }
-        for (&a, &b) in values.iter().zip(values.iter().rev()) {
-            let z = C64::new(a, b);
-            for (&x, &w) in boxes.iter().zip(boxes.iter().rev()) {
-                let x = ComplexInterval { re: x, im: w };
-                assert_eq!(
-                    x.times_point(z),
-                    ComplexInterval::point(z) * x,
-                    "{z} × {x:?}"
-                );
             }
         }
     }
