@@ -79,8 +79,9 @@ fn split(v: Interval, gamma: f64) -> (f64, f64) {
 /// `−Y·f` enclosed, for a point matrix `Y` (row-major `n × n`) and an interval vector
 /// `f` with midpoint `m` and radius `R`: midpoint `−fl(Y·m)` and radius
 /// `|Yᵣ|·Wᵣ + |Yᵢ|·Wᵢ` (imaginary part `|Yᵣ|·Wᵢ + |Yᵢ|·Wᵣ`) with `W = γ₂ₙ·|m| + R`,
-/// bounded by [`upper`], rounded outwards (the matrix case of the module
-/// documentation with one column). `false` if an entry of `f` is unbounded.
+/// bounded by [`upper`] (whose floor also covers the underflow in `fl(Y·m)`, at most
+/// `n·2⁻¹⁰⁷⁴`), rounded outwards (the matrix case of the module documentation with
+/// one column). `false` if an entry of `f` is unbounded.
 pub fn negated_product(y: &[C64], f: &[ComplexInterval], out: &mut [ComplexInterval]) -> bool {
     let n = f.len();
     assert!(y.len() == n * n && out.len() == n);
@@ -163,7 +164,7 @@ impl MidpointRadius {
         let magnitudes = e
             .iter()
             .fold(0.0, |s, v| s + v.re.magnitude() + v.im.magnitude());
-        let underflow = (n as f64 * f64::from_bits(1) * upper(magnitudes, n + 1, 0)).next_up();
+        let underflow = (n as f64 * f64::from_bits(1) * upper(magnitudes, 2 * n, 0)).next_up();
         for (i, bound) in out.iter_mut().enumerate() {
             let [center_re, center_im] = &mut self.center;
             center_re.fill(0.0);
