@@ -178,16 +178,20 @@ pub fn certify_subproblem(
     let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
     // A conjugate partner of a certified non-real point is certified by the mirror
     // image of its box ([`Krawczyk::mirror`]) instead of a second test.
-    let mut mirrors: Vec<RootBox> = Vec::new();
+    let mut mirrors: Vec<(RootBox, f64)> = Vec::new();
     let mut boxes: Vec<Option<RootBox>> = Vec::with_capacity(solutions.len());
     for x in solutions {
-        if let Some(at) = mirrors.iter().position(|m| approximates(x, &m.center)) {
-            boxes.push(Some(mirrors.swap_remove(at)));
+        if let Some(at) = mirrors
+            .iter()
+            .position(|(m, scale)| approximates(x, &m.center, *scale))
+        {
+            boxes.push(Some(mirrors.swap_remove(at).0));
             continue;
         }
         let certified = test.certify(x);
         if let Some(mirror) = certified.as_ref().and_then(|b| test.mirror(b)) {
-            mirrors.push(mirror);
+            let scale = 1.0 + mirror.center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            mirrors.push((mirror, scale));
         }
         boxes.push(certified);
     }
@@ -241,10 +245,10 @@ pub fn certify_subproblem(
 }
 
 /// Whether the computed point `x` is the certified centre `center` to within
-/// `10⁻⁶ (1 + ‖center‖∞)` (the same solution: the certified box around `center`
-/// stands for it; a wrong match can only leave a solution uncounted, never add one).
-fn approximates(x: &[C64], center: &[C64]) -> bool {
-    let scale = 1.0 + center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+/// `10⁻⁶·scale`, `scale = 1 + ‖center‖∞` (the same solution: the certified box around
+/// `center` stands for it; a wrong match can only leave a solution uncounted, never
+/// add one).
+fn approximates(x: &[C64], center: &[C64], scale: f64) -> bool {
     x.len() == center.len()
         && x.iter()
             .zip(center)

@@ -13,6 +13,17 @@
 //! boxes as in Breiding, Rose, Timme, "Certifying zeros of polynomial systems using
 //! interval arithmetic", ACM TOMS 2023).
 //!
+//! The product `(I − Y·∂F/∂x(X))·(X − c)` is replaced by the box `[−t, t]` (per real
+//! and imaginary part) with `t ≥ |I − Y·J|·mag(X − c)` for every `J ∈ ∂F/∂x(X)`
+//! ([`MidpointRadius::product_bound`]). The conclusion stands: for `x, x′ ∈ X`,
+//! `F(x) − F(x′) = J̄·(x − x′)` with `J̄`, the mean of `∂F/∂x` over the segment, in the
+//! convex box `∂F/∂x(X)`; so `x ↦ x − Y·F(x)` maps `X` into `c − Y·F(c) + [−t, t] ⊂ X`
+//! (a fixed point by Brouwer's theorem), and inclusion in the interior gives
+//! `P·rad(X − c) ≤ t < rad(X − c)` for the non-negative matrix `P ≥ |I − Y·J|` behind
+//! `t` (in the real form of the complex matrices), so `ρ(P) < 1` (Perron–Frobenius):
+//! `Y` and every `J` are nonsingular, the fixed point is a solution, and two solutions
+//! would satisfy `|x − x′| ≤ P·|x − x′|`, so they coincide.
+//!
 //! **Realness.** When every coefficient of `F(·; p)` is real, the conjugate of a
 //! solution is a solution. A box centred on a real point with a symmetric imaginary
 //! part is closed under conjugation, so the unique solution it contains equals its own
@@ -23,7 +34,7 @@
 //! two different solutions; a pair of overlapping boxes is reported, since both may hold
 //! the same solution.
 
-use super::midrad::MidpointRadius;
+use super::midrad::{MidpointRadius, negated_product};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
 use crate::homotopy::newton::{NewtonBuffers, NewtonOptions, NewtonStop, newton};
@@ -107,8 +118,8 @@ struct Buffers {
     inverse: Vec<C64>,
     f_box: Vec<ComplexInterval>,
     jac_box: Vec<ComplexInterval>,
-    /// `M = I − Y·J(c + E)`.
-    m: Vec<ComplexInterval>,
+    /// Bounds `[tᵣ, tᵢ]` of `|(I − Y·J(c + E))·e|`, `e ∈ E`, per row.
+    spread: Vec<[f64; 2]>,
     step: Vec<ComplexInterval>,
     offsets: Vec<ComplexInterval>,
     trial: Vec<ComplexInterval>,
@@ -128,7 +139,7 @@ impl Buffers {
             inverse: vec![zero; n * n],
             f_box: boxes(n),
             jac_box: boxes(n * n),
-            m: boxes(n * n),
+            spread: vec![[0.0; 2]; n],
             step: boxes(n),
             offsets: boxes(n),
             trial: boxes(n),
@@ -306,16 +317,7 @@ impl<'a> Krawczyk<'a> {
         // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
         // ("Verification methods", §13.1) grows a box E around it until
         // z + (I − Y·J(c + E))·E lies inside E.
-        for (i, z) in b.step.iter_mut().enumerate() {
-            let row = &b.inverse[i * n..(i + 1) * n];
-            *z = -row
-                .iter()
-                .zip(&b.f_box)
-                .fold(ComplexInterval::default(), |sum, (&y, f)| {
-                    sum + ComplexInterval::point(y) * *f
-                });
-        }
-        if b.step.iter().any(|v| !v.is_bounded()) {
+        if !negated_product(&b.inverse, &b.f_box, &mut b.step) {
             return None;
         }
         b.offsets.copy_from_slice(&b.step);
@@ -335,17 +337,20 @@ impl<'a> Krawczyk<'a> {
                 &mut b.f_box,
                 &mut b.jac_box,
             );
-            // M = I − Y·J(c + E).
-            if !b.product.identity_minus(&b.inverse, &b.jac_box, &mut b.m) {
+            // (I − Y·J(c + E))·E ⊂ [−t, t] per part (see the module documentation).
+            if !b
+                .product
+                .product_bound(&b.inverse, &b.jac_box, &b.trial, &mut b.spread)
+            {
                 return None;
             }
-            for (i, k) in b.image.iter_mut().enumerate() {
-                let row = &b.m[i * n..(i + 1) * n];
-                let spread = row
-                    .iter()
-                    .zip(&b.trial)
-                    .fold(ComplexInterval::default(), |sum, (a, e)| sum + *a * *e);
-                *k = b.step[i] + spread;
+            for ((k, z), t) in b.image.iter_mut().zip(&b.step).zip(&b.spread) {
+                let centered = |t: f64| Interval { lo: -t, hi: t };
+                *k = *z
+                    + ComplexInterval {
+                        re: centered(t[0]),
+                        im: centered(t[1]),
+                    };
             }
             if b.image.iter().any(|v| !v.is_bounded()) {
                 return None;
@@ -602,6 +607,32 @@ mod tests {
         if let Some(b) = complex_test.certify(&[i, i]) {
             assert!(complex_test.mirror(&b).is_none());
         }
+    }
+
+    /// `x² = p, y = x` for `p` in a box: near `p = 0.0025` the root `x = 0.05` is
+    /// certified for a narrow box of `p`, but not for `p ∈ [0, 0.005]`, where the
+    /// roots `±√p` meet at the fold `p = 0` and no box around 0.05 holds exactly one
+    /// root for every `p` (this fails if `(I − Y·J(X))·(X − c)` is under-estimated).
+    #[test]
+    fn a_parameter_box_reaching_the_fold_fails() {
+        let text = "INPUT\nvariable_group x, y;\nparameter p;\nfunction f1, f2;\n\
+                    f1 = x^2 - p;\nf2 = y - x;\nEND;\n";
+        let system = CompiledSystem::new(&bertini::read(text).expect("system parses"));
+        let p = C64::new(0.0025, 0.0);
+        let root = [C64::new(0.05, 0.0); 2];
+        let real = |lo: f64, hi: f64| ComplexInterval {
+            re: Interval { lo, hi },
+            im: Interval::point(0.0),
+        };
+        let narrow = [real(0.0025 - 1e-9, 0.0025 + 1e-9)];
+        let mut test = Krawczyk::with_parameter_boxes(&system, &[p], &narrow).unwrap();
+        let b = test
+            .certify(&root)
+            .expect("a narrow parameter box is certified");
+        assert_eq!(b.realness, Realness::Real);
+        let wide = [real(0.0, 0.005)];
+        let mut test = Krawczyk::with_parameter_boxes(&system, &[p], &wide).unwrap();
+        assert!(test.certify(&root).is_none());
     }
 
     #[test]
