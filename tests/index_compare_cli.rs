@@ -5,6 +5,7 @@
 //! code 3 exactly when the output lists them.
 
 use singdist::mechanism::rpr::{example_design, example_motion};
+use singdist::pipeline::bisection::bisect_sign_change;
 use std::collections::HashMap;
 use std::process::Output;
 
@@ -56,17 +57,8 @@ fn singular_tau() -> f64 {
             .configuration(motion.pose(tau).unwrap())
             .singularity()
     };
-    let (mut lo, mut hi) = (-0.5, 0.5);
-    assert!(s(lo) * s(hi) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if s(mid) * s(lo) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    assert!(s(-0.5) * s(0.5) < 0.0);
+    bisect_sign_change((-0.5, 0.5), s(-0.5), |tau| Some(s(tau)))
 }
 
 #[test]

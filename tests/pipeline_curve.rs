@@ -7,23 +7,15 @@ use singdist::mechanism::rpr::{
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, default_start_solutions, sample_motion,
-    singular_parameters,
+    CurveOptions, CurveResult, compute_curve, compute_curve_from_embedded_starts,
+    default_start_solutions, sample_motion, singular_parameters,
 };
 use singdist::problem::{Coordinates, LagrangeProblem, ProblemId, SubProblem};
 use singdist::system::Evaluator;
 
 fn curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric]) -> CurveResult {
-    compute_curve(
-        design,
-        motion,
-        poses,
-        metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("the curve is computed")
+    compute_curve_from_embedded_starts(design, motion, poses, metrics, &CurveOptions::default())
+        .expect("the curve is computed")
 }
 
 fn metric(name: &str) -> Metric {

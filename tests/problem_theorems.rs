@@ -7,6 +7,7 @@ use singdist::homotopy::{SolveOptions, solve_parameter_homotopy};
 use singdist::mechanism::rpr::{self, Design, Pose};
 use singdist::metric::Metric;
 use singdist::pipeline::ab_initio::{self, embedded_start_solutions, start_solutions};
+use singdist::pipeline::bisection::bisect_sign_change;
 use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem};
 
 /// Global minimum of D over the real critical points of `id` at the configuration of
@@ -180,17 +181,9 @@ fn singular_configuration_has_distance_zero_for_all_nine_metrics() {
             .singularity()
     };
     // Bisection on the sign change of S near τ ≈ −0.086 (the example's first crossing).
-    let (mut lo, mut hi) = (-0.5, 0.3);
-    assert!(s(lo) * s(hi) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if s(lo) * s(mid) <= 0.0 {
-            hi = mid
-        } else {
-            lo = mid
-        }
-    }
-    let pose = motion.pose(0.5 * (lo + hi)).unwrap();
+    assert!(s(-0.5) * s(0.3) < 0.0);
+    let tau = bisect_sign_change((-0.5, 0.3), s(-0.5), |tau| Some(s(tau)));
+    let pose = motion.pose(tau).unwrap();
     assert!(design.configuration(pose).singularity().abs() < 1e-9);
     for metric in Metric::all() {
         let id = ProblemId {

@@ -466,9 +466,6 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
     fn num_variables(&self) -> usize {
         self.system.num_variables() + 1
     }
-    fn num_equations(&self) -> usize {
-        self.system.num_variables() + 1
-    }
     fn num_parameters(&self) -> usize {
         self.system.num_variables() + 1
     }

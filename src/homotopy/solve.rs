@@ -521,12 +521,6 @@ impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
     fn num_variables(&self) -> usize {
         self.homotopy.dimension()
     }
-    fn num_equations(&self) -> usize {
-        self.homotopy.dimension()
-    }
-    fn num_parameters(&self) -> usize {
-        0
-    }
     fn workspace_len(&self) -> usize {
         self.homotopy.workspace_len()
     }

@@ -18,7 +18,10 @@
 use crate::C64;
 use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
 use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
+use num_complex::ComplexFloat;
 use serde::{Deserialize, Serialize};
+use std::iter::Sum;
+use std::ops::{Add, Mul};
 use thiserror::Error;
 
 /// Errors of 3-RPR designs and motions; every message names the offending field.
@@ -564,27 +567,27 @@ impl MotionCoordinate {
 
     /// Value at real τ.
     pub fn value(&self, tau: f64) -> f64 {
-        let poly = self
-            .polynomial
-            .iter()
-            .rev()
-            .fold(0.0, |acc, c| acc * tau + c);
-        let trig: f64 = self
-            .cosines
-            .iter()
-            .map(|t| t.amplitude * (t.frequency * tau + t.phase).cos())
-            .sum();
-        poly + trig
+        self.value_at(tau)
     }
 
     /// Value at complex τ (complex cosine).
     pub fn value_complex(&self, tau: C64) -> C64 {
+        self.value_at(tau)
+    }
+
+    /// `f(τ)` in the scalar type of τ: Horner's scheme for the polynomial, then the
+    /// cosine terms.
+    fn value_at<T>(&self, tau: T) -> T
+    where
+        T: ComplexFloat + Add<f64, Output = T> + Sum,
+        f64: Mul<T, Output = T>,
+    {
         let poly = self
             .polynomial
             .iter()
             .rev()
-            .fold(C64::new(0.0, 0.0), |acc, c| acc * tau + c);
-        let trig: C64 = self
+            .fold(T::zero(), |acc, &c| acc * tau + c);
+        let trig: T = self
             .cosines
             .iter()
             .map(|t| t.amplitude * (t.frequency * tau + t.phase).cos())
