@@ -145,7 +145,7 @@ fn schemes_by_number_and_name() {
     );
     assert!("9".parse::<Scheme>().is_err());
     assert!("0".parse::<Scheme>().is_err());
-    let unknown = "tpx".parse::<Scheme>().err().expect("an unknown scheme");
+    let unknown = "tpx".parse::<Scheme>().expect_err("an unknown scheme");
     assert!(unknown.to_string().contains("tpx"));
 }
 

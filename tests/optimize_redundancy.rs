@@ -1,6 +1,8 @@
 //! docs/theory.md §11.3 redundancy resolution: trajectories, quintic profile, objective,
 //! optimiser.
 
+mod optimize_support;
+use optimize_support::small_genetic_options;
 use singdist::analysis::redundancy::{
     Aggregate, RedundancyError, RedundancyProblem, Scheme, TaskIndex, Trajectory, quintic, resolve,
 };
@@ -44,12 +46,7 @@ where
 }
 
 fn small_ga(seed: u64) -> GeneticOptions {
-    GeneticOptions {
-        population: 16,
-        generations: 8,
-        seed,
-        ..GeneticOptions::default()
-    }
+    small_genetic_options(16, 8, seed)
 }
 
 #[test]

@@ -8,7 +8,7 @@ use singdist::mechanism::rpr::{self, Design, Pose};
 use singdist::metric::Metric;
 use singdist::pipeline::ab_initio::{self, embedded_start_solutions, start_solutions};
 use singdist::pipeline::bisection::bisect_sign_change;
-use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem};
+use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem, pedal};
 
 /// Global minimum of D over the real critical points of `id` at the configuration of
 /// `pose`: (distance, K′).
@@ -72,19 +72,8 @@ fn test_design() -> Design {
 /// Orthogonal projections of three points onto their total-least-squares line
 /// (through the centroid along the principal axis of the scatter matrix).
 fn pedal_points(points: [[f64; 2]; 3]) -> [[f64; 2]; 3] {
-    let c = [
-        (points[0][0] + points[1][0] + points[2][0]) / 3.0,
-        (points[0][1] + points[1][1] + points[2][1]) / 3.0,
-    ];
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for p in points {
-        let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
-        sxx += dx * dx;
-        sxy += dx * dy;
-        syy += dy * dy;
-    }
-    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let w = [angle.cos(), angle.sin()];
+    let line = pedal::total_least_squares_line(points);
+    let (c, w) = (line.centroid, line.direction);
     points.map(|p| {
         let t = (p[0] - c[0]) * w[0] + (p[1] - c[1]) * w[1];
         [c[0] + t * w[0], c[1] + t * w[1]]
