@@ -62,21 +62,24 @@ fn a_saved_run_is_certified_and_a_changed_distance_is_caught() {
         stdout.contains("3 poses, 3 distances re-checked (seed 7920): 3 certified global minima"),
         "{stdout}"
     );
+    // The certificate of the file with pose `pose`'s distance times `factor`, which
+    // must exit with code 3.
+    let contradicted = |pose: usize, factor: f64| {
+        let changed = dir.join(format!("changed-{pose}.json"));
+        tampered(&file, pose, factor, &changed);
+        let (code, stdout, _) = certify(&changed);
+        assert_eq!(code, 3, "{stdout}");
+        stdout
+    };
     // A distance 0.1 % too large: a certified real critical point is closer.
-    let larger = dir.join("larger.json");
-    tampered(&file, 1, 1.001, &larger);
-    let (code, stdout, _) = certify(&larger);
-    assert_eq!(code, 3, "{stdout}");
+    let stdout = contradicted(1, 1.001);
     assert!(
         stdout.contains("CONTRADICTED pose 1 plate/plate"),
         "{stdout}"
     );
     assert!(stdout.contains("2 certified global minima (G)"), "{stdout}");
     // 0.1 % too small: below the certified global minimum.
-    let smaller = dir.join("smaller.json");
-    tampered(&file, 2, 0.999, &smaller);
-    let (code, stdout, _) = certify(&smaller);
-    assert_eq!(code, 3, "{stdout}");
+    let stdout = contradicted(2, 0.999);
     assert!(
         stdout.contains("below the certified global minimum"),
         "{stdout}"

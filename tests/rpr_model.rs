@@ -4,6 +4,7 @@
 use nalgebra::Matrix3;
 use singdist::C64;
 use singdist::io::{load_design, load_motion};
+use singdist::mechanism::InputNumberError;
 use singdist::mechanism::rpr::{
     Design, Motion, Pose, PoseList, RprError, collinearity_base, collinearity_platform,
     example_design, example_motion, reconstruct_third_point, rigid_shape, singularity_polynomial,
@@ -162,7 +163,9 @@ fn design_validation_names_the_field() {
         [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
     )
     .unwrap_err();
-    assert!(matches!(err, RprError::NotFinite { ref field, .. } if field == "base[1].y"));
+    assert!(
+        matches!(err, RprError::Number(InputNumberError::NotFinite { ref field, .. }) if field == "base[1].y")
+    );
     assert!(err.to_string().contains("base[1].y"));
     // A base collapsed to a point.
     let err = Design::new([[1.0, 1.0]; 3], [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]]).unwrap_err();

@@ -155,7 +155,7 @@ fn invalid_designs_and_poses_name_the_field() {
         platform,
     )
     .unwrap_err();
-    assert_eq!(err.to_string(), "base[1].x must be finite, got NaN");
+    assert_eq!(err.to_string(), "base[1].x: not a finite number (NaN)");
     let err = RrrDesign::new(base, [1.0; 3], [1.0, 1.0, -2.0], platform).unwrap_err();
     assert!(err.to_string().contains("distal[2]"), "{err}");
     let err = RrrDesign::new(base, [0.0, 1.0, 1.0], [1.0; 3], platform).unwrap_err();

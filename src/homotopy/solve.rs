@@ -181,7 +181,7 @@ fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
         .all(|(u, v)| (u - v).norm() <= tolerance * scale)
 }
 
-fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
+pub(super) fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
     if values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
         Ok(())
     } else {
