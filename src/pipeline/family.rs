@@ -15,7 +15,7 @@ use crate::C64;
 use crate::system::CompiledSystem;
 
 /// A family of parametrised systems, one per problem, sharing one motion: what the
-/// seed stage of the sweep engine ([`super::sweep::seed_family`]) needs.
+/// seed stage of the sweep engine (`seed_family`) needs.
 pub trait Family: Sync {
     /// What identifies a seed point (besides its parameters), kept with the solutions
     /// that the poses start from.
