@@ -9,37 +9,26 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::mechanism::rpr::{example_design, example_motion};
 use singdist::metric::Metric;
-use singdist::pipeline::curve::{CurveOptions, compute_curve};
-use std::time::Instant;
+use singdist::pipeline::curve::{CurveOptions, compute_curve_from_embedded_starts};
+
+mod bench_support;
+use bench_support::{thread_pool, timed};
 
 fn bench_curve(c: &mut Criterion) {
     let list = std::env::var("SINGDIST_BENCH_METRICS").unwrap_or_else(|_| "all".into());
     let metrics = Metric::parse_list(&list).expect("SINGDIST_BENCH_METRICS: metric list");
     let design = example_design();
     let motion = example_motion();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("thread pool");
+    let pool = thread_pool(2);
     let options = CurveOptions::default();
     let run = || {
         pool.install(|| {
-            compute_curve(
-                &design,
-                &motion,
-                90,
-                &metrics,
-                &options,
-                &singdist::pipeline::curve::default_start_solutions,
-                &|_| {},
-            )
-            .expect("curve")
+            compute_curve_from_embedded_starts(&design, &motion, 90, &metrics, &options)
+                .expect("curve")
         })
     };
     // One reported run: wall time, per-pose latency, paths per second, failures.
-    let started = Instant::now();
-    let result = run();
-    let seconds = started.elapsed().as_secs_f64();
+    let (result, seconds) = timed(run);
     eprintln!(
         "curve: {} metrics x 90 poses, 2 threads: {seconds:.3} s, {:.2} ms/pose, {} critical points continued (paths and Newton), {:.0} per s, {} failure groups",
         metrics.len(),

@@ -31,9 +31,7 @@
 
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_design, example_motion};
 use singdist::metric::Metric;
-use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, default_start_solutions,
-};
+use singdist::pipeline::curve::{CurveOptions, CurveResult, compute_curve_from_embedded_starts};
 use singdist::reference::designs::{CLASS_NAMES, DesignCase, design_case};
 use singdist::reference::local_search::{
     Constraint, ReferenceOptions, configuration_size, feasibility, reference_distances,
@@ -103,15 +101,7 @@ fn run_curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric],
     };
     let started = Instant::now();
     let outcome = catch_unwind(AssertUnwindSafe(|| {
-        compute_curve(
-            design,
-            motion,
-            poses,
-            metrics,
-            &options,
-            &default_start_solutions,
-            &|_| {},
-        )
+        compute_curve_from_embedded_starts(design, motion, poses, metrics, &options)
     }));
     let seconds = started.elapsed().as_secs_f64();
     match outcome {

@@ -7,24 +7,21 @@ use singdist::mechanism::rrr::example_trajectory;
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, compute_rrr_curve, default_rrr_start_solutions,
 };
-use std::time::Instant;
+
+mod bench_support;
+use bench_support::{thread_pool, timed};
 
 fn bench_rrr_curve(c: &mut Criterion) {
     let trajectory = example_trajectory();
     let options = RrrCurveOptions::default();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("thread pool");
+    let pool = thread_pool(2);
     let run = || {
         pool.install(|| {
             compute_rrr_curve(&trajectory, 90, &options, &default_rrr_start_solutions)
                 .expect("curve")
         })
     };
-    let started = Instant::now();
-    let result = run();
-    let elapsed = started.elapsed().as_secs_f64();
+    let (result, elapsed) = timed(run);
     println!(
         "rrr curve: 90 poses, {} paths in {elapsed:.3} s ({:.0} paths/s), {} failures",
         result.paths_tracked,

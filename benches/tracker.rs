@@ -8,9 +8,14 @@
 #[path = "../tests/homotopy_common/mod.rs"]
 mod homotopy_common;
 
+mod bench_support;
+use bench_support::thread_pool;
+
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use singdist::C64;
-use singdist::homotopy::{SolveOptions, solve_parameter_homotopy, solve_total_degree};
+use singdist::homotopy::{
+    HomotopyError, SolveOptions, SolveResult, solve_parameter_homotopy, solve_total_degree,
+};
 use singdist::random::{complex_normal, seeded};
 use singdist::system::{Expr, System};
 
@@ -61,39 +66,24 @@ fn bench(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(128));
     for threads in [1usize, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("thread pool");
-        group.bench_with_input(
-            BenchmarkId::new("katsura7_total_degree", threads),
-            &threads,
-            |b, _| {
-                b.iter(|| {
-                    let r = pool.install(|| {
-                        solve_total_degree(&katsura, &degrees, &[], &SolveOptions::default())
-                    });
-                    assert_eq!(r.expect("solve").summary.nonsingular, 128);
-                })
-            },
+        let pool = thread_pool(threads);
+        // Times `solve` on the pool; every result must pass `check`.
+        type Solve<'a> = &'a (dyn Fn() -> Result<SolveResult, HomotopyError> + Sync);
+        let mut bench = |name: &str, solve: Solve<'_>, check: fn(&SolveResult) -> bool| {
+            group.bench_with_input(BenchmarkId::new(name, threads), &threads, |b, _| {
+                b.iter(|| assert!(check(&pool.install(solve).expect("solve"))))
+            });
+        };
+        let options = SolveOptions::default();
+        bench(
+            "katsura7_total_degree",
+            &|| solve_total_degree(&katsura, &degrees, &[], &options),
+            |r| r.summary.nonsingular == 128,
         );
-        group.bench_with_input(
-            BenchmarkId::new("parameter_homotopy_13_unknowns", threads),
-            &threads,
-            |b, _| {
-                b.iter(|| {
-                    let r = pool.install(|| {
-                        solve_parameter_homotopy(
-                            &family,
-                            &starts,
-                            &p0,
-                            &p1,
-                            &SolveOptions::default(),
-                        )
-                    });
-                    assert_eq!(r.expect("solve").summary.failed, 0);
-                })
-            },
+        bench(
+            "parameter_homotopy_13_unknowns",
+            &|| solve_parameter_homotopy(&family, &starts, &p0, &p1, &options),
+            |r| r.summary.failed == 0,
         );
     }
     group.finish();

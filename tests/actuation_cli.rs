@@ -1,7 +1,7 @@
 //! `singdist schemes` end to end on tiny grids: table files, plot, errors, GA reproducibility.
 
 mod cli_support;
-use cli_support::{assert_success, singdist, temp_dir};
+use cli_support::{assert_success, read, singdist, succeed_line, temp_dir};
 
 fn temp(name: &str) -> std::path::PathBuf {
     temp_dir("schemes-cli").join(name)
@@ -12,16 +12,11 @@ fn table_json_csv_and_plot_are_written() {
     let json = temp("t.json");
     let csv = temp("t.csv");
     let svg = temp("t.svg");
-    let out = singdist(&[
-        "schemes",
-        "--grid",
-        "21",
-        "--out",
-        json.to_str().unwrap(),
-        "--plot",
-        svg.to_str().unwrap(),
-    ]);
-    assert_success(&out);
+    let out = succeed_line(&format!(
+        "schemes --grid 21 --out {} --plot {}",
+        json.display(),
+        svg.display()
+    ));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("Ramana Babu et al.'s claim"), "{stdout}");
     let rows: Vec<serde_json::Value> =
@@ -33,19 +28,11 @@ fn table_json_csv_and_plot_are_written() {
         assert!(row["reachable_nodes"].as_u64().unwrap() > 0);
     }
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
-    let out = singdist(&[
-        "schemes",
-        "--grid",
-        "11",
-        "--orientation",
-        "-20",
-        "--scheme",
-        "θψψ",
-        "--out",
-        csv.to_str().unwrap(),
-    ]);
-    assert_success(&out);
-    let text = std::fs::read_to_string(&csv).unwrap();
+    succeed_line(&format!(
+        "schemes --grid 11 --orientation -20 --scheme θψψ --out {}",
+        csv.display()
+    ));
+    let text = read(&csv);
     assert_eq!(text.lines().count(), 2, "{text}");
     assert!(
         text.lines().nth(1).unwrap().starts_with("-20.0,6,θψψ"),

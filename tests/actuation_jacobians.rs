@@ -13,6 +13,9 @@ use singdist::mechanism::rrr::{
 };
 use singdist::random::{seeded, uniform};
 
+mod rrr_support;
+use rrr_support::{design_of, modes_of};
+
 fn wrap(angle: f64) -> f64 {
     angle.sin().atan2(angle.cos())
 }
@@ -66,21 +69,11 @@ fn jacobians_match_finite_differences_for_all_schemes_and_models() {
     let mut rng = seeded(11);
     let designs = [
         RrrDesign::symmetric(5.0, 1.3, 3.0, 3.5).unwrap(),
-        RrrDesign::new(
-            [
-                Point::new(-4.0, -2.0),
-                Point::new(4.5, -1.5),
-                Point::new(0.5, 4.2),
-            ],
-            [2.6, 3.1, 2.8],
-            [3.3, 2.7, 3.0],
-            [
-                Point::new(-0.9, -0.4),
-                Point::new(1.1, -0.3),
-                Point::new(0.2, 0.8),
-            ],
-        )
-        .unwrap(),
+        design_of(
+            [[-4.0, -2.0], [4.5, -1.5], [0.5, 4.2]],
+            ([2.6, 3.1, 2.8], [3.3, 2.7, 3.0]),
+            [[-0.9, -0.4], [1.1, -0.3], [0.2, 0.8]],
+        ),
     ];
     let mut checked = 0;
     for design in &designs {
@@ -152,25 +145,8 @@ fn schemes_by_number_and_name() {
     );
     assert!("9".parse::<Scheme>().is_err());
     assert!("0".parse::<Scheme>().is_err());
-    assert!(
-        "tpx"
-            .parse::<Scheme>()
-            .unwrap_err()
-            .to_string()
-            .contains("tpx")
-    );
-}
-
-fn modes_of(bases: &[Point; 3], elbows: &[Point; 3], platform: &[Point; 3]) -> WorkingModes {
-    [0, 1, 2].map(|i| {
-        let b = elbows[i] - bases[i];
-        let c = platform[i] - elbows[i];
-        if b.x * c.y - b.y * c.x > 0.0 {
-            ElbowMode::Positive
-        } else {
-            ElbowMode::Negative
-        }
-    })
+    let unknown = "tpx".parse::<Scheme>().expect_err("an unknown scheme");
+    assert!(unknown.to_string().contains("tpx"));
 }
 
 /// Design whose configuration at pose (0, 0, 0) is exactly (bases, elbows, platform).
@@ -213,51 +189,50 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
     let radial = PLATFORM.map(|c| (c - q).normalize());
     let theta_scheme = Scheme::from_number(1).unwrap();
     let psi_scheme = Scheme::from_number(2).unwrap();
-    // Each (scheme, model) classifies the configuration as the given type.
-    let expect = |design: &RrrDesign,
-                  config: &RrrConfiguration,
-                  cases: &[(Scheme, PsiModel, SingularityType)]| {
-        for &(scheme, model, expected) in cases {
-            assert_eq!(
-                classify(design, config, scheme, model, tol),
-                expected,
-                "scheme {scheme} {model:?}"
-            );
-        }
-    };
+    // The design through (bases, elbows, PLATFORM): each (scheme, model) classifies its
+    // configuration as the given type; returns the configuration.
+    let expect =
+        |bases: [Point; 3], elbows: [Point; 3], cases: &[(Scheme, PsiModel, SingularityType)]| {
+            let (design, config) = design_through(bases, elbows, PLATFORM);
+            for &(scheme, model, expected) in cases {
+                assert_eq!(
+                    classify(&design, &config, scheme, model, tol),
+                    expected,
+                    "scheme {scheme} {model:?}"
+                );
+            }
+            config
+        };
 
     // θθθ: distal lines B_iC_i through Q.
     let elbows = [0, 1, 2].map(|i| PLATFORM[i] + 2.0 * radial[i]);
     let bases = [0, 1, 2].map(|i| elbows[i] + 1.7 * rotate(radial[i], 1.1));
-    let (design, config) = design_through(bases, elbows, PLATFORM);
-    let jac = jacobians(&config, theta_scheme, PsiModel::Seed);
-    assert!(jac.det_jx().abs() < 1e-12);
-    expect(
-        &design,
-        &config,
+    let config = expect(
+        bases,
+        elbows,
         &[
             (theta_scheme, PsiModel::Seed, SingularityType::TypeII),
             (psi_scheme, PsiModel::Seed, SingularityType::Regular),
         ],
     );
+    let jac = jacobians(&config, theta_scheme, PsiModel::Seed);
+    assert!(jac.det_jx().abs() < 1e-12);
 
     // Type III: same concurrent distal lines, and leg 0 stretched (O_0 on the line B_0C_0).
     let mut stretched_bases = bases;
     stretched_bases[0] = elbows[0] + 1.7 * radial[0];
-    let (design3, config3) = design_through(stretched_bases, elbows, PLATFORM);
     expect(
-        &design3,
-        &config3,
+        stretched_bases,
+        elbows,
         &[(theta_scheme, PsiModel::Seed, SingularityType::TypeIII)],
     );
 
     // ψψψ, seed model: the lines through C_i parallel to O_iB_i pass through Q.
     let elbows = [0, 1, 2].map(|i| PLATFORM[i] + 2.0 * rotate(radial[i], 0.9));
     let bases = [0, 1, 2].map(|i| elbows[i] - 1.6 * radial[i]);
-    let (design, config) = design_through(bases, elbows, PLATFORM);
     expect(
-        &design,
-        &config,
+        bases,
+        elbows,
         &[
             (psi_scheme, PsiModel::Seed, SingularityType::TypeII),
             (theta_scheme, PsiModel::Seed, SingularityType::Regular),
@@ -273,10 +248,9 @@ fn type_ii_fires_on_concurrent_lines_for_each_model_and_not_generically() {
     // Fig. 5).
     let bases = [0, 1, 2].map(|i| PLATFORM[i] + 3.5 * radial[i]);
     let elbows = [0, 1, 2].map(|i| bases[i] + 2.0 * rotate(-radial[i], 0.7));
-    let (design, config) = design_through(bases, elbows, PLATFORM);
     expect(
-        &design,
-        &config,
+        bases,
+        elbows,
         &[
             (psi_scheme, PsiModel::RelativeElbow, SingularityType::TypeII),
             (psi_scheme, PsiModel::Seed, SingularityType::Regular),

@@ -26,6 +26,16 @@ fn small_run(out: &Path) {
     assert_success(&run);
 }
 
+/// [`small_run`] written to `dir/name` and certified, which must succeed: the file and
+/// the certificate's stdout.
+fn certified_small_run(dir: &Path, name: &str) -> (PathBuf, String) {
+    let file = dir.join(name);
+    small_run(&file);
+    let (code, stdout, stderr) = certify(&file);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    (file, stdout)
+}
+
 fn certify(file: &Path) -> (i32, String, String) {
     let run = singdist(&["certify", file.to_str().unwrap(), "--threads", "1"]);
     (
@@ -47,29 +57,29 @@ fn tampered(file: &Path, pose: usize, factor: f64, out: &Path) {
 #[test]
 fn a_saved_run_is_certified_and_a_changed_distance_is_caught() {
     let dir = folder("document");
-    let file = dir.join("run.json");
-    small_run(&file);
-    let (code, stdout, stderr) = certify(&file);
-    assert_eq!(code, 0, "{stdout}{stderr}");
+    let (file, stdout) = certified_small_run(&dir, "run.json");
     assert!(
         stdout.contains("3 poses, 3 distances re-checked (seed 7920): 3 certified global minima"),
         "{stdout}"
     );
+    // The certificate of the file with pose `pose`'s distance times `factor`, which
+    // must exit with code 3.
+    let contradicted = |pose: usize, factor: f64| {
+        let changed = dir.join(format!("changed-{pose}.json"));
+        tampered(&file, pose, factor, &changed);
+        let (code, stdout, _) = certify(&changed);
+        assert_eq!(code, 3, "{stdout}");
+        stdout
+    };
     // A distance 0.1 % too large: a certified real critical point is closer.
-    let larger = dir.join("larger.json");
-    tampered(&file, 1, 1.001, &larger);
-    let (code, stdout, _) = certify(&larger);
-    assert_eq!(code, 3, "{stdout}");
+    let stdout = contradicted(1, 1.001);
     assert!(
         stdout.contains("CONTRADICTED pose 1 plate/plate"),
         "{stdout}"
     );
     assert!(stdout.contains("2 certified global minima (G)"), "{stdout}");
     // 0.1 % too small: below the certified global minimum.
-    let smaller = dir.join("smaller.json");
-    tampered(&file, 2, 0.999, &smaller);
-    let (code, stdout, _) = certify(&smaller);
-    assert_eq!(code, 3, "{stdout}");
+    let stdout = contradicted(2, 0.999);
     assert!(
         stdout.contains("below the certified global minimum"),
         "{stdout}"
@@ -80,10 +90,7 @@ fn a_saved_run_is_certified_and_a_changed_distance_is_caught() {
 #[test]
 fn logs_are_read_and_broken_files_are_one_line_errors() {
     let dir = folder("log");
-    let log = dir.join("run.jsonl");
-    small_run(&log);
-    let (code, stdout, stderr) = certify(&log);
-    assert_eq!(code, 0, "{stdout}{stderr}");
+    let (_, stdout) = certified_small_run(&dir, "run.jsonl");
     assert!(stdout.contains("3 certified global minima"), "{stdout}");
     let broken = dir.join("broken.json");
     std::fs::write(

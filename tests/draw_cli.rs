@@ -3,17 +3,10 @@
 //! distances `singdist distance --json` reports; degenerate K′ are marked as such.
 
 mod cli_support;
-use cli_support::{assert_success, singdist, temp_dir};
+use cli_support::{assert_success, group_of_k, singdist, temp_dir};
 
 fn temp(name: &str) -> String {
     temp_dir("draw-cli").join(name).display().to_string()
-}
-
-/// The text of the element group `<g id="K" …> … </g>` (no nested groups inside).
-fn group_of_k(svg: &str) -> &str {
-    let start = svg.find(r#"<g id="K""#).expect("a group g#K");
-    let end = start + svg[start..].find("</g>").expect("g#K is closed");
-    &svg[start..end]
 }
 
 #[test]

@@ -5,11 +5,12 @@
 //! code 3 exactly when the output lists them.
 
 use singdist::mechanism::rpr::{example_design, example_motion};
+use singdist::pipeline::bisection::bisect_sign_change;
 use std::collections::HashMap;
 use std::process::Output;
 
 mod cli_support;
-use cli_support::{singdist, temp_dir};
+use cli_support::{singdist, singdist_line, temp_dir};
 
 fn temp(name: &str) -> String {
     temp_dir("compare-cli").join(name).display().to_string()
@@ -56,17 +57,8 @@ fn singular_tau() -> f64 {
             .configuration(motion.pose(tau).unwrap())
             .singularity()
     };
-    let (mut lo, mut hi) = (-0.5, 0.5);
-    assert!(s(lo) * s(hi) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if s(mid) * s(lo) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    assert!(s(-0.5) * s(0.5) < 0.0);
+    bisect_sign_change((-0.5, 0.5), s(-0.5), |tau| Some(s(tau)))
 }
 
 #[test]
@@ -91,36 +83,15 @@ fn metric_columns_match_curve_vanish_at_the_singular_pose_and_plot_data_are_scal
     let table = temp("compare.csv");
     let data = temp("compare_plot.csv");
     let svg = temp("compare.svg");
-    let out = singdist(&[
-        "indices",
-        "--motion",
-        &motion_path,
-        "--with-metrics",
-        "plate/plate",
-        "--seed",
-        "3",
-        "--quiet",
-        "--out",
-        &table,
-        "--plot",
-        &svg,
-        "--plot-data",
-        &data,
-    ]);
+    let out = singdist_line(&format!(
+        "indices --motion {motion_path} --with-metrics plate/plate --seed 3 --quiet \
+         --out {table} --plot {svg} --plot-data {data}"
+    ));
     let code = completed(&out);
     let curve_table = temp("curve.csv");
-    let out = singdist(&[
-        "curve",
-        "--motion",
-        &motion_path,
-        "--metric",
-        "plate/plate",
-        "--seed",
-        "3",
-        "--quiet",
-        "--out",
-        &curve_table,
-    ]);
+    let out = singdist_line(&format!(
+        "curve --motion {motion_path} --metric plate/plate --seed 3 --quiet --out {curve_table}"
+    ));
     assert_eq!(completed(&out), code, "same computation, same losses");
 
     let (headers, columns) = read_csv(&table);

@@ -1,7 +1,7 @@
 //! `singdist indices` end to end: single-pose JSON, motion table, plot, errors.
 
 mod cli_support;
-use cli_support::{assert_success, singdist, temp_dir};
+use cli_support::{assert_success, read, singdist, singdist_line, succeed_line, temp_dir};
 
 fn temp(name: &str) -> std::path::PathBuf {
     temp_dir("indices-cli").join(name)
@@ -47,17 +47,12 @@ fn single_pose_json_has_every_key_and_the_test_vector_values() {
 fn motion_table_plot_and_errors() {
     let csv_path = temp("indices.csv");
     let svg_path = temp("indices.svg");
-    let out = singdist(&[
-        "indices",
-        "--poses",
-        "40",
-        "--out",
-        csv_path.to_str().unwrap(),
-        "--plot",
-        svg_path.to_str().unwrap(),
-    ]);
-    assert_success(&out);
-    let text = std::fs::read_to_string(&csv_path).unwrap();
+    succeed_line(&format!(
+        "indices --poses 40 --out {} --plot {}",
+        csv_path.display(),
+        svg_path.display()
+    ));
+    let text = read(&csv_path);
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 41);
     assert!(
@@ -80,14 +75,7 @@ fn motion_table_plot_and_errors() {
     let panels = svg.matches(r#"<g class="panel""#).count();
     assert!(panels >= 3, "{panels} panels");
     assert_eq!(svg.matches(r#"class="marker""#).count(), 2 * panels);
-    let curve = singdist(&[
-        "curve",
-        "--poses",
-        "3",
-        "--metric",
-        "plate/plate",
-        "--quiet",
-    ]);
+    let curve = singdist_line("curve --poses 3 --metric plate/plate --quiet");
     let stdout = String::from_utf8_lossy(&curve.stdout);
     let roots: Vec<f64> = stdout
         .rsplit("singular poses at tau = ")
@@ -105,16 +93,8 @@ fn motion_table_plot_and_errors() {
     assert_eq!(svg.matches(&legend).count(), panels, "`{legend}` per panel");
 
     let json_path = temp("indices.json");
-    let out = singdist(&[
-        "indices",
-        "--poses",
-        "5",
-        "--out",
-        json_path.to_str().unwrap(),
-    ]);
-    assert!(out.status.success());
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    succeed_line(&format!("indices --poses 5 --out {}", json_path.display()));
+    let v: serde_json::Value = serde_json::from_str(&read(&json_path)).unwrap();
     assert_eq!(v["poses"].as_array().unwrap().len(), 5);
 
     let bad = temp("bad_design.json");

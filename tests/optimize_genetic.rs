@@ -1,5 +1,7 @@
 //! Tests of the seeded genetic algorithm and the projected BFGS refinement.
 
+mod optimize_support;
+use optimize_support::small_genetic_options;
 use singdist::optimize::{
     GeneticOptions, LocalOptions, OptimizeError, genetic_maximize, local_maximize, maximize,
 };
@@ -15,12 +17,7 @@ fn bowl(centre: &[f64]) -> impl Fn(&[f64]) -> f64 + Sync + '_ {
 }
 
 fn small_options(seed: u64) -> GeneticOptions {
-    GeneticOptions {
-        population: 30,
-        generations: 40,
-        seed,
-        ..GeneticOptions::default()
-    }
+    small_genetic_options(30, 40, seed)
 }
 
 #[test]

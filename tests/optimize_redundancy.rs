@@ -1,37 +1,52 @@
 //! docs/theory.md §11.3 redundancy resolution: trajectories, quintic profile, objective,
 //! optimiser.
 
+mod optimize_support;
+use optimize_support::small_genetic_options;
 use singdist::analysis::redundancy::{
-    Aggregate, RedundancyProblem, Scheme, TaskIndex, Trajectory, quintic, resolve,
+    Aggregate, RedundancyError, RedundancyProblem, Scheme, TaskIndex, Trajectory, quintic, resolve,
 };
 use singdist::mechanism::prrr::{PrrrDesign, WorkingMode};
 use singdist::optimize::{GeneticOptions, LocalOptions};
 
+/// The problem of `design` with every working mode `+`.
+fn problem_of(
+    design: PrrrDesign,
+    (trajectory, scheme, index, aggregate): (Trajectory, Scheme, TaskIndex, Aggregate),
+    samples: usize,
+) -> Result<RedundancyProblem, RedundancyError> {
+    RedundancyProblem::new(
+        design,
+        trajectory,
+        scheme,
+        index,
+        aggregate,
+        [WorkingMode::Plus; 3],
+        samples,
+    )
+}
+
+/// The problem of Farias Filho et al.'s design, 41 samples.
 fn problem(
     trajectory: Trajectory,
     scheme: Scheme,
     index: TaskIndex,
     aggregate: Aggregate,
 ) -> RedundancyProblem {
-    RedundancyProblem::new(
-        PrrrDesign::farias2021(),
-        trajectory,
-        scheme,
-        index,
-        aggregate,
-        [WorkingMode::Plus; 3],
-        41,
-    )
-    .unwrap()
+    let task = (trajectory, scheme, index, aggregate);
+    problem_of(PrrrDesign::farias2021(), task, 41).unwrap()
+}
+
+/// The error message of parsing `text` as a `T`.
+fn parse_error<T: std::str::FromStr>(text: &str) -> String
+where
+    T::Err: std::fmt::Display,
+{
+    text.parse::<T>().err().expect("a parse error").to_string()
 }
 
 fn small_ga(seed: u64) -> GeneticOptions {
-    GeneticOptions {
-        population: 16,
-        generations: 8,
-        seed,
-        ..GeneticOptions::default()
-    }
+    small_genetic_options(16, 8, seed)
 }
 
 #[test]
@@ -82,18 +97,8 @@ fn quintic_profile_has_zero_end_derivatives() {
         assert!(d1.abs() < 1e-6 && d2.abs() < 1e-3, "{s}: {d1} {d2}");
     }
     // Continuous positioning with δ_o = δ_f equals prepositioning.
-    let pre = problem(
-        Trajectory::Circle,
-        Scheme::Prepositioning,
-        TaskIndex::Nsir,
-        Aggregate::Mean,
-    );
-    let cont = problem(
-        Trajectory::Circle,
-        Scheme::Continuous,
-        TaskIndex::Nsir,
-        Aggregate::Mean,
-    );
+    let [pre, cont] = [Scheme::Prepositioning, Scheme::Continuous]
+        .map(|scheme| problem(Trajectory::Circle, scheme, TaskIndex::Nsir, Aggregate::Mean));
     let d = [0.03, -0.05, 0.01];
     let dd = [0.03, -0.05, 0.01, 0.03, -0.05, 0.01];
     assert!((pre.objective(&d) - cont.objective(&dd)).abs() < 1e-15);
@@ -105,18 +110,14 @@ fn quintic_profile_has_zero_end_derivatives() {
 
 #[test]
 fn objective_is_mean_or_min_and_zero_when_unreachable() {
-    let mean = problem(
-        Trajectory::Square,
-        Scheme::Prepositioning,
-        TaskIndex::Lci,
-        Aggregate::Mean,
-    );
-    let min = problem(
-        Trajectory::Square,
-        Scheme::Prepositioning,
-        TaskIndex::Lci,
-        Aggregate::Min,
-    );
+    let [mean, min] = [Aggregate::Mean, Aggregate::Min].map(|aggregate| {
+        problem(
+            Trajectory::Square,
+            Scheme::Prepositioning,
+            TaskIndex::Lci,
+            aggregate,
+        )
+    });
     let d = [0.01, 0.02, -0.01];
     let stats = mean.stats(TaskIndex::Lci, &d);
     assert!((mean.objective(&d) - stats.mean).abs() < 1e-15);
@@ -126,32 +127,26 @@ fn objective_is_mean_or_min_and_zero_when_unreachable() {
     let mut far_design = PrrrDesign::farias2021();
     far_design.a = 0.6;
     for aggregate in [Aggregate::Mean, Aggregate::Min] {
-        let p = RedundancyProblem::new(
-            far_design.clone(),
+        let task = (
             Trajectory::Square,
             Scheme::Prepositioning,
             TaskIndex::Nsir,
             aggregate,
-            [WorkingMode::Plus; 3],
-            41,
-        )
-        .unwrap();
+        );
+        let p = problem_of(far_design.clone(), task, 41).unwrap();
         assert_eq!(p.unreachable_samples(&d), 41);
         assert_eq!(p.objective(&d), 0.0);
     }
     // Partly unreachable (a = 0.42): unreachable samples contribute exactly 0 to the mean.
     let mut edge = PrrrDesign::farias2021();
     edge.a = 0.42;
-    let p = RedundancyProblem::new(
-        edge,
+    let task = (
         Trajectory::Square,
         Scheme::Prepositioning,
         TaskIndex::Nsir,
         Aggregate::Mean,
-        [WorkingMode::Plus; 3],
-        41,
-    )
-    .unwrap();
+    );
+    let p = problem_of(edge, task, 41).unwrap();
     let zero = [0.0; 3];
     let unreachable = p.unreachable_samples(&zero);
     assert!(unreachable > 0 && unreachable < 41, "{unreachable}");
@@ -230,35 +225,16 @@ fn names_parse_and_bad_names_are_errors() {
     assert_eq!("spiral".parse::<Trajectory>().unwrap(), Trajectory::Spiral);
     assert_eq!("Continuous".parse::<Scheme>().unwrap(), Scheme::Continuous);
     assert_eq!("nsir".parse::<TaskIndex>().unwrap(), TaskIndex::Nsir);
-    assert!(
-        "zigzag"
-            .parse::<Trajectory>()
-            .unwrap_err()
-            .to_string()
-            .contains("trajectory")
-    );
-    assert!(
-        "x".parse::<Scheme>()
-            .unwrap_err()
-            .to_string()
-            .contains("scheme")
-    );
-    assert!(
-        "gci"
-            .parse::<TaskIndex>()
-            .unwrap_err()
-            .to_string()
-            .contains("index")
-    );
+    assert!(parse_error::<Trajectory>("zigzag").contains("trajectory"));
+    assert!(parse_error::<Scheme>("x").contains("scheme"));
+    assert!(parse_error::<TaskIndex>("gci").contains("index"));
     assert!("median".parse::<Aggregate>().is_err());
-    let bad = RedundancyProblem::new(
-        PrrrDesign::farias2021(),
+    let task = (
         Trajectory::Line,
         Scheme::Continuous,
         TaskIndex::Lci,
         Aggregate::Mean,
-        [WorkingMode::Plus; 3],
-        1,
     );
+    let bad = problem_of(PrrrDesign::farias2021(), task, 1);
     assert!(bad.unwrap_err().to_string().contains("samples"));
 }

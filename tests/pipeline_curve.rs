@@ -7,23 +7,27 @@ use singdist::mechanism::rpr::{
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, default_start_solutions, sample_motion,
-    singular_parameters,
+    CurveOptions, CurveResult, SeedStage, compute_curve_from_embedded_starts,
+    default_start_solutions, sample_motion, seed_stage, singular_parameters,
 };
 use singdist::problem::{Coordinates, LagrangeProblem, ProblemId, SubProblem};
 use singdist::system::Evaluator;
 
 fn curve(design: &Design, motion: &Motion, poses: usize, metrics: &[Metric]) -> CurveResult {
-    compute_curve(
-        design,
-        motion,
-        poses,
-        metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("the curve is computed")
+    compute_curve_from_embedded_starts(design, motion, poses, metrics, &CurveOptions::default())
+        .expect("the curve is computed")
+}
+
+/// The seed stage of the built-in example for `metrics`.
+fn example_seed_stage(metrics: &[Metric], options: &CurveOptions) -> SeedStage {
+    let (design, motion) = (example_design(), example_motion());
+    seed_stage(&design, &motion, metrics, options, &default_start_solutions).expect("seed stage")
+}
+
+/// The built-in example design and motion, and the metrics named.
+fn example_with(names: &[&str]) -> (Design, Motion, Vec<Metric>) {
+    let metrics = names.iter().map(|name| metric(name)).collect();
+    (example_design(), example_motion(), metrics)
 }
 
 fn metric(name: &str) -> Metric {
@@ -212,9 +216,7 @@ fn curves_are_lipschitz_between_consecutive_poses() {
     // D(K) = min over a fixed constraint set of a seminorm of K − K′, so
     // |D(K_j) − D(K_{j+1})| ≤ D(K_j, K_{j+1}) (the same seminorm); a lost critical
     // point would show as a jump violating this bound.
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("plate/plate")];
+    let (design, motion, metrics) = example_with(&["plate/plate"]);
     let result = curve(&design, &motion, 40, &metrics);
     let samples = sample_motion(&motion, 40).expect("valid motion");
     let mut worst_ratio = 0.0f64;
@@ -238,9 +240,7 @@ fn curves_are_lipschitz_between_consecutive_poses() {
 
 #[test]
 fn same_seed_gives_identical_json_on_one_and_two_threads() {
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("plate/plate")];
+    let (design, motion, metrics) = example_with(&["plate/plate"]);
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -289,19 +289,10 @@ fn scaling_the_design_and_motion_scales_every_distance() {
 /// Paths lost (expected − accounted) by the seed stage of the built-in example and by
 /// the seed → pose homotopies at `poses` (of 90), for one metric, without rescue pass.
 fn lost_on_example(name: &str, poses: &[usize], options: &CurveOptions) -> (usize, usize) {
-    use singdist::pipeline::curve::{seed_stage, solve_pose};
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric(name)];
+    use singdist::pipeline::curve::solve_pose;
+    let (design, motion, metrics) = example_with(&[name]);
     let samples = sample_motion(&motion, 90).expect("samples");
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        options,
-        &default_start_solutions,
-    )
-    .expect("seed stage");
+    let stage = example_seed_stage(&metrics, options);
     let lost = |failures: &[singdist::pipeline::curve::PathFailure]| -> usize {
         failures.iter().map(|f| f.expected - f.accounted).sum()
     };
@@ -399,25 +390,14 @@ fn isotropic_coordinates_account_for_the_far_out_rigid_rigid_critical_points() {
 /// needs a re-run).
 #[test]
 fn chained_poses_match_the_seed_route() {
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("plate/rigid"), metric("bars/bars")];
+    let (design, motion, metrics) = example_with(&["plate/rigid", "bars/bars"]);
     let run = |chain_length: usize, jump: bool| {
         let options = CurveOptions {
             chain_length,
             jump,
             ..CurveOptions::default()
         };
-        compute_curve(
-            &design,
-            &motion,
-            40,
-            &metrics,
-            &options,
-            &default_start_solutions,
-            &|_| {},
-        )
-        .expect("curve")
+        compute_curve_from_embedded_starts(&design, &motion, 40, &metrics, &options).expect("curve")
     };
     let reference = run(1, false);
     let tracked = run(40, false);
@@ -456,10 +436,8 @@ fn chained_poses_match_the_seed_route() {
 /// stage still loses nothing and some, not all, poses lose paths.)
 #[test]
 fn rescue_pass_recovers_poses_from_complete_neighbours() {
-    use singdist::pipeline::curve::{seed_stage, solve_pose};
-    let design = example_design();
-    let motion = example_motion();
-    let metrics = [metric("plate/plate")];
+    use singdist::pipeline::curve::solve_pose;
+    let (design, motion, metrics) = example_with(&["plate/plate"]);
     let poses = 30;
     let samples = sample_motion(&motion, poses).expect("samples");
     let starved_with = |budget: usize| {
@@ -475,14 +453,7 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
         .into_iter()
         .find_map(|budget| {
             let options = starved_with(budget);
-            let stage = seed_stage(
-                &design,
-                &motion,
-                &metrics,
-                &options,
-                &default_start_solutions,
-            )
-            .expect("seed stage");
+            let stage = example_seed_stage(&metrics, &options);
             if !stage.failures.is_empty() {
                 return None;
             }
@@ -505,16 +476,8 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
         })
         .expect("a budget at which some poses lose paths");
     let run = |options: &CurveOptions| {
-        compute_curve(
-            &design,
-            &motion,
-            poses,
-            &metrics,
-            options,
-            &default_start_solutions,
-            &|_| {},
-        )
-        .expect("curve")
+        compute_curve_from_embedded_starts(&design, &motion, poses, &metrics, options)
+            .expect("curve")
     };
     let rescued = run(&starved);
     let still_lost: Vec<usize> = rescued

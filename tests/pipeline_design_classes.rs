@@ -5,7 +5,8 @@
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_motion};
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, compute_curve, default_start_solutions,
+    CurveOptions, CurveResult, compute_curve, compute_curve_from_embedded_starts,
+    default_start_solutions,
 };
 use singdist::problem::{ProblemId, pedal};
 
@@ -17,16 +18,8 @@ fn at_poses(design: &Design, poses: &[Pose], metrics: &[Metric], seed: u64) -> C
     let motion = Motion::Poses(PoseList {
         poses: poses.to_vec(),
     });
-    compute_curve(
-        design,
-        &motion,
-        0,
-        metrics,
-        &options,
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("the curve is computed")
+    compute_curve_from_embedded_starts(design, &motion, 0, metrics, &options)
+        .expect("the curve is computed")
 }
 
 fn relative(a: f64, b: f64) -> f64 {

@@ -7,7 +7,8 @@ use singdist::homotopy::{SolveOptions, solve_parameter_homotopy};
 use singdist::mechanism::rpr::{self, Design, Pose};
 use singdist::metric::Metric;
 use singdist::pipeline::ab_initio::{self, embedded_start_solutions, start_solutions};
-use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem};
+use singdist::pipeline::bisection::bisect_sign_change;
+use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, SubProblem, pedal};
 
 /// Global minimum of D over the real critical points of `id` at the configuration of
 /// `pose`: (distance, K′).
@@ -71,19 +72,8 @@ fn test_design() -> Design {
 /// Orthogonal projections of three points onto their total-least-squares line
 /// (through the centroid along the principal axis of the scatter matrix).
 fn pedal_points(points: [[f64; 2]; 3]) -> [[f64; 2]; 3] {
-    let c = [
-        (points[0][0] + points[1][0] + points[2][0]) / 3.0,
-        (points[0][1] + points[1][1] + points[2][1]) / 3.0,
-    ];
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for p in points {
-        let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
-        sxx += dx * dx;
-        sxy += dx * dy;
-        syy += dy * dy;
-    }
-    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let w = [angle.cos(), angle.sin()];
+    let line = pedal::total_least_squares_line(points);
+    let (c, w) = (line.centroid, line.direction);
     points.map(|p| {
         let t = (p[0] - c[0]) * w[0] + (p[1] - c[1]) * w[1];
         [c[0] + t * w[0], c[1] + t * w[1]]
@@ -180,17 +170,9 @@ fn singular_configuration_has_distance_zero_for_all_nine_metrics() {
             .singularity()
     };
     // Bisection on the sign change of S near τ ≈ −0.086 (the example's first crossing).
-    let (mut lo, mut hi) = (-0.5, 0.3);
-    assert!(s(lo) * s(hi) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if s(lo) * s(mid) <= 0.0 {
-            hi = mid
-        } else {
-            lo = mid
-        }
-    }
-    let pose = motion.pose(0.5 * (lo + hi)).unwrap();
+    assert!(s(-0.5) * s(0.3) < 0.0);
+    let tau = bisect_sign_change((-0.5, 0.3), s(-0.5), |tau| Some(s(tau)));
+    let pose = motion.pose(tau).unwrap();
     assert!(design.configuration(pose).singularity().abs() < 1e-9);
     for metric in Metric::all() {
         let id = ProblemId {

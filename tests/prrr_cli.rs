@@ -1,7 +1,7 @@
 //! The `singdist prrr` and `singdist map` commands end to end (small sizes).
 
 mod cli_support;
-use cli_support::{assert_success, singdist, temp_dir};
+use cli_support::{assert_success, read, singdist, succeed_line, temp_dir};
 
 #[test]
 fn prrr_index_json_reports_spec_test_vector() {
@@ -36,30 +36,12 @@ fn prrr_index_errors_are_one_line_and_named() {
 fn resolve_writes_table_and_map_writes_files() {
     let dir = temp_dir("prrr-cli");
     let csv = dir.join("r.csv");
-    let out = singdist(&[
-        "prrr",
-        "resolve",
-        "--trajectory",
-        "circle",
-        "--scheme",
-        "all",
-        "--index",
-        "nsir",
-        "--population",
-        "8",
-        "--generations",
-        "3",
-        "--samples",
-        "21",
-        "--timing-repetitions",
-        "1",
-        "--seed",
-        "3",
-        "--out",
-        csv.to_str().unwrap(),
-    ]);
-    assert_success(&out);
-    let text = std::fs::read_to_string(&csv).unwrap();
+    let out = succeed_line(&format!(
+        "prrr resolve --trajectory circle --scheme all --index nsir --population 8 \
+         --generations 3 --samples 21 --timing-repetitions 1 --seed 3 --out {}",
+        csv.display()
+    ));
+    let text = read(&csv);
     assert_eq!(text.lines().count(), 3, "{text}");
     assert_eq!(String::from_utf8_lossy(&out.stdout), text);
     let mut reader = csv::Reader::from_reader(text.as_bytes());
@@ -71,28 +53,16 @@ fn resolve_writes_table_and_map_writes_files() {
     }
     let svg = dir.join("m.svg");
     let map_csv = dir.join("m.csv");
-    let out = singdist(&[
-        "map",
-        "--robot",
-        "3rrr",
-        "--x-range=-0.25,0.25",
-        "--y-range=-0.25,0.25",
-        "--step",
-        "0.05",
-        "--out",
-        svg.to_str().unwrap(),
-        "--csv",
-        map_csv.to_str().unwrap(),
-        "--json",
-    ]);
-    assert_success(&out);
+    let out = succeed_line(&format!(
+        "map --robot 3rrr --x-range=-0.25,0.25 --y-range=-0.25,0.25 --step 0.05 \
+         --out {} --csv {} --json",
+        svg.display(),
+        map_csv.display()
+    ));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["nodes"], 121);
-    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
-    assert_eq!(
-        std::fs::read_to_string(&map_csv).unwrap().lines().count(),
-        122
-    );
+    assert!(read(&svg).contains("<svg"));
+    assert_eq!(read(&map_csv).lines().count(), 122);
     let out = singdist(&["map", "--robot", "4rrr"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("robot"));
     std::fs::remove_dir_all(&dir).ok();

@@ -12,30 +12,23 @@ const MINUS: WorkingMode = WorkingMode::Minus;
 fn spec_d2_test_vector() {
     let design = PrrrDesign::farias2021();
     let pose = Pose::new(0.0, 0.0, 0.0);
-    let c = design
-        .inverse_kinematics(&pose, &[0.0; 3], &[PLUS; 3])
-        .unwrap();
-    let idx = all_indices(&design, &c, Robot::ThreePrrr);
-    println!("{idx:?}");
-    assert!(
-        (idx.lci_inv_a_b - 0.785952).abs() < 1e-6,
-        "{}",
-        idx.lci_inv_a_b
-    );
-    assert!((idx.r_norm - 0.785952).abs() < 1e-6, "{}", idx.r_norm);
-    assert!((idx.xi - 0.559922).abs() < 1e-6, "{}", idx.xi);
-    assert!((idx.nsir - 0.440072).abs() < 1e-6, "{}", idx.nsir);
-    let c = design
-        .inverse_kinematics(&pose, &[0.0; 3], &[PLUS, MINUS, PLUS])
-        .unwrap();
-    let idx = all_indices(&design, &c, Robot::ThreePrrr);
-    println!("{idx:?}");
-    assert!(
-        (idx.lci_inv_a_b - 0.253256).abs() < 1e-6,
-        "{}",
-        idx.lci_inv_a_b
-    );
-    assert!((idx.nsir - 0.305006).abs() < 1e-6, "{}", idx.nsir);
+    let indices_with = |modes: [WorkingMode; 3]| {
+        let c = design.inverse_kinematics(&pose, &[0.0; 3], &modes).unwrap();
+        let idx = all_indices(&design, &c, Robot::ThreePrrr);
+        println!("{idx:?}");
+        idx
+    };
+    let close = |value: f64, expected: f64| {
+        assert!((value - expected).abs() < 1e-6, "{value} vs {expected}");
+    };
+    let idx = indices_with([PLUS; 3]);
+    close(idx.lci_inv_a_b, 0.785952);
+    close(idx.r_norm, 0.785952);
+    close(idx.xi, 0.559922);
+    close(idx.nsir, 0.440072);
+    let idx = indices_with([PLUS, MINUS, PLUS]);
+    close(idx.lci_inv_a_b, 0.253256);
+    close(idx.nsir, 0.305006);
 }
 
 /// Random inverse-kinematics inputs, drawn in this order: a pose with `x, y` uniform in

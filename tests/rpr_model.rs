@@ -4,6 +4,7 @@
 use nalgebra::Matrix3;
 use singdist::C64;
 use singdist::io::{load_design, load_motion};
+use singdist::mechanism::InputNumberError;
 use singdist::mechanism::rpr::{
     Design, Motion, Pose, PoseList, RprError, collinearity_base, collinearity_platform,
     example_design, example_motion, reconstruct_third_point, rigid_shape, singularity_polynomial,
@@ -162,7 +163,9 @@ fn design_validation_names_the_field() {
         [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]],
     )
     .unwrap_err();
-    assert!(matches!(err, RprError::NotFinite { ref field, .. } if field == "base[1].y"));
+    assert!(
+        matches!(err, RprError::Number(InputNumberError::NotFinite { ref field, .. }) if field == "base[1].y")
+    );
     assert!(err.to_string().contains("base[1].y"));
     // A base collapsed to a point.
     let err = Design::new([[1.0, 1.0]; 3], [[0.0, 0.0], [3.0, 0.0], [1.0, 2.0]]).unwrap_err();
@@ -249,70 +252,80 @@ fn write_temp(name: &str, text: &str) -> std::path::PathBuf {
 
 #[test]
 fn file_errors_name_file_and_field() {
-    let cases: [(&str, &str, &str); 7] = [
-        ("malformed.json", "{\"base\": [[0,0],", "malformed JSON"),
+    // The message of loading a file as a design or as a motion.
+    type Loader = fn(&std::path::Path) -> String;
+    let design: Loader = |path| load_design(path).unwrap_err().to_string();
+    let motion: Loader = |path| load_motion(path).unwrap_err().to_string();
+    let cases: [(Loader, &str, &str, &str); 11] = [
         (
+            design,
+            "malformed.json",
+            "{\"base\": [[0,0],",
+            "malformed JSON",
+        ),
+        (
+            design,
             "missing.json",
             "{\"base\": [[0,0],[1,0],[0,1]]}",
             "platform: missing field",
         ),
         (
+            design,
             "short.json",
             "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[0,0],[1,0,3],[0,1]]}",
             "platform[1]: expected an array of 2 numbers, got 3 elements",
         ),
         (
+            design,
             "two.json",
             "{\"base\": [[0,0],[1,0]], \"platform\": [[0,0],[1,0],[0,1]]}",
             "base: expected 3 anchors",
         ),
         (
+            design,
             "string.json",
             "{\"base\": [[0,0],[1,\"x\"],[0,1]], \"platform\": [[0,0],[1,0],[0,1]]}",
             "base[1][1]: expected a number, got a string",
         ),
         (
+            design,
             "nan.json",
             "{\"base\": [[0,0],[1,NaN],[0,1]], \"platform\": [[0,0],[1,0],[0,1]]}",
             "malformed JSON",
         ),
         (
+            design,
             "collapsed.json",
             "{\"base\": [[0,0],[1,0],[0,1]], \"platform\": [[2,1],[2,1],[2,1]]}",
             "platform: collapsed to a point",
         ),
-    ];
-    for (name, text, expected) in cases {
-        let path = write_temp(name, text);
-        let err = load_design(&path).unwrap_err().to_string();
-        assert!(err.contains(name), "{err}");
-        assert!(err.contains(expected), "{name}: {err}");
-    }
-    let motion_cases: [(&str, &str, &str); 4] = [
         (
+            motion,
             "m1.json",
             "{\"poses\": [[0,0,0],[1,2]]}",
             "poses[1]: expected an array of 3",
         ),
         (
+            motion,
             "m2.json",
             "{\"poses\": []}",
             "poses: the pose list is empty",
         ),
         (
+            motion,
             "m3.json",
             "{\"tau_range\": [1, 0], \"x\": {}, \"y\": {}, \"phi\": {}}",
             "tau_range: must be two finite numbers",
         ),
         (
+            motion,
             "m4.json",
             "{\"tau_range\": [0, 1], \"x\": {\"cosines\": [[1, 2]]}, \"y\": {}, \"phi\": {}}",
             "x.cosines[0]: expected an array of 3 numbers",
         ),
     ];
-    for (name, text, expected) in motion_cases {
-        let path = write_temp(name, text);
-        let err = load_motion(&path).unwrap_err().to_string();
+    for (load, name, text, expected) in cases {
+        let err = load(&write_temp(name, text));
         assert!(
             err.contains(name) && err.contains(expected),
             "{name}: {err}"

@@ -2,26 +2,11 @@
 //! joints) and one closest singular configuration per kind (parallel, legs 1–3), with
 //! the distances `singdist rrr curve` reports at that pose.
 
-use std::process::Command;
-
-fn singdist(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_singdist"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod cli_support;
+use cli_support::{group_of_k, singdist, temp_dir};
 
 fn temp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("singdist-rrr-draw-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name).display().to_string()
-}
-
-/// The text of the element group `<g id="K" …> … </g>` (no nested groups inside).
-fn group_of_k(svg: &str) -> &str {
-    let start = svg.find(r#"<g id="K""#).expect("a group g#K");
-    let end = start + svg[start..].find("</g>").expect("g#K is closed");
-    &svg[start..end]
+    temp_dir("rrr-draw-cli").join(name).display().to_string()
 }
 
 #[test]

@@ -6,6 +6,9 @@ use singdist::mechanism::rrr::{
 };
 use singdist::random::{seeded, uniform};
 
+mod rrr_support;
+use rrr_support::modes_of;
+
 fn random_design(rng: &mut singdist::random::SeededRng) -> RrrDesign {
     let mut p = || Point::new(uniform(rng, -1.0, 1.0), uniform(rng, -1.0, 1.0));
     let base = [p() * 5.0, p() * 5.0, p() * 5.0];
@@ -152,7 +155,7 @@ fn invalid_designs_and_poses_name_the_field() {
         platform,
     )
     .unwrap_err();
-    assert_eq!(err.to_string(), "base[1].x must be finite, got NaN");
+    assert_eq!(err.to_string(), "base[1].x: not a finite number (NaN)");
     let err = RrrDesign::new(base, [1.0; 3], [1.0, 1.0, -2.0], platform).unwrap_err();
     assert!(err.to_string().contains("distal[2]"), "{err}");
     let err = RrrDesign::new(base, [0.0, 1.0, 1.0], [1.0; 3], platform).unwrap_err();
@@ -199,15 +202,7 @@ fn parallel_determinant_vanishes_when_distal_lines_are_concurrent() {
         platform_fixed, // pose (0, 0, 0): moving frame = fixed frame
     )
     .unwrap();
-    let modes = [0, 1, 2].map(|i| {
-        let b = elbows[i] - bases[i];
-        let c = platform_fixed[i] - elbows[i];
-        if b.x * c.y - b.y * c.x > 0.0 {
-            ElbowMode::Positive
-        } else {
-            ElbowMode::Negative
-        }
-    });
+    let modes = modes_of(&bases, &elbows, &platform_fixed);
     let config = design
         .inverse_kinematics(&RrrPose::new(0.0, 0.0, 0.0), &modes)
         .unwrap();

@@ -3,6 +3,7 @@
 use singdist::C64;
 use singdist::mechanism::rrr::{distance_sq, leg_polynomial, parallel_polynomial};
 use singdist::pipeline::rrr_ab_initio::*;
+use singdist::pipeline::start_file::StartSolutions;
 use singdist::problem::rrr::*;
 use singdist::system::Evaluator;
 
@@ -123,19 +124,32 @@ fn leg_counts_are_stable_across_seeds() {
     }
 }
 
+/// The problem `kind` and its start solutions stored in the binary.
+fn problem_and_stored_set(kind: RrrSubProblem) -> (RrrProblem, StartSolutions) {
+    let problem = RrrProblem::new(kind).unwrap();
+    let stored = embedded_rrr_start_solutions(kind).unwrap().unwrap();
+    (problem, stored)
+}
+
+/// The default ab-initio options with `seed`, monodromy stopping after
+/// `max_stagnant_loops` loops without a new solution.
+fn ab_initio_options(seed: u64, max_stagnant_loops: usize) -> RrrAbInitioOptions {
+    let mut options = RrrAbInitioOptions {
+        seed,
+        ..RrrAbInitioOptions::default()
+    };
+    options.monodromy.max_stagnant_loops = max_stagnant_loops;
+    options
+}
+
 /// The parallel problem's count from a second seed: monodromy from a fresh start pair at a
 /// fresh source point (no target count given, stops on stagnation) reaches the stored count,
 /// certified by the trace test sliced on K′ (≈ 6 s).
 #[test]
 fn parallel_count_is_stable_across_seeds() {
     let kind = RrrSubProblem::Parallel;
-    let problem = RrrProblem::new(kind).unwrap();
-    let stored = embedded_rrr_start_solutions(kind).unwrap().unwrap();
-    let mut options = RrrAbInitioOptions {
-        seed: 4243,
-        ..RrrAbInitioOptions::default()
-    };
-    options.monodromy.max_stagnant_loops = 10;
+    let (problem, stored) = problem_and_stored_set(kind);
+    let options = ab_initio_options(4243, 10);
     assert_eq!(options.monodromy.trace_slice_unknowns, Some(18));
     let fresh = compute_rrr_start_solutions(&problem, &options).unwrap();
     assert!(fresh.max_residual < 1e-10);
@@ -150,13 +164,8 @@ fn parallel_count_is_stable_across_seeds() {
 #[test]
 fn stored_solution_sets_pass_a_fresh_trace_test() {
     for kind in RrrSubProblem::ALL {
-        let problem = RrrProblem::new(kind).unwrap();
-        let file = embedded_rrr_start_solutions(kind).unwrap().unwrap();
-        let mut options = RrrAbInitioOptions {
-            seed: 1,
-            ..RrrAbInitioOptions::default()
-        };
-        options.monodromy.max_stagnant_loops = 3;
+        let (problem, file) = problem_and_stored_set(kind);
+        let options = ab_initio_options(1, 3);
         let started = std::time::Instant::now();
         let certificate = trace_certificate(&problem, &file, &options).unwrap();
         println!(

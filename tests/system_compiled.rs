@@ -75,13 +75,9 @@ fn check_compiled_equals_naive(system: &System, seed: u64, points: usize) {
 #[test]
 fn compiled_random_systems_equal_naive_evaluation() {
     let mut rng = seeded(21);
-    let variables: Vec<String> = (0..5).map(|i| format!("x{i}")).collect();
-    let parameters: Vec<String> = (0..3).map(|i| format!("p{i}")).collect();
-    let symbols: Vec<String> = variables.iter().chain(&parameters).cloned().collect();
+    let (variables, parameters) = (symbol_names("x", 5), symbol_names("p", 3));
     for trial in 0..25 {
-        let equations: Vec<Expr> = (0..4)
-            .map(|_| random_expression(&mut rng, &symbols, 5))
-            .collect();
+        let equations = random_equations(&mut rng, (&variables, &parameters), 4, 5);
         let system = System::new(&variables, &parameters, equations).unwrap();
         check_compiled_equals_naive(&system, 200 + trial, 3);
     }

@@ -55,14 +55,10 @@ fn check_against_finite_differences(system: &System, seed: u64, points: usize) {
 #[test]
 fn derivatives_of_random_polynomial_systems_match_finite_differences() {
     let mut rng = seeded(11);
-    let variables: Vec<String> = (0..4).map(|i| format!("x{i}")).collect();
-    let parameters: Vec<String> = (0..2).map(|i| format!("p{i}")).collect();
-    let symbols: Vec<String> = variables.iter().chain(&parameters).cloned().collect();
+    let (variables, parameters) = (symbol_names("x", 4), symbol_names("p", 2));
     let mut nontrivial = 0;
     for trial in 0..20 {
-        let equations: Vec<Expr> = (0..4)
-            .map(|_| random_expression(&mut rng, &symbols, 4))
-            .collect();
+        let equations = random_equations(&mut rng, (&variables, &parameters), 4, 4);
         let used: Vec<String> = equations.iter().flat_map(|e| e.symbols()).collect();
         if used.iter().any(|s| variables.contains(s)) {
             nontrivial += 1;

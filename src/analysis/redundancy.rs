@@ -119,16 +119,31 @@ impl Trajectory {
     }
 }
 
+/// The option of `all` whose `name` is `s` (trimmed, in any case); otherwise an
+/// [`RedundancyError::InvalidOption`] for `field` listing the names.
+fn parse_option<T: Copy>(
+    s: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+    field: &'static str,
+) -> Result<T, RedundancyError> {
+    let wanted = s.trim().to_ascii_lowercase();
+    all.iter()
+        .copied()
+        .find(|&t| name(t) == wanted)
+        .ok_or_else(|| {
+            let names: Vec<&str> = all.iter().map(|&t| name(t)).collect();
+            RedundancyError::InvalidOption {
+                field,
+                reason: format!("unknown {field} `{s}` ({})", names.join(", ")),
+            }
+        })
+}
+
 impl std::str::FromStr for Trajectory {
     type Err = RedundancyError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Trajectory::ALL
-            .into_iter()
-            .find(|t| t.name() == s.trim().to_ascii_lowercase())
-            .ok_or_else(|| RedundancyError::InvalidOption {
-                field: "trajectory",
-                reason: format!("unknown trajectory `{s}` (line, circle, spiral, square)"),
-            })
+        parse_option(s, &Trajectory::ALL, Trajectory::name, "trajectory")
     }
 }
 
@@ -166,13 +181,7 @@ impl Scheme {
 impl std::str::FromStr for Scheme {
     type Err = RedundancyError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Scheme::ALL
-            .into_iter()
-            .find(|t| t.name() == s.trim().to_ascii_lowercase())
-            .ok_or_else(|| RedundancyError::InvalidOption {
-                field: "scheme",
-                reason: format!("unknown scheme `{s}` (prepositioning, continuous)"),
-            })
+        parse_option(s, &Scheme::ALL, Scheme::name, "scheme")
     }
 }
 
@@ -202,13 +211,7 @@ impl TaskIndex {
 impl std::str::FromStr for TaskIndex {
     type Err = RedundancyError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        TaskIndex::ALL
-            .into_iter()
-            .find(|t| t.name() == s.trim().to_ascii_lowercase())
-            .ok_or_else(|| RedundancyError::InvalidOption {
-                field: "index",
-                reason: format!("unknown index `{s}` (lci, nsir)"),
-            })
+        parse_option(s, &TaskIndex::ALL, TaskIndex::name, "index")
     }
 }
 

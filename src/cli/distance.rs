@@ -13,7 +13,7 @@ use clap::Args;
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList};
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, PoseResult, compute_curve, default_start_solutions,
+    CurveOptions, CurveResult, PoseResult, compute_curve_from_embedded_starts,
 };
 
 /// The pose problem `distance` solves and `draw` draws: design, pose and metrics.
@@ -86,15 +86,7 @@ pub fn solve_pose(
         ..CurveOptions::default()
     };
     with_threads(run.threads, || {
-        compute_curve(
-            design,
-            &motion,
-            1,
-            metrics,
-            &options,
-            &default_start_solutions,
-            &|_| {},
-        )
+        compute_curve_from_embedded_starts(design, &motion, 1, metrics, &options)
     })?
     .map_err(Into::into)
 }

@@ -10,7 +10,8 @@ use super::output::{check_output_file, write_file};
 use anyhow::Result;
 use clap::Args;
 use singdist::io::draw::{Scene, scene_extent, scene_svg};
-use std::path::PathBuf;
+use singdist::pipeline::curve::PathFailure;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `singdist draw`.
 #[derive(Args, Debug)]
@@ -43,10 +44,13 @@ pub fn run(args: DrawArgs) -> Result<Outcome> {
         eprintln!("singdist: warning: {name}: no real critical point found, not drawn");
     }
     let scene = Scene::of_pose(design, at, &names, "design length unit");
-    write_file(
-        "--out",
-        &output.out,
-        scene_svg(&scene, &scene_extent(&scene)),
-    )?;
-    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
+    let svg = scene_svg(&scene, &scene_extent(&scene));
+    write_drawing(&output.out, svg, &result.failures)
+}
+
+/// Writes the drawing `svg` to `--out`; exit code 3 (after a warning listing them) if
+/// paths were lost.
+pub(super) fn write_drawing(out: &Path, svg: String, failures: &[PathFailure]) -> Result<Outcome> {
+    write_file("--out", out, svg)?;
+    Ok(Outcome::paths_lost_if(warn_failures(failures)))
 }

@@ -33,8 +33,9 @@ use singdist::mechanism::rpr::{
 };
 use singdist::metric::Metric;
 use singdist::pipeline::curve::{
-    CurveOptions, CurveResult, CurveRun, PathFailure, PoseResult, compute_curve,
-    default_start_solutions, sample_motion, singular_parameters, window_ranges,
+    CurveOptions, CurveResult, CurveRun, PathFailure, PoseResult,
+    compute_curve_from_embedded_starts, default_start_solutions, sample_motion,
+    singular_parameters, window_ranges,
 };
 use singdist::pipeline::postprocess::MetricDistance;
 use std::collections::BTreeMap;
@@ -210,8 +211,8 @@ pub fn run(args: IndicesArgs) -> Result<Outcome> {
     ))
 }
 
-/// The metric distances at one pose ([`compute_curve`] with the `curve` command's
-/// default start provider and options), or `None` when no metric was asked for.
+/// The metric distances at every pose ([`compute_curve_from_embedded_starts`] with the
+/// `curve` command's default options), or `None` when no metric was asked for.
 fn metric_curve(
     design: &Design,
     motion: &Motion,
@@ -227,15 +228,7 @@ fn metric_curve(
         ..CurveOptions::default()
     };
     let result = with_threads(args.motion_run.run.threads, || {
-        compute_curve(
-            design,
-            motion,
-            poses,
-            metrics,
-            &options,
-            &default_start_solutions,
-            &|_: &PoseResult| {},
-        )
+        compute_curve_from_embedded_starts(design, motion, poses, metrics, &options)
     })?
     .context("--with-metrics")?;
     Ok(Some(result))

@@ -3,10 +3,9 @@
 //! `singdist rrr curve` computes them, on the one-pose motion).
 
 use super::args::{DesignArg, ModesArg, PoseArg};
-use super::draw::DrawingOutputArgs;
-use super::failures::warn_failures;
+use super::draw::{DrawingOutputArgs, write_drawing};
 use super::outcome::Outcome;
-use super::output::{check_output_file, write_file};
+use super::output::check_output_file;
 use super::resources::with_threads;
 use super::rrr::trajectory_of;
 use anyhow::{Context, Result, bail};
@@ -54,10 +53,6 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
         }
     }
     let scene = RrrScene::of_pose(&configuration, at, "design length unit");
-    write_file(
-        "--out",
-        &output.out,
-        rrr_scene_svg(&scene, &rrr_scene_extent(&scene)),
-    )?;
-    Ok(Outcome::paths_lost_if(warn_failures(&result.failures)))
+    let svg = rrr_scene_svg(&scene, &rrr_scene_extent(&scene));
+    write_drawing(&output.out, svg, &result.failures)
 }

@@ -26,7 +26,7 @@
 
 use super::homotopies::{ParameterHomotopy, PolylineParameterHomotopy};
 use super::refine::contains_point;
-use super::solve::HomotopyError;
+use super::solve::{HomotopyError, check_finite, check_length, check_square};
 use super::tracker::{PathStatus, Tracker, TrackerOptions};
 use crate::C64;
 use crate::random::{SeededRng, complex_normal, seeded};
@@ -185,34 +185,11 @@ pub fn monodromy_solve<F: Evaluator + ?Sized>(
 ) -> Result<MonodromyResult, HomotopyError> {
     let n = system.num_variables();
     let m = system.num_parameters();
-    if system.num_equations() != n {
-        return Err(HomotopyError::NotSquare {
-            equations: system.num_equations(),
-            variables: n,
-        });
-    }
-    if start_solution.len() != n {
-        return Err(HomotopyError::WrongLength {
-            field: "start_solution",
-            expected: n,
-            found: start_solution.len(),
-        });
-    }
-    if start_parameters.len() != m {
-        return Err(HomotopyError::WrongLength {
-            field: "start_parameters",
-            expected: m,
-            found: start_parameters.len(),
-        });
-    }
-    for (field, values) in [
-        ("start_solution", start_solution),
-        ("start_parameters", start_parameters),
-    ] {
-        if !values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
-            return Err(HomotopyError::NonFinite { field });
-        }
-    }
+    check_square(system)?;
+    check_length("start_solution", n, start_solution.len())?;
+    check_length("start_parameters", m, start_parameters.len())?;
+    check_finite("start_solution", start_solution)?;
+    check_finite("start_parameters", start_parameters)?;
     let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
     let mut f = vec![C64::new(0.0, 0.0); n];
     system.evaluate(start_solution, start_parameters, &mut work, &mut f);
@@ -464,9 +441,6 @@ impl<F: Evaluator + ?Sized> IncidenceSlice<'_, F> {
 
 impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
     fn num_variables(&self) -> usize {
-        self.system.num_variables() + 1
-    }
-    fn num_equations(&self) -> usize {
         self.system.num_variables() + 1
     }
     fn num_parameters(&self) -> usize {

@@ -181,7 +181,7 @@ fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
         .all(|(u, v)| (u - v).norm() <= tolerance * scale)
 }
 
-fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
+pub(super) fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {
     if values.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
         Ok(())
     } else {
@@ -520,12 +520,6 @@ struct TargetSystem<'a, H: Homotopy + ?Sized> {
 impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
     fn num_variables(&self) -> usize {
         self.homotopy.dimension()
-    }
-    fn num_equations(&self) -> usize {
-        self.homotopy.dimension()
-    }
-    fn num_parameters(&self) -> usize {
-        0
     }
     fn workspace_len(&self) -> usize {
         self.homotopy.workspace_len()

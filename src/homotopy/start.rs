@@ -78,12 +78,6 @@ impl Evaluator for TotalDegreeStartSystem {
     fn num_variables(&self) -> usize {
         self.degrees.len()
     }
-    fn num_equations(&self) -> usize {
-        self.degrees.len()
-    }
-    fn num_parameters(&self) -> usize {
-        0
-    }
     fn workspace_len(&self) -> usize {
         0
     }

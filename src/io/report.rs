@@ -67,6 +67,20 @@ const REPORT_TICKS: TickStyle = TickStyle {
 /// Chart geometry in pixels.
 const CHART: (f64, f64, f64, f64, f64, f64) = (640.0, 400.0, 72.0, 16.0, 548.0, 320.0);
 
+/// Every scene drawn (by `svg`) in the one view that holds them all (by `extent`): the
+/// frames the slider switches between.
+fn frames_in_one_view<S>(
+    scenes: &[S],
+    extent: fn(&S) -> Extent,
+    svg: fn(&S, &Extent) -> String,
+) -> Vec<String> {
+    let view = scenes
+        .iter()
+        .map(extent)
+        .fold(Extent::empty(), |a, b| a.union(&b));
+    scenes.iter().map(|scene| svg(scene, &view)).collect()
+}
+
 /// The report of a 3-RPR curve: signed distance of each metric in `metrics` against
 /// τ, and per pose the drawing of `K` and each metric's `K′`.
 pub fn rpr_report(
@@ -84,10 +98,6 @@ pub fn rpr_report(
             scene
         })
         .collect();
-    let view = scenes
-        .iter()
-        .map(scene_extent)
-        .fold(Extent::empty(), |a, b| a.union(&b));
     let curves = metrics
         .iter()
         .map(|name| ReportCurve {
@@ -108,7 +118,7 @@ pub fn rpr_report(
         poses: result.poses.iter().map(|p| p.pose).collect(),
         curves,
         singular: singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
-        frames: scenes.iter().map(|s| scene_svg(s, &view)).collect(),
+        frames: frames_in_one_view(&scenes, scene_extent, scene_svg),
     }
 }
 
@@ -126,10 +136,6 @@ pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) 
             scene
         })
         .collect();
-    let view = scenes
-        .iter()
-        .map(rrr_scene_extent)
-        .fold(Extent::empty(), |a, b| a.union(&b));
     type Getter = fn(&RrrPoseResult) -> Option<f64>;
     let getters: [(&str, Getter); 4] = [
         ("parallel", |p| p.parallel),
@@ -165,7 +171,7 @@ pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) 
         poses: result.poses.iter().map(|p| p.pose).collect(),
         curves,
         singular,
-        frames: scenes.iter().map(|s| rrr_scene_svg(s, &view)).collect(),
+        frames: frames_in_one_view(&scenes, rrr_scene_extent, rrr_scene_svg),
     }
 }
 

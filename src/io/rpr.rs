@@ -112,7 +112,11 @@ fn array<'a>(value: &'a Value, field: &str) -> Result<&'a Vec<Value>, FieldError
         .ok_or_else(|| field_error(field, format!("expected an array, got {}", describe(value))))
 }
 
-fn fixed_numbers<const N: usize>(value: &Value, field: &str) -> Result<[f64; N], FieldError> {
+/// An array of exactly `N` finite numbers (the 3-RPR and 3-RRR loaders' shared reader).
+pub(super) fn fixed_numbers<const N: usize>(
+    value: &Value,
+    field: &str,
+) -> Result<[f64; N], FieldError> {
     let items = array(value, field)?;
     if items.len() != N {
         return Err(field_error(

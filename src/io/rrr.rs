@@ -13,7 +13,7 @@
 //! [`crate::mechanism::rrr::ElbowMode`]). Motions use the 3-RPR motion format
 //! ([`super::rpr::load_motion`]). Every error names the file and the field.
 
-use super::rpr::{FileError, read_json};
+use super::rpr::{FieldError, FileError, fixed_numbers, read_json};
 use crate::mechanism::rrr::{ElbowMode, POSITIVE_MODES, Point, RrrDesign, RrrError, WorkingModes};
 use serde_json::Value;
 use std::path::Path;
@@ -35,33 +35,10 @@ fn field(name: &str, reason: impl Into<String>) -> RrrParseError {
     RrrParseError::Field(name.to_string(), reason.into())
 }
 
-fn number(value: &Value, name: &str) -> Result<f64, RrrParseError> {
-    value
-        .as_f64()
-        .ok_or_else(|| field(name, format!("expected a number, got {value}")))
-}
-
-fn numbers<const N: usize>(value: &Value, name: &str) -> Result<[f64; N], RrrParseError> {
-    let items = value.as_array().ok_or_else(|| {
-        field(
-            name,
-            format!("expected an array of {N} numbers, got {value}"),
-        )
-    })?;
-    if items.len() != N {
-        return Err(field(
-            name,
-            format!(
-                "expected an array of {N} numbers, got {} elements",
-                items.len()
-            ),
-        ));
+impl From<FieldError> for RrrParseError {
+    fn from(error: FieldError) -> Self {
+        RrrParseError::Field(error.field, error.reason)
     }
-    let mut out = [0.0; N];
-    for (k, item) in items.iter().enumerate() {
-        out[k] = number(item, &format!("{name}[{k}]"))?;
-    }
-    Ok(out)
 }
 
 fn points(value: &Value, name: &str) -> Result<[Point; 3], RrrParseError> {
@@ -76,7 +53,7 @@ fn points(value: &Value, name: &str) -> Result<[Point; 3], RrrParseError> {
     }
     let mut out = [Point::zeros(); 3];
     for (i, item) in items.iter().enumerate() {
-        let [x, y] = numbers::<2>(item, &format!("{name}[{i}]"))?;
+        let [x, y] = fixed_numbers::<2>(item, &format!("{name}[{i}]"))?;
         out[i] = Point::new(x, y);
     }
     Ok(out)
@@ -97,11 +74,11 @@ pub fn rrr_design_from_json(value: &Value) -> Result<(RrrDesign, WorkingModes), 
     let required = |key: &str| map.get(key).ok_or_else(|| field(key, "missing field"));
     let base = points(required("base")?, "base")?;
     let platform = points(required("platform")?, "platform")?;
-    let proximal = numbers::<3>(required("proximal")?, "proximal")?;
-    let distal = numbers::<3>(required("distal")?, "distal")?;
+    let proximal = fixed_numbers::<3>(required("proximal")?, "proximal")?;
+    let distal = fixed_numbers::<3>(required("distal")?, "distal")?;
     let mut modes = POSITIVE_MODES;
     if let Some(list) = map.get("working_modes") {
-        let values = numbers::<3>(list, "working_modes")?;
+        let values = fixed_numbers::<3>(list, "working_modes")?;
         for (leg, v) in values.iter().enumerate() {
             modes[leg] = match *v {
                 1.0 => ElbowMode::Positive,

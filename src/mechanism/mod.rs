@@ -21,3 +21,46 @@ pub const MAX_INPUT_MAGNITUDE: f64 = 1e12;
 pub fn within_input_range(value: f64) -> bool {
     value.abs() <= MAX_INPUT_MAGNITUDE
 }
+
+/// An input number (of a design, motion or pose) that is rejected; the message names
+/// the field.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum InputNumberError {
+    /// The number is NaN or infinite.
+    #[error("{field}: not a finite number ({value})")]
+    NotFinite {
+        /// The field, e.g. `base[1].y`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// The number is finite but beyond ±[`MAX_INPUT_MAGNITUDE`].
+    #[error("{field}: {value:e} is outside ±{max:e}", max = MAX_INPUT_MAGNITUDE)]
+    OutOfRange {
+        /// The field, e.g. `base[1].x` or `poses[0][0]`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+}
+
+/// Checks that `value` is finite and within ±[`MAX_INPUT_MAGNITUDE`]; the error names
+/// `field()`.
+pub fn check_input_number(
+    field: impl FnOnce() -> String,
+    value: f64,
+) -> Result<(), InputNumberError> {
+    if !value.is_finite() {
+        return Err(InputNumberError::NotFinite {
+            field: field(),
+            value,
+        });
+    }
+    if !within_input_range(value) {
+        return Err(InputNumberError::OutOfRange {
+            field: field(),
+            value,
+        });
+    }
+    Ok(())
+}

@@ -17,29 +17,20 @@
 
 use crate::C64;
 use crate::algebra::{Cartesian, Plane, Point, Ring, difference, dot};
-use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
+use crate::mechanism::InputNumberError;
+pub use crate::mechanism::check_input_number;
+use num_complex::ComplexFloat;
 use serde::{Deserialize, Serialize};
+use std::iter::Sum;
+use std::ops::{Add, Mul};
 use thiserror::Error;
 
 /// Errors of 3-RPR designs and motions; every message names the offending field.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum RprError {
-    /// A coordinate is NaN or infinite.
-    #[error("{field}: not a finite number ({value})")]
-    NotFinite {
-        /// The field, e.g. `base[1].y`.
-        field: String,
-        /// The offending value.
-        value: f64,
-    },
-    /// A number is finite but beyond ±[`MAX_INPUT_MAGNITUDE`].
-    #[error("{field}: {value:e} is outside ±{max:e}", max = MAX_INPUT_MAGNITUDE)]
-    OutOfRange {
-        /// The field, e.g. `base[1].x` or `poses[0][0]`.
-        field: String,
-        /// The offending value.
-        value: f64,
-    },
+    /// A number is NaN, infinite or beyond ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE).
+    #[error(transparent)]
+    Number(#[from] InputNumberError),
     /// All three anchors of a part coincide: `S ≡ 0` (architecture singular), and no
     /// labelling gives the rigid-part representation two distinct reference anchors.
     #[error(
@@ -103,25 +94,7 @@ impl From<Design> for DesignFields {
     }
 }
 
-/// Checks that `value` is finite and within ±[`MAX_INPUT_MAGNITUDE`]; the error names
-/// `field()`.
-pub fn check_input_number(field: impl FnOnce() -> String, value: f64) -> Result<(), RprError> {
-    if !value.is_finite() {
-        return Err(RprError::NotFinite {
-            field: field(),
-            value,
-        });
-    }
-    if !within_input_range(value) {
-        return Err(RprError::OutOfRange {
-            field: field(),
-            value,
-        });
-    }
-    Ok(())
-}
-
-/// Every anchor coordinate finite and within ±[`MAX_INPUT_MAGNITUDE`] (checked before
+/// Every anchor coordinate finite and within ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE) (checked before
 /// anything else, so a huge coordinate is never mistaken for coincident anchors).
 fn check_anchor_numbers(
     base: &[Point<f64>; 3],
@@ -137,7 +110,7 @@ fn check_anchor_numbers(
     Ok(())
 }
 
-/// Checks one pose: `x`, `y`, `φ` finite and within ±[`MAX_INPUT_MAGNITUDE`]; errors
+/// Checks one pose: `x`, `y`, `φ` finite and within ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE); errors
 /// name `{field}[k]` (k = 0, 1, 2 for x, y, φ).
 pub fn check_pose(field: &str, pose: Pose) -> Result<(), RprError> {
     for (k, v) in <[f64; 3]>::from(pose).iter().enumerate() {
@@ -150,10 +123,11 @@ fn check_part(part: &'static str, points: &[Point<f64>; 3], scale: f64) -> Resul
     for (i, point) in points.iter().enumerate() {
         for (axis, value) in ["x", "y"].iter().zip(point) {
             if !value.is_finite() {
-                return Err(RprError::NotFinite {
+                return Err(InputNumberError::NotFinite {
                     field: format!("{part}[{i}].{axis}"),
                     value: *value,
-                });
+                }
+                .into());
             }
         }
     }
@@ -564,27 +538,27 @@ impl MotionCoordinate {
 
     /// Value at real τ.
     pub fn value(&self, tau: f64) -> f64 {
-        let poly = self
-            .polynomial
-            .iter()
-            .rev()
-            .fold(0.0, |acc, c| acc * tau + c);
-        let trig: f64 = self
-            .cosines
-            .iter()
-            .map(|t| t.amplitude * (t.frequency * tau + t.phase).cos())
-            .sum();
-        poly + trig
+        self.value_at(tau)
     }
 
     /// Value at complex τ (complex cosine).
     pub fn value_complex(&self, tau: C64) -> C64 {
+        self.value_at(tau)
+    }
+
+    /// `f(τ)` in the scalar type of τ: Horner's scheme for the polynomial, then the
+    /// cosine terms.
+    fn value_at<T>(&self, tau: T) -> T
+    where
+        T: ComplexFloat + Add<f64, Output = T> + Sum,
+        f64: Mul<T, Output = T>,
+    {
         let poly = self
             .polynomial
             .iter()
             .rev()
-            .fold(C64::new(0.0, 0.0), |acc, c| acc * tau + c);
-        let trig: C64 = self
+            .fold(T::zero(), |acc, &c| acc * tau + c);
+        let trig: T = self
             .cosines
             .iter()
             .map(|t| t.amplitude * (t.frequency * tau + t.phase).cos())
@@ -666,7 +640,7 @@ pub struct SampledPose {
 }
 
 impl Motion {
-    /// Checks that every number is finite and within ±[`MAX_INPUT_MAGNITUDE`], a
+    /// Checks that every number is finite and within ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE), a
     /// non-empty pose list and `τ_start < τ_end`; errors name the field.
     pub fn validate(&self) -> Result<(), RprError> {
         match self {
@@ -723,24 +697,18 @@ impl Motion {
     /// which have no analytic continuation (callers then interpolate in parameter
     /// space instead).
     pub fn pose_complex(&self, tau: C64) -> Option<[C64; 3]> {
-        match self {
-            Motion::Analytic(m) => Some([
-                m.x.value_complex(tau),
-                m.y.value_complex(tau),
-                m.phi.value_complex(tau),
-            ]),
-            Motion::Poses(_) => None,
-        }
+        self.each_coordinate(|c| c.value_complex(tau))
     }
 
     /// `d(x, y, φ)/dτ` at complex τ (analytic motions only).
     pub fn pose_derivative_complex(&self, tau: C64) -> Option<[C64; 3]> {
+        self.each_coordinate(|c| c.derivative_complex(tau))
+    }
+
+    /// `f` of the coordinates `x, y, φ` of an analytic motion; `None` for pose lists.
+    fn each_coordinate(&self, f: impl Fn(&MotionCoordinate) -> C64) -> Option<[C64; 3]> {
         match self {
-            Motion::Analytic(m) => Some([
-                m.x.derivative_complex(tau),
-                m.y.derivative_complex(tau),
-                m.phi.derivative_complex(tau),
-            ]),
+            Motion::Analytic(m) => Some([f(&m.x), f(&m.y), f(&m.phi)]),
             Motion::Poses(_) => None,
         }
     }
@@ -788,7 +756,7 @@ impl Motion {
 
 /// Checks the poses of a sampled analytic motion (finite coefficients can still give
 /// huge or overflowing values at some τ): each `x`, `y`, `φ` finite and within
-/// ±[`MAX_INPUT_MAGNITUDE`]; errors name the coordinate and τ (`y(tau = 3.5)`).
+/// ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE); errors name the coordinate and τ (`y(tau = 3.5)`).
 pub fn check_sampled_poses(samples: &[SampledPose]) -> Result<(), RprError> {
     for s in samples {
         for (name, v) in ["x", "y", "phi"].iter().zip(<[f64; 3]>::from(s.pose)) {

@@ -44,7 +44,7 @@ use crate::algebra::{
 };
 use crate::mechanism::rpr::{self, AnalyticMotion, CosineTerm, MotionCoordinate};
 use crate::mechanism::rrr_reach;
-use crate::mechanism::{MAX_INPUT_MAGNITUDE, within_input_range};
+use crate::mechanism::{InputNumberError, check_input_number};
 use crate::metric::{segment_distance_sq, triangle_distance_sq};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -56,22 +56,9 @@ pub type Point = Vector2<f64>;
 /// Errors of the 3-RRR model; each names the offending field.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RrrError {
-    /// A number that must be finite is NaN or infinite.
-    #[error("{field} must be finite, got {value}")]
-    NonFinite {
-        /// Field path, e.g. `base[1].x` or `pose.phi`.
-        field: String,
-        /// The offending value.
-        value: f64,
-    },
-    /// A number is finite but beyond ±[`MAX_INPUT_MAGNITUDE`].
-    #[error("{field}: {value:e} is outside ±{max:e}", max = MAX_INPUT_MAGNITUDE)]
-    OutOfRange {
-        /// Field path, e.g. `base[1].x` or `pose.phi`.
-        field: String,
-        /// The offending value.
-        value: f64,
-    },
+    /// A number is NaN, infinite or beyond ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE).
+    #[error(transparent)]
+    Number(#[from] InputNumberError),
     /// A length that must be positive is zero or negative.
     #[error("{field} must be positive, got {value}")]
     NonPositive {
@@ -189,21 +176,9 @@ impl RrrPose {
     }
 }
 
-/// `value` finite and within ±[`MAX_INPUT_MAGNITUDE`]; errors name `field`.
+/// `value` finite and within ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE); errors name `field`.
 fn check_number(field: &str, value: f64) -> Result<(), RrrError> {
-    if !value.is_finite() {
-        return Err(RrrError::NonFinite {
-            field: field.to_string(),
-            value,
-        });
-    }
-    if !within_input_range(value) {
-        return Err(RrrError::OutOfRange {
-            field: field.to_string(),
-            value,
-        });
-    }
-    Ok(())
+    Ok(check_input_number(|| field.to_string(), value)?)
 }
 
 /// A validated general planar 3-RRR design (docs/theory.md §10, §11.5).
@@ -253,7 +228,7 @@ impl RrrDesign {
     /// General design: base joints `O_i` (fixed frame), proximal lengths `|O_iB_i|`, distal
     /// lengths `|B_iC_i|`, platform joints `C_i` in the moving frame (origin = operation point).
     ///
-    /// Errors: any non-finite number or one beyond ±[`MAX_INPUT_MAGNITUDE`], a non-positive length, or two coincident base (or
+    /// Errors: any non-finite number or one beyond ±[`MAX_INPUT_MAGNITUDE`](super::MAX_INPUT_MAGNITUDE), a non-positive length, or two coincident base (or
     /// platform) joints, naming the field (`base[i].x`, `proximal[i]`, `distal[i]`,
     /// `platform[i].y`, …).
     pub fn new(

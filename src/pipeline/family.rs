@@ -15,7 +15,7 @@ use crate::C64;
 use crate::system::CompiledSystem;
 
 /// A family of parametrised systems, one per problem, sharing one motion: what the
-/// seed stage of the sweep engine ([`super::sweep::seed_family`]) needs.
+/// seed stage of the sweep engine (`seed_family`) needs.
 pub trait Family: Sync {
     /// What identifies a seed point (besides its parameters), kept with the solutions
     /// that the poses start from.
@@ -47,5 +47,18 @@ pub trait Family: Sync {
     /// `stream`.
     fn detour_stream(&self, stream: u64, attempt: usize) -> u64 {
         stream + attempt as u64
+    }
+}
+
+/// The scale `s` of a mechanism's normalised frame `K ↦ (K − c)/s` (3-RPR and 3-RRR
+/// alike): the root of `mean_square_spread`, the mean squared distance of the
+/// configuration's points from their centroid `c`; 1 if that is not a positive number
+/// (designs are validated non-degenerate; the guard keeps the frame invertible anyway).
+pub fn frame_scale(mean_square_spread: f64) -> f64 {
+    let scale = mean_square_spread.sqrt();
+    if scale.is_finite() && scale > 0.0 {
+        scale
+    } else {
+        1.0
     }
 }

@@ -24,7 +24,7 @@
 //!   (another `τ*` and perturbation, reached along another route) finds exactly as many,
 //!   otherwise the shortfall is a seed-stage failure.
 
-use super::family::Family;
+use super::family::{Family, frame_scale};
 use super::rrr_ab_initio::RrrAbInitioError;
 use super::rrr_curve::{RrrCurveError, RrrCurveOptions, RrrPathFailure};
 use super::start_file::StartSolutions;
@@ -58,14 +58,9 @@ impl RrrFrame {
             .map(|(i, v)| (v - center[i % 2]).powi(2))
             .sum::<f64>()
             / 9.0;
-        let scale = spread.sqrt();
         RrrFrame {
             center,
-            scale: if scale.is_finite() && scale > 0.0 {
-                scale
-            } else {
-                1.0
-            },
+            scale: frame_scale(spread),
         }
     }
 
@@ -262,25 +257,18 @@ pub fn rrr_seed_stage(
     for kind in RrrSubProblem::ALL {
         let problem = RrrProblem::new(kind)?;
         let start = provider(&problem)?;
-        let source = start
-            .parameter_vector(problem.parameter_names())
-            .map_err(|name| RrrCurveError::StartSolutions {
-                problem: kind.name(),
-                message: format!("parameter `{name}` missing"),
-            })?;
-        let n = problem.variable_names().len();
         if start.variables != problem.variable_names() {
             return Err(RrrCurveError::StartSolutions {
                 problem: kind.name(),
                 message: "field `variables` does not match the problem's unknowns".to_string(),
             });
         }
-        if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
-            return Err(RrrCurveError::StartSolutions {
+        let source = start
+            .source_for(problem.parameter_names(), problem.variable_names().len())
+            .map_err(|message| RrrCurveError::StartSolutions {
                 problem: kind.name(),
-                message: format!("a solution has {} entries, expected {n}", bad.len()),
-            });
-        }
+                message,
+            })?;
         prepared.push((problem, source, start.solutions));
     }
     let family = SeedFamily {

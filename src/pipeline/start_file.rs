@@ -141,4 +141,24 @@ impl StartSolutions {
             })
             .collect()
     }
+
+    /// The source point in the order of `parameter_names` (the problem's), after
+    /// checking that the file fits a problem with these parameters and `variables`
+    /// unknowns; the error says what does not fit.
+    pub fn source_for(
+        &self,
+        parameter_names: &[String],
+        variables: usize,
+    ) -> Result<Vec<C64>, String> {
+        let source = self
+            .parameter_vector(parameter_names)
+            .map_err(|name| format!("parameter `{name}` missing"))?;
+        if let Some(bad) = self.solutions.iter().find(|x| x.len() != variables) {
+            return Err(format!(
+                "a solution has {} entries, expected {variables}",
+                bad.len()
+            ));
+        }
+        Ok(source)
+    }
 }

@@ -98,14 +98,37 @@ fn scatter_axes(id: ProblemId, k: &[f64; 12]) -> Option<ScatterAxes> {
         return None;
     }
     let (line_points, _) = point_roles(id);
-    let point = |i: usize| [k[2 * i], k[2 * i + 1]];
-    let c = line_points.iter().fold([0.0; 2], |c, &i| {
-        let p = point(i);
-        [c[0] + p[0] / 3.0, c[1] + p[1] / 3.0]
-    });
+    let line = total_least_squares_line(line_points.map(|i| [k[2 * i], k[2 * i + 1]]));
+    let (c, w) = (line.centroid, line.direction);
+    Some(ScatterAxes {
+        major: (c, w),
+        minor: (c, [-w[1], w[0]]),
+        degenerate: line.eigenvalue_gap <= ISOTROPY_TOLERANCE * line.spread,
+    })
+}
+
+/// The total-least-squares line of three points (Kapilavai and Nawratil, Thm 1): the
+/// line through their centroid along the major axis of their scatter matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TotalLeastSquaresLine {
+    /// The centroid `c` of the points.
+    pub centroid: [f64; 2],
+    /// The unit direction `w` of the major axis.
+    pub direction: [f64; 2],
+    /// The difference of the scatter matrix's eigenvalues (0: every line through `c`
+    /// fits equally well).
+    pub eigenvalue_gap: f64,
+    /// The trace `sxx + syy` of the scatter matrix.
+    pub spread: f64,
+}
+
+/// The [`TotalLeastSquaresLine`] of `points`.
+pub fn total_least_squares_line(points: [[f64; 2]; 3]) -> TotalLeastSquaresLine {
+    let c = points
+        .iter()
+        .fold([0.0; 2], |c, p| [c[0] + p[0] / 3.0, c[1] + p[1] / 3.0]);
     let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for &i in &line_points {
-        let p = point(i);
+    for p in points {
         let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
         sxx += dx * dx;
         sxy += dx * dy;
@@ -113,13 +136,12 @@ fn scatter_axes(id: ProblemId, k: &[f64; 12]) -> Option<ScatterAxes> {
     }
     // Major axis of [[sxx, sxy], [sxy, syy]]: θ = ½ atan2(2 sxy, sxx − syy).
     let theta = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let w = [theta.cos(), theta.sin()];
-    let gap = ((sxx - syy).powi(2) + 4.0 * sxy * sxy).sqrt();
-    Some(ScatterAxes {
-        major: (c, w),
-        minor: (c, [-w[1], w[0]]),
-        degenerate: gap <= ISOTROPY_TOLERANCE * (sxx + syy),
-    })
+    TotalLeastSquaresLine {
+        centroid: c,
+        direction: [theta.cos(), theta.sin()],
+        eigenvalue_gap: ((sxx - syy).powi(2) + 4.0 * sxy * sxy).sqrt(),
+        spread: sxx + syy,
+    }
 }
 
 /// The configuration whose collinear points are the pedal points of `k`'s on the line

@@ -16,6 +16,7 @@ use crate::mechanism::rpr::{
     AnalyticMotion, CosineTerm, Design, Motion, MotionCoordinate, Pose, PoseList, RprError,
     singularity_polynomial,
 };
+use crate::pipeline::bisection::bisect_sign_change;
 use crate::random;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -176,23 +177,9 @@ fn sign_changes(
         let tau = lo + (hi - lo) * j as f64 / n as f64;
         let s = s_of(tau);
         if previous.1 != 0.0 && s != 0.0 && (previous.1 < 0.0) != (s < 0.0) {
-            let (mut a, mut b, mut sa) = (previous.0, tau, previous.1);
-            while b - a > 1e-12 * (1.0 + a.abs()) {
-                let mid = 0.5 * (a + b);
-                let sm = s_of(mid);
-                if sm == 0.0 {
-                    a = mid;
-                    b = mid;
-                    break;
-                }
-                if (sm < 0.0) == (sa < 0.0) {
-                    a = mid;
-                    sa = sm;
-                } else {
-                    b = mid;
-                }
-            }
-            out.push(0.5 * (a + b));
+            out.push(bisect_sign_change((previous.0, tau), previous.1, |mid| {
+                Some(s_of(mid))
+            }));
         }
         previous = (tau, s);
     }

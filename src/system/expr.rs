@@ -560,33 +560,26 @@ impl<T: Into<Expr>> MulAssign<T> for Expr {
     }
 }
 
-impl std::iter::Sum for Expr {
-    /// Balanced sum (see [`Expr::balanced_sum`]).
-    fn sum<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        Expr::balanced_sum(iter.collect())
-    }
+/// `Trait` (`Sum` or `Product`) over owned and borrowed expressions by the balanced
+/// fold `balanced` ([`Expr::balanced_sum`], [`Expr::balanced_product`]).
+macro_rules! balanced_fold {
+    ($trait:ident, $method:ident, $balanced:ident) => {
+        impl std::iter::$trait for Expr {
+            fn $method<I: Iterator<Item = Expr>>(iter: I) -> Expr {
+                Expr::$balanced(iter.collect())
+            }
+        }
+
+        impl<'a> std::iter::$trait<&'a Expr> for Expr {
+            fn $method<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
+                Expr::$balanced(iter.cloned().collect())
+            }
+        }
+    };
 }
 
-impl<'a> std::iter::Sum<&'a Expr> for Expr {
-    /// Balanced sum (see [`Expr::balanced_sum`]).
-    fn sum<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
-        Expr::balanced_sum(iter.cloned().collect())
-    }
-}
-
-impl std::iter::Product for Expr {
-    /// Balanced product (see [`Expr::balanced_product`]).
-    fn product<I: Iterator<Item = Expr>>(iter: I) -> Expr {
-        Expr::balanced_product(iter.collect())
-    }
-}
-
-impl<'a> std::iter::Product<&'a Expr> for Expr {
-    /// Balanced product (see [`Expr::balanced_product`]).
-    fn product<I: Iterator<Item = &'a Expr>>(iter: I) -> Expr {
-        Expr::balanced_product(iter.cloned().collect())
-    }
-}
+balanced_fold!(Sum, sum, balanced_sum);
+balanced_fold!(Product, product, balanced_product);
 
 /// Formats a complex constant so that it reads back exactly (shortest round-trip
 /// decimal of each part), with `imaginary_unit` as the name of `i`.

@@ -64,10 +64,14 @@ pub use sparse::SparsePolynomial;
 pub trait Evaluator: Send + Sync {
     /// Number of unknowns n.
     fn num_variables(&self) -> usize;
-    /// Number of equations k (k = n for square systems).
-    fn num_equations(&self) -> usize;
-    /// Number of parameters m (0 for a plain system).
-    fn num_parameters(&self) -> usize;
+    /// Number of equations k; the default is n (a square system).
+    fn num_equations(&self) -> usize {
+        self.num_variables()
+    }
+    /// Number of parameters m; the default is 0 (a plain system).
+    fn num_parameters(&self) -> usize {
+        0
+    }
     /// Length of the scratch buffer the evaluation calls need.
     fn workspace_len(&self) -> usize;
 

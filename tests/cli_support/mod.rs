@@ -53,3 +53,23 @@ pub fn fresh_dir(tag: &str) -> PathBuf {
 pub fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
+
+/// `singdist` with the arguments of `line`, split at white space (so no argument may
+/// contain any; the folders of [`temp_dir`] have none).
+pub fn singdist_line(line: &str) -> Output {
+    singdist(&line.split_whitespace().collect::<Vec<_>>())
+}
+
+/// [`singdist_line`], which must succeed.
+pub fn succeed_line(line: &str) -> Output {
+    let out = singdist_line(line);
+    assert_success(&out);
+    out
+}
+
+/// The text of the element group `<g id="K" …> … </g>` (no nested groups inside).
+pub fn group_of_k(svg: &str) -> &str {
+    let start = svg.find(r#"<g id="K""#).expect("a group g#K");
+    let end = start + svg[start..].find("</g>").expect("g#K is closed");
+    &svg[start..end]
+}

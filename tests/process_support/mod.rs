@@ -37,3 +37,20 @@ pub fn peak_rss_kb(mut command: Command) -> u64 {
         std::thread::sleep(Duration::from_millis(5));
     }
 }
+
+/// Asserts that the peak memory of `command_for(poses)` does not grow with the number
+/// of poses: 10,000 poses need at most 1.5 × the memory of 1,000. Returns whether it
+/// was measured (see [`memory_is_measurable`]).
+pub fn assert_memory_flat_in_poses(command_for: impl Fn(&str) -> Command) -> bool {
+    if !memory_is_measurable() {
+        return false;
+    }
+    let small = peak_rss_kb(command_for("1000"));
+    let large = peak_rss_kb(command_for("10000"));
+    assert!(small > 0 && large > 0, "{small} {large}");
+    assert!(
+        (large as f64) <= 1.5 * small as f64,
+        "peak RSS {large} kB for 10,000 poses vs {small} kB for 1,000"
+    );
+    true
+}

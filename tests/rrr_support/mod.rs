@@ -20,25 +20,40 @@ pub fn curve_at(trajectory: &RrrTrajectory, taus: &[f64]) -> RrrCurveResult {
     .expect("curve")
 }
 
+/// The valid design with base joints `base`, link lengths `(proximal, distal)` and
+/// platform joints `platform` (moving frame), points given as `[x, y]`.
+pub fn design_of(
+    base: [[f64; 2]; 3],
+    (proximal, distal): ([f64; 3], [f64; 3]),
+    platform: [[f64; 2]; 3],
+) -> RrrDesign {
+    let point = |[x, y]: [f64; 2]| Point::new(x, y);
+    RrrDesign::new(base.map(point), proximal, distal, platform.map(point)).expect("design")
+}
+
+/// The working mode of each leg with base joints `bases`, elbows `elbows` and platform
+/// joints `platform` (all in the fixed frame): the sign of `(B − O) × (C − B)`.
+pub fn modes_of(bases: &[Point; 3], elbows: &[Point; 3], platform: &[Point; 3]) -> WorkingModes {
+    [0, 1, 2].map(|i| {
+        let b = elbows[i] - bases[i];
+        let c = platform[i] - elbows[i];
+        if b.x * c.y - b.y * c.x > 0.0 {
+            ElbowMode::Positive
+        } else {
+            ElbowMode::Negative
+        }
+    })
+}
+
 /// Three design classes: the built-in example (equal links, a leg folding through its
 /// base joint), an asymmetric design with unequal links, and a symmetric design with
 /// unequal links and an oscillating orientation.
 pub fn trajectories() -> Vec<RrrTrajectory> {
-    let asymmetric = RrrDesign::new(
-        [
-            Point::new(0.0, 0.0),
-            Point::new(2.0, 0.2),
-            Point::new(0.8, 1.9),
-        ],
-        [1.0, 0.9, 1.1],
-        [0.9, 1.2, 1.0],
-        [
-            Point::new(-0.2, -0.15),
-            Point::new(0.3, -0.1),
-            Point::new(0.05, 0.3),
-        ],
-    )
-    .expect("design");
+    let asymmetric = design_of(
+        [[0.0, 0.0], [2.0, 0.2], [0.8, 1.9]],
+        ([1.0, 0.9, 1.1], [0.9, 1.2, 1.0]),
+        [[-0.2, -0.15], [0.3, -0.1], [0.05, 0.3]],
+    );
     let symmetric = RrrDesign::symmetric(1.0, 0.3, 0.6, 0.7).expect("design");
     let mut oscillating = circular_translation(Point::new(0.05, 0.0), 0.1, 0.0, [0.0, 6.0]);
     if let Motion::Analytic(m) = &mut oscillating {

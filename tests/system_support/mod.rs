@@ -125,3 +125,22 @@ pub fn relative_error(a: &[C64], b: &[C64]) -> f64 {
         .fold(0.0, f64::max)
         / scale
 }
+
+/// `PREFIX0, PREFIX1, …`: `count` symbol names.
+pub fn symbol_names(prefix: &str, count: usize) -> Vec<String> {
+    (0..count).map(|i| format!("{prefix}{i}")).collect()
+}
+
+/// `count` random expressions ([`random_expression`] of `depth`) in the variables and
+/// parameters.
+pub fn random_equations(
+    rng: &mut SeededRng,
+    (variables, parameters): (&[String], &[String]),
+    count: usize,
+    depth: u32,
+) -> Vec<Expr> {
+    let symbols: Vec<String> = variables.iter().chain(parameters).cloned().collect();
+    (0..count)
+        .map(|_| random_expression(rng, &symbols, depth))
+        .collect()
+}

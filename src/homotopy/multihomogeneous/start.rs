@@ -177,12 +177,6 @@ impl Evaluator for MultiHomogeneousStartSystem {
     fn num_variables(&self) -> usize {
         self.partition.num_variables()
     }
-    fn num_equations(&self) -> usize {
-        self.partition.num_variables()
-    }
-    fn num_parameters(&self) -> usize {
-        0
-    }
     /// Factor values and their prefix products.
     fn workspace_len(&self) -> usize {
         2 * self.max_factors + 1

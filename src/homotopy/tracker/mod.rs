@@ -55,9 +55,9 @@
 //!   integral `x* = (1/2πi)∮ x(τ) dτ/τ` in `τ = s^{1/c}` (trapezoid rule, spectrally
 //!   accurate). Two successive estimates agreeing gives a finite singular endpoint.
 //!
-//! The pieces: [`options`] (the knobs and presets), [`step`] (one predictor–corrector
-//! step and the step-size control), [`precision`] (double / double-double evaluations
-//! and the switching rule), [`endpoint`] (Newton's method at a fixed `t`), [`endgame`]
+//! The pieces: `options` (the knobs and presets), `step` (one predictor–corrector
+//! step and the step-size control), `precision` (double / double-double evaluations
+//! and the switching rule), `endpoint` (Newton's method at a fixed `t`), `endgame`
 //! (the classification near `t = 1`); this module holds the loop along a route and
 //! the result types. Along a route the tracker reports only reached, diverged or
 //! failed; only the endgame classifies a path as at infinity.

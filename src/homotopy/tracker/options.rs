@@ -26,7 +26,7 @@ pub struct TrackerOptions {
     pub endgame: EndgameOptions,
 }
 
-/// Predictor–corrector steps and their length (see [`super::step`]).
+/// Predictor–corrector steps and their length (see `step`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StepOptions {
     /// First step length in `t`.
@@ -53,7 +53,7 @@ pub struct StepOptions {
     pub corrector_noise_tolerance: f64,
 }
 
-/// When the tracker computes in double-double arithmetic (see [`super::precision`]).
+/// When the tracker computes in double-double arithmetic (see `precision`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PrecisionOptions {
     /// Adaptive precision: after this many consecutive rejected steps at a condition
@@ -82,7 +82,7 @@ pub struct PrecisionOptions {
     pub max_extended_steps: usize,
 }
 
-/// The endgame near `t = 1` (see [`super::endgame`]), the divergence bound and the
+/// The endgame near `t = 1` (see `endgame`), the divergence bound and the
 /// classification of endpoints.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EndgameOptions {

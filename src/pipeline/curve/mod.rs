@@ -62,6 +62,8 @@
 //!    fails is reported as a [`PathFailure`].
 //! 4. **Post-processing** ([`super::postprocess`]).
 
+use super::bisection::bisect_sign_change;
+use super::family::frame_scale;
 use super::postprocess::{self, Candidate, MetricDistance};
 
 /// Per (pose, sub-problem): real candidates, finite endpoints, failure, paths tracked,
@@ -231,15 +233,9 @@ impl Normalization {
             .map(|i| (k[2 * i] - center[0]).norm_sqr() + (k[2 * i + 1] - center[1]).norm_sqr())
             .sum::<f64>()
             / 6.0;
-        let scale = spread.sqrt();
         Normalization {
             center,
-            // Designs are validated non-degenerate; guard anyway.
-            scale: if scale.is_finite() && scale > 0.0 {
-                scale
-            } else {
-                1.0
-            },
+            scale: frame_scale(spread),
         }
     }
 
@@ -900,6 +896,26 @@ pub fn compute_curve(
     Ok(collect_curve(header, windows))
 }
 
+/// [`compute_curve`] from the start solutions embedded in the binary
+/// ([`default_start_solutions`]), without progress reports.
+pub fn compute_curve_from_embedded_starts(
+    design: &Design,
+    motion: &Motion,
+    poses: usize,
+    metrics: &[Metric],
+    options: &CurveOptions,
+) -> Result<CurveResult, PipelineError> {
+    compute_curve(
+        design,
+        motion,
+        poses,
+        metrics,
+        options,
+        &default_start_solutions,
+        &|_| {},
+    )
+}
+
 /// Parameters τ where `S(K(τ))` changes sign between consecutive samples, refined by
 /// bisection on the analytic motion to `|Δτ| ≤ 1e-14·(1 + |τ|)` (docs/theory.md §7: the
 /// distance vanishes there). For pose lists, the midpoint of the sign change.
@@ -925,26 +941,7 @@ pub fn singular_parameters(design: &Design, motion: &Motion, samples: &[SampledP
             roots.push(0.5 * (a.tau + b.tau));
             continue;
         }
-        let (mut lo, mut hi, mut s_lo) = (a.tau, b.tau, sa);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if (hi - lo).abs() <= 1e-14 * (1.0 + mid.abs()) {
-                break;
-            }
-            let Some(s_mid) = s_of(mid) else { break };
-            if s_mid == 0.0 {
-                lo = mid;
-                hi = mid;
-                break;
-            }
-            if (s_mid < 0.0) == (s_lo < 0.0) {
-                lo = mid;
-                s_lo = s_mid;
-            } else {
-                hi = mid;
-            }
-        }
-        roots.push(0.5 * (lo + hi));
+        roots.push(bisect_sign_change((a.tau, b.tau), sa, s_of));
     }
     if let Some(last) = samples.last()
         && design.configuration(last.pose).singularity() == 0.0

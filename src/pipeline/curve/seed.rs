@@ -274,18 +274,11 @@ pub fn seed_stage(
                 message,
             })?;
             let source = start
-                .parameter_vector(problem.parameter_names())
-                .map_err(|name| PipelineError::StartSolutions {
+                .source_for(problem.parameter_names(), problem.variable_names().len())
+                .map_err(|message| PipelineError::StartSolutions {
                     problem: id.name(),
-                    message: format!("parameter `{name}` missing"),
+                    message,
                 })?;
-            let n = problem.variable_names().len();
-            if let Some(bad) = start.solutions.iter().find(|x| x.len() != n) {
-                return Err(PipelineError::StartSolutions {
-                    problem: id.name(),
-                    message: format!("a solution has {} entries, expected {n}", bad.len()),
-                });
-            }
             let starts: Vec<Vec<C64>> = start
                 .solutions
                 .iter()

@@ -18,34 +18,26 @@ fn predictors_reproduce_their_model_functions() {
             C64::new(-1.0, 0.5 * s) / C64::new(1.0 + 0.25 * s, 0.1 * s),
         ]
     };
-    let nodes_of = |at: &[f64; 3], values: &[[C64; 2]; 3]| -> Vec<(f64, Vec<C64>)> {
-        at.iter()
-            .zip(values)
-            .map(|(&t, v)| (t, v.to_vec()))
-            .collect()
+    type Predictor = fn(&[Node<'_>], f64, &mut [C64]);
+    // The prediction at `s` from the model's values at the nodes `at`.
+    let predict = |predictor: Predictor, model: &dyn Fn(f64) -> [C64; 2], at: [f64; 3], s| {
+        let owned: Vec<(f64, Vec<C64>)> = at.iter().map(|&t| (t, model(t).to_vec())).collect();
+        let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
+        let mut out = [C64::new(0.0, 0.0); 2];
+        predictor(&nodes, s, &mut out);
+        out
     };
-    for nodes_at in [[0.0, -1.0, -2.0], [0.5, 0.0, -1.0], [0.75, 0.5, 0.0]] {
+    let error =
+        |out: [C64; 2], exact: [C64; 2]| (out[0] - exact[0]).norm().max((out[1] - exact[1]).norm());
+    for at in [[0.0, -1.0, -2.0], [0.5, 0.0, -1.0], [0.75, 0.5, 0.0]] {
         for s in [1.0, 0.875] {
-            let mut out = [C64::new(0.0, 0.0); 2];
-            let owned = nodes_of(&nodes_at, &nodes_at.map(quadratic));
-            let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
-            extrapolate(&nodes, s, &mut out);
-            let exact = quadratic(s);
+            let out = predict(extrapolate, &quadratic, at, s);
+            assert!(error(out, quadratic(s)) < 1e-12, "{out:?} at {s}");
+            let out = predict(extrapolate_moebius, &moebius, at, s);
+            assert!(error(out, moebius(s)) < 1e-10, "{out:?} at {s}");
+            let out = predict(extrapolate, &moebius, at, s);
             assert!(
-                (0..2).all(|i| (out[i] - exact[i]).norm() < 1e-12),
-                "{out:?} vs {exact:?}"
-            );
-            let owned = nodes_of(&nodes_at, &nodes_at.map(moebius));
-            let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
-            extrapolate_moebius(&nodes, s, &mut out);
-            let exact = moebius(s);
-            assert!(
-                (0..2).all(|i| (out[i] - exact[i]).norm() < 1e-10),
-                "{out:?} vs {exact:?}"
-            );
-            extrapolate(&nodes, s, &mut out);
-            assert!(
-                (out[0] - exact[0]).norm() > 1e-3,
+                (out[0] - moebius(s)[0]).norm() > 1e-3,
                 "the quadratic should miss the pole"
             );
         }

@@ -2,7 +2,7 @@
 //! motion ([`super::family::Family`]), it tracks the family's start set to a seed
 //! point (the user homotopy of Kapilavai and Nawratil, *Singularity distance
 //! computations for 3-RPR manipulators using extrinsic metrics*, Eqs. 65–66) with the
-//! robust path-group tracking and its accounting ([`track_with_retries`]): re-runs,
+//! robust path-group tracking and its accounting (`track_with_retries`): re-runs,
 //! arcs around divergences, detours, path crossings, and every path either finite, at
 //! infinity, or reported as lost ([`PathFailure`]).
 
