@@ -28,7 +28,7 @@
 //! is the same sum of non-negative terms in another order. Every quantity summed is
 //! non-negative, so a computed sum whose terms went through at most `k` roundings is
 //! at least `(1 − u)ᵏ` times the exact one, less `2⁻¹⁰⁷⁵` per underflowing product;
-//! [`upper`] turns it into an upper bound. (A weight loses nothing to underflow: its
+//! `upper` turns it into an upper bound. (A weight loses nothing to underflow: its
 //! radius, rounded up by `next_up`, exceeds the exact one by at least `2⁻¹⁰⁷⁵`.) The
 //! underflow in `Ĉ`, at most `n·2⁻¹⁰⁷⁴` per entry, adds `n·2⁻¹⁰⁷⁴·Σⱼ (ēᵣⱼ + ēᵢⱼ)`.
 
@@ -79,7 +79,7 @@ fn split(v: Interval, gamma: f64) -> (f64, f64) {
 /// `−Y·f` enclosed, for a point matrix `Y` (row-major `n × n`) and an interval vector
 /// `f` with midpoint `m` and radius `R`: midpoint `−fl(Y·m)` and radius
 /// `|Yᵣ|·Wᵣ + |Yᵢ|·Wᵢ` (imaginary part `|Yᵣ|·Wᵢ + |Yᵢ|·Wᵣ`) with `W = γ₂ₙ·|m| + R`,
-/// bounded by [`upper`] (whose floor also covers the underflow in `fl(Y·m)`, at most
+/// bounded by `upper` (whose floor also covers the underflow in `fl(Y·m)`, at most
 /// `n·2⁻¹⁰⁷⁴`), rounded outwards (the matrix case of the module documentation with
 /// one column). `false` if an entry of `f` is unbounded.
 pub fn negated_product(y: &[C64], f: &[ComplexInterval], out: &mut [ComplexInterval]) -> bool {

@@ -459,15 +459,23 @@ fn nonsingular_root_groups<H: Homotopy + ?Sized>(
     homotopy: &H,
     paths: &[PathResult],
 ) -> Vec<Option<usize>> {
+    root_groups_on(&TargetSystem { homotopy }, paths)
+}
+
+/// [`nonsingular_root_groups`] with the endpoints refined on the system `system` (the
+/// target of the homotopy the paths ended on).
+pub(crate) fn root_groups_on<F: Evaluator + ?Sized>(
+    system: &F,
+    paths: &[PathResult],
+) -> Vec<Option<usize>> {
     let nonsingular: Vec<&PathResult> = paths
         .iter()
         .filter(|p| p.status == PathStatus::Nonsingular)
         .collect();
-    let target = TargetSystem { homotopy };
     let refined: Vec<(Vec<C64>, f64)> = nonsingular
         .par_iter()
         .map(|p| {
-            let r = newton_refine(&target, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
+            let r = newton_refine(system, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
             if r.converged {
                 (r.point, r.condition.max(p.condition))
             } else {

@@ -21,6 +21,7 @@
 //! `0 ≤ s < N(k)` into one assignment with one factor per equation, which is how the
 //! start system's solutions are enumerated.
 
+use crate::homotopy::polyhedral::supports::sorted_distinct;
 use crate::system::System;
 use crate::system::sparse::ExpansionError;
 
@@ -128,14 +129,9 @@ impl MonomialSupports {
     /// # Panics
     /// If an exponent vector has the wrong length (a programming error).
     pub fn new(num_variables: usize, equations: Vec<Vec<Vec<u32>>>) -> Self {
-        let equations = equations
+        let equations = sorted_distinct(num_variables, equations)
             .into_iter()
-            .map(|mut monomials| {
-                for m in &monomials {
-                    assert_eq!(m.len(), num_variables, "one exponent per unknown");
-                }
-                monomials.sort();
-                monomials.dedup();
+            .map(|monomials| {
                 let dominated =
                     |m: &Vec<u32>, by: &Vec<u32>| m != by && m.iter().zip(by).all(|(a, b)| a <= b);
                 monomials

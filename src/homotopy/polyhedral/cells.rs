@@ -466,6 +466,19 @@ mod tests {
         unreachable!()
     }
 
+    /// Two dense quadrics in two unknowns.
+    fn dense_quadrics() -> Supports {
+        let dense: Vec<Vec<i64>> = vec![
+            vec![0, 0],
+            vec![1, 0],
+            vec![0, 1],
+            vec![2, 0],
+            vec![1, 1],
+            vec![0, 2],
+        ];
+        Supports::new(2, vec![dense.clone(), dense])
+    }
+
     #[test]
     fn determinants() {
         assert_eq!(bareiss_determinant(&[2, 1, 1, 3], 2), Ok(5));
@@ -479,31 +492,15 @@ mod tests {
 
     #[test]
     fn mixed_volume_of_dense_quadrics_is_the_bezout_number() {
-        // Two dense quadrics in two unknowns: MV = 4.
-        let dense: Vec<Vec<i64>> = vec![
-            vec![0, 0],
-            vec![1, 0],
-            vec![0, 1],
-            vec![2, 0],
-            vec![1, 1],
-            vec![0, 2],
-        ];
-        let s = Supports::new(2, vec![dense.clone(), dense]);
+        // MV = 4, the Bézout number.
+        let s = dense_quadrics();
         assert_eq!(mv(&s, 1), 4);
         assert_eq!(mv(&s, 2), 4);
     }
 
     #[test]
     fn a_search_past_its_lp_budget_gives_up() {
-        let dense: Vec<Vec<i64>> = vec![
-            vec![0, 0],
-            vec![1, 0],
-            vec![0, 1],
-            vec![2, 0],
-            vec![1, 1],
-            vec![0, 2],
-        ];
-        let s = Supports::new(2, vec![dense.clone(), dense]);
+        let s = dense_quadrics();
         let lifting = random_lifting(&s, 1, 0, 1 << 12);
         let full = mixed_cells(&s, &lifting).unwrap();
         assert_eq!(

@@ -38,10 +38,9 @@ pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells, mixed_cells
 pub use start::{PolyhedralError, PolyhedralStartSystem};
 pub use supports::{Supports, random_lifting};
 
-use super::refine::{group_roots, newton_refine};
 use super::solve::{
     HomotopyError, SolveOptions, SolveResult, check_square, check_target_parameters,
-    solve_from_start_system,
+    root_groups_on, solve_from_start_system,
 };
 use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
 use crate::C64;
@@ -50,9 +49,6 @@ use rayon::prelude::*;
 
 /// Most paths a polyhedral run tracks.
 const MAX_PATHS: u128 = 1 << 32;
-/// Relative Newton tolerance and grouping tolerance of the stage-one duplicate test.
-const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
-const DUPLICATE_TOLERANCE: f64 = 1e-10;
 /// The stage-one endgame zone starts at `1 − s = ENDGAME_SCALE / max e`.
 const ENDGAME_SCALE: f64 = 0.1;
 
@@ -257,28 +253,5 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
 /// For every stage-one path, the group (index of its first path) of its nonsingular
 /// endpoint after Newton refinement on `Q`; `None` for other statuses.
 fn root_groups(start: &PolyhedralStartSystem, paths: &[PathResult]) -> Vec<Option<usize>> {
-    let q = start.system();
-    let nonsingular: Vec<&PathResult> = paths
-        .iter()
-        .filter(|p| p.status == PathStatus::Nonsingular)
-        .collect();
-    let refined: Vec<(Vec<C64>, f64)> = nonsingular
-        .par_iter()
-        .map(|p| {
-            let r = newton_refine(q, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
-            if r.converged {
-                (r.point, r.condition.max(p.condition))
-            } else {
-                (p.solution.clone(), p.condition)
-            }
-        })
-        .collect();
-    let mut groups = vec![None; paths.len()];
-    for (k, g) in group_roots(&refined, DUPLICATE_TOLERANCE)
-        .into_iter()
-        .enumerate()
-    {
-        groups[nonsingular[k].path_index] = Some(nonsingular[g].path_index);
-    }
-    groups
+    root_groups_on(start.system(), paths)
 }

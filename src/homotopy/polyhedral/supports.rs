@@ -13,6 +13,27 @@
 use crate::system::System;
 use crate::system::sparse::ExpansionError;
 
+/// Every support of `equations` sorted and without repeated points.
+///
+/// # Panics
+/// If an exponent vector's length is not `num_variables` (a programming error).
+pub(crate) fn sorted_distinct<T: Ord>(
+    num_variables: usize,
+    equations: Vec<Vec<Vec<T>>>,
+) -> Vec<Vec<Vec<T>>> {
+    equations
+        .into_iter()
+        .map(|mut points| {
+            for p in &points {
+                assert_eq!(p.len(), num_variables, "one exponent per unknown");
+            }
+            points.sort();
+            points.dedup();
+            points
+        })
+        .collect()
+}
+
 /// Per equation the exponent vectors of its terms (sorted, distinct).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Supports {
@@ -27,20 +48,9 @@ impl Supports {
     /// # Panics
     /// If an exponent vector has the wrong length (a programming error).
     pub fn new(num_variables: usize, equations: Vec<Vec<Vec<i64>>>) -> Self {
-        let equations = equations
-            .into_iter()
-            .map(|mut points| {
-                for p in &points {
-                    assert_eq!(p.len(), num_variables, "one exponent per unknown");
-                }
-                points.sort();
-                points.dedup();
-                points
-            })
-            .collect();
         Supports {
             num_variables,
-            equations,
+            equations: sorted_distinct(num_variables, equations),
         }
     }
 
