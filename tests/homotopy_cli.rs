@@ -140,9 +140,7 @@ fn start_option_reports_the_start_system_and_its_paths() {
     );
     // Polyhedral: the mixed volume of the triangles {xy, x, 1} and {xy, y, 1} is
     // area(P₁ + P₂) − area(P₁) − area(P₂) = 3 − 1/2 − 1/2 = 2 paths, both roots.
-    let out = singdist(&["solve", path, "--start", "polyhedral", "--json"]);
-    assert_success(&out);
-    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let value = solve_json(&[path, "--start", "polyhedral"]);
     let start = &value["start_system"];
     assert_eq!(start["name"], "polyhedral");
     assert_eq!(
@@ -162,29 +160,23 @@ fn start_option_reports_the_start_system_and_its_paths() {
 #[test]
 fn automatic_start_takes_the_polyhedral_system_where_it_halves_the_paths() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
-    let out = singdist(&[
-        "solve",
-        &format!("{dir}/chemequ.input"),
-        "--start",
-        "auto",
-        "--json",
-    ]);
-    assert_success(&out);
-    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let value = solve_json(&[&format!("{dir}/chemequ.input"), "--start", "auto"]);
     assert_eq!(value["start_system"]["name"], "polyhedral");
     assert_eq!(value["start_system"]["mixed_volume"], 16);
     assert_eq!(value["summary"]["paths"], 16);
     assert_eq!(value["summary"]["nonsingular"], 16);
     assert_eq!(value["summary"]["failed"], 0);
-    let out = singdist(&[
-        "solve",
-        &format!("{dir}/katsura6.input"),
-        "--start",
-        "auto",
-        "--json",
-    ]);
-    assert_success(&out);
-    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let value = solve_json(&[&format!("{dir}/katsura6.input"), "--start", "auto"]);
     assert_eq!(value["start_system"]["name"], "total-degree");
     assert_eq!(value["summary"]["nonsingular"], 64);
+}
+
+/// `singdist solve ARGS --json`, which must succeed, as parsed JSON.
+fn solve_json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["solve"];
+    all.extend_from_slice(args);
+    all.push("--json");
+    let out = singdist(&all);
+    assert_success(&out);
+    serde_json::from_slice(&out.stdout).unwrap()
 }
