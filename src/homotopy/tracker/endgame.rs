@@ -226,6 +226,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                                     return PathStatus::AtInfinity;
                                 }
                             }
+                            if self.puiseux_exponents_at_infinity(c, s) {
+                                return PathStatus::AtInfinity;
+                            }
                             self.state
                                 .previous_loop_valuations
                                 .copy_from_slice(&self.state.loop_valuations);
@@ -301,6 +304,31 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         } else {
             PathStatus::Failed(reason)
         }
+    }
+
+    /// Whether the valuations of the last two Cauchy loops (`loop_valuations`, from the
+    /// loops' mean `ln|x_i|`) are the leading exponents of a Puiseux cycle of winding
+    /// number `c` with a pole: every one within [`PUISEUX_EXPONENT_TOLERANCE`] of a
+    /// multiple of `1/c`, and the smallest (of the coordinates that may decide
+    /// divergence) negative. Once both loops lie inside the cycle's disc of
+    /// convergence the mean of `ln|x_i|` over a loop is exactly `ln|a_i| + v_i ln s`
+    /// (Jensen's formula: the series `x_i = a_i s^{v_i}(1 + b s^{1/c} + …)` has no
+    /// zero there), so the exponents come out exact at the first pair of loops; the
+    /// stability test of two successive pairs needs one radius more, and on cycles
+    /// with `c ≥ 3` its velocity-based counterpart converges only like `s^{1/c}`,
+    /// down to radii where the branches of the cycle come within the same-point
+    /// tolerance of each other.
+    fn puiseux_exponents_at_infinity(&self, c: usize, s: f64) -> bool {
+        let deep = s <= DEEP_RADIUS;
+        let valuations = &self.state.loop_valuations;
+        let c = c as f64;
+        let rational = valuations
+            .iter()
+            .all(|v| (v * c - (v * c).round()).abs() <= PUISEUX_EXPONENT_TOLERANCE * c);
+        let smallest = (0..self.n)
+            .filter(|&i| deep || self.has_grown(i))
+            .fold(f64::INFINITY, |a, i| a.min(valuations[i]));
+        rational && smallest < -self.options.endgame.valuation_threshold
     }
 
     /// Whether `‖H(estimate, 1)‖∞ ≤ endpoint_residual · (1 + ‖estimate‖∞)^d̂` with a

@@ -190,6 +190,12 @@ const DIRECT_FINISH_FLOOR: f64 = 0.1;
 /// still counts as stable; any fall does (see [`MIN_COORDINATE_GROWTH`]).
 const GROWN_VALUATION_DRIFT: f64 = 0.05;
 
+/// Largest distance of a loop valuation from a multiple of `1/c` that still counts as
+/// a Puiseux exponent ([`Tracker::puiseux_exponents_at_infinity`]); valuations from
+/// loops outside the disc of convergence, or of a coordinate with a zero inside the
+/// loop, are off by 10⁻² and more.
+const PUISEUX_EXPONENT_TOLERANCE: f64 = 1e-4;
+
 /// Below this radius `s = 1 − t` a stable negative valuation classifies a path as
 /// diverging without the growth of [`MIN_COORDINATE_GROWTH`]: `t = 1 − s` is resolved
 /// to `ε/s` relative, and the endgame cannot go much deeper.
