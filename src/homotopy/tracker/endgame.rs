@@ -13,9 +13,9 @@ pub(super) struct EndgameState {
     valuations: Vec<f64>,
     previous_valuations: Vec<f64>,
     log_sum: Vec<f64>,
-    log_mean: Vec<f64>,
+    pub(super) log_mean: Vec<f64>,
     previous_log_mean: Vec<f64>,
-    loop_valuations: Vec<f64>,
+    pub(super) loop_valuations: Vec<f64>,
     previous_loop_valuations: Vec<f64>,
     /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
     endgame_origin: Vec<f64>,
@@ -318,7 +318,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// with `c ≥ 3` its velocity-based counterpart converges only like `s^{1/c}`,
     /// down to radii where the branches of the cycle come within the same-point
     /// tolerance of each other.
-    fn puiseux_exponents_at_infinity(&self, c: usize, s: f64) -> bool {
+    pub(super) fn puiseux_exponents_at_infinity(&self, c: usize, s: f64) -> bool {
         let deep = s <= DEEP_RADIUS;
         let valuations = &self.state.loop_valuations;
         let c = c as f64;

@@ -650,6 +650,45 @@ pub(crate) mod tests {
         }
     }
 
+    /// `H(x, t) = (1 − t)·x³ − x − 1`: the real root of `x³ − x − 1` goes to infinity
+    /// on a Puiseux cycle of winding number 2, `x ≈ s^{−1/2}(1 + s^{1/2}/2 + …)` with
+    /// `s = 1 − t`. The mean of `ln|x|` over the Cauchy loops at `s = 0.025` and
+    /// `0.00625`, well inside the disc of convergence (the branch point of the other two
+    /// roots is at `s ≈ 0.15`), gives the exponent −1/2 (Jensen's formula) to 10⁻⁵, which
+    /// [`Tracker::puiseux_exponents_at_infinity`] accepts; an exponent off a multiple of
+    /// `1/c` by 10⁻³, or a non-negative one, it rejects.
+    #[test]
+    fn a_puiseux_cycle_to_infinity_is_recognised_from_two_cauchy_loops() {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        let cubic = System::new(
+            ["x"],
+            ["q"],
+            vec![q * x.clone() * x.clone() * x.clone() - x - Expr::one()],
+        )
+        .unwrap()
+        .compile();
+        let homotopy = real_segment(&cubic, 1.0, 0.0);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
+        let mut log_means = Vec::new();
+        let mut t = C64::new(0.0, 0.0);
+        for s in [0.025, 0.006_25] {
+            let end = C64::new(1.0 - s, 0.0);
+            assert!(tracker.track_segment(t, end).is_ok());
+            t = end;
+            assert_eq!(tracker.cauchy_loop(s).ok(), Some(2));
+            log_means.push(tracker.state.log_mean[0]);
+        }
+        let valuation = (log_means[1] - log_means[0]) / 0.25f64.ln();
+        assert!((valuation + 0.5).abs() < 1e-5, "{valuation}");
+        tracker.state.loop_valuations[0] = valuation;
+        assert!(tracker.puiseux_exponents_at_infinity(2, 0.006_25));
+        tracker.state.loop_valuations[0] = -0.5 + 1e-3;
+        assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
+        tracker.state.loop_valuations[0] = 0.5;
+        assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
+    }
+
     #[test]
     fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
         let result = along_pole(1.0, TrackerOptions::default(), true);
