@@ -47,14 +47,17 @@ const POLE_AHEAD: f64 = 0.5;
 /// singularity, where the local model still holds and `1/g` has changed measurably.
 const RATE_STEP: f64 = 0.5;
 
-/// Radius of the arcs of [`around_the_pole`]: `ARC_FACTOR · |t_p − t₂|` (the
-/// located pole's distance from the last point), at least [`MIN_ARC`] and at most
-/// [`MAX_ARC`].
-const ARC_FACTOR: f64 = 4.0;
+/// Radii of the arcs of [`around_the_pole`], tried in turn: `f · |t_p − t₂|` for `f`
+/// in `ARC_FACTORS` (the located pole's distance from the last point, where the norm
+/// passed `at_infinity_norm`). An arc through `t_c − r` and `t_c ± i r` stays at least
+/// `(r + |Im t_p|)/√2` from the pole, so `f = 4` keeps about 3 times the distance at
+/// which the path diverged; smaller arcs enclose fewer other singularities, larger ones
+/// pass further from this one.
+const ARC_FACTORS: [f64; 3] = [4.0, 2.5, 6.0];
 /// Least radius of the arcs of [`around_the_pole`].
 const MIN_ARC: f64 = 0.02;
 /// Largest radius of the arcs of [`around_the_pole`].
-const MAX_ARC: f64 = 0.2;
+const MAX_ARC: f64 = 0.25;
 
 /// The growth rate `ẋ_i / x_i` of the largest coordinate along the path (at a point
 /// `x` of it, `ẋ = −J⁻¹ ∂H/∂t`), with buffers allocated once.
@@ -167,18 +170,24 @@ pub(super) fn last_growth_rate<H: Homotopy + ?Sized>(
 }
 
 /// Tracks the path from `start` that diverged near the pole `t_p` just ahead of it
-/// (or, without one, at its last point) around it: along `t_c − r → t_c ± i r → t_c + r` with
-/// `t_c = Re t_p`, `r = ARC_FACTOR·|t_p − t_last|` clamped to `[MIN_ARC, MAX_ARC]`
-/// and to the route `[0, 1 − endgame_start]`, then on to the endgame at `t = 1`
+/// (or, without one, at its last point) around it: along
+/// `t_c − r → t_c ± i r → t_c + r` with `t_c = Re t_p` and the radii `r` of
+/// [`ARC_FACTORS`] (clamped to `[MIN_ARC, MAX_ARC]` and to the route
+/// `[0, 1 − endgame_start]`), then on to the endgame at `t = 1`
 /// ([`Tracker::track_via`]). Between the real segment and the arc on its side of the
-/// pole there is (for a small arc) no singularity, so that arc continues the same
-/// path; the arc on the other side does too unless the pole is a branch point. Hence:
+/// pole there is, for a small enough arc, no singularity, so that arc continues the
+/// same path; the arc on the other side does too unless the pole is a branch point.
+/// Hence, at the first radius where
 /// - both arcs reach the same finite point, or both end at infinity by the endgame:
-///   that is the path's endpoint;
-/// - they disagree: the arc on the real segment's side (away from `Im t_p`) counts
-///   only if it reaches a finite point (any repeat of another path's root is caught
-///   by the duplicate test of `solve`), else the path stays failed — a point at
-///   infinity is never taken from an arc whose homotopy class is in doubt.
+///   that is the path's endpoint (a repeat of another path's root is caught by the
+///   duplicate test of `solve`);
+/// - they disagree: an arc's finite endpoint that no other path reached (`is_new`),
+///   the one on the real segment's side (away from `Im t_p`) first — every endpoint
+///   of any route is a root of the target, and one reached by no other path is not
+///   counted twice (as in the curve pipeline's arcs, `pipeline::sweep::retry`).
+///
+/// Otherwise the path stays failed: a point at infinity is never taken from an arc
+/// whose homotopy class is in doubt.
 ///
 /// `None` when no arc fits (breakpoints nearby) or the path is not rescued.
 pub(super) fn around_the_pole<H: Homotopy + ?Sized>(
@@ -188,52 +197,64 @@ pub(super) fn around_the_pole<H: Homotopy + ?Sized>(
     p: &PathResult,
     t_p: Option<C64>,
     same_point: impl Fn(&[C64], &[C64]) -> bool,
+    is_new: impl Fn(&[C64]) -> bool,
 ) -> Option<PathResult> {
-    let t_last = p.last_t.re;
     let (t_c, distance) = match t_p {
         Some(t_p) => (t_p.re, (t_p - p.last_t).norm()),
-        None => (t_last, 0.0),
+        None => (p.last_t.re, 0.0),
     };
     let end = 1.0 - tracker.options().endgame.endgame_start;
-    let r = (ARC_FACTOR * distance)
-        .clamp(MIN_ARC, MAX_ARC)
-        .min(t_c)
-        .min(end - t_c);
-    if r.is_nan() || r <= 0.0 || t_c - r <= 0.0 {
-        return None;
-    }
-    let breakpoints = homotopy.breakpoints();
-    if breakpoints.iter().any(|b| (b - t_c).abs() <= r) {
-        return None;
-    }
     // The real segment passes the pole on the side opposite to Im t_p.
     let near_side = match t_p {
         Some(t_p) if t_p.im > 0.0 => -1.0,
         _ => 1.0,
     };
-    let mut arc = |side: f64| {
-        let via = [
-            C64::new(t_c - r, 0.0),
-            C64::new(t_c, side * r),
-            C64::new(t_c + r, 0.0),
-        ];
-        tracker.track_via(start, &via, p.path_index)
-    };
-    let near = arc(near_side);
-    let far = arc(-near_side);
-    let agree = match (near.status, far.status) {
-        (PathStatus::AtInfinity, PathStatus::AtInfinity) => true,
-        (a, b) if a.is_finite() && b.is_finite() => same_point(&near.solution, &far.solution),
-        _ => false,
-    };
-    (agree || near.status.is_finite()).then_some(near)
+    let breakpoints = homotopy.breakpoints();
+    for factor in ARC_FACTORS {
+        let r = (factor * distance)
+            .clamp(MIN_ARC, MAX_ARC)
+            .min(0.9 * t_c)
+            .min(end - t_c);
+        if r.is_nan() || r <= 0.0 || t_c - r <= 0.0 {
+            continue;
+        }
+        if breakpoints.iter().any(|b| (b - t_c).abs() <= r) {
+            continue;
+        }
+        let mut arc = |side: f64| {
+            let via = [
+                C64::new(t_c - r, 0.0),
+                C64::new(t_c, side * r),
+                C64::new(t_c + r, 0.0),
+            ];
+            tracker.track_via(start, &via, p.path_index)
+        };
+        let near = arc(near_side);
+        let far = arc(-near_side);
+        let agree = match (near.status, far.status) {
+            (PathStatus::AtInfinity, PathStatus::AtInfinity) => true,
+            (a, b) if a.is_finite() && b.is_finite() => same_point(&near.solution, &far.solution),
+            _ => false,
+        };
+        if agree {
+            return Some(near);
+        }
+        if let Some(new) = [near, far]
+            .into_iter()
+            .find(|a| a.status.is_finite() && is_new(&a.solution))
+        {
+            return Some(new);
+        }
+    }
+    None
 }
 
 /// The diverged paths of a `solve` run (status `Failed(DivergedBeforeEndgame)` after
 /// the re-runs), in place: at infinity if no pole is located just ahead of them
 /// ([`pole_ahead`]) and they grow like a power of `s` ([`power_of_s_growth`]), else
-/// tracked around the point where they diverged ([`around_the_pole`]) and replaced
-/// by the result if rescued, else left failed. Returns the number of paths tracked
+/// tracked around the point where they diverged ([`around_the_pole`], "new" meaning
+/// no finite endpoint of the other paths) and replaced by the result if rescued,
+/// else left failed. Returns the number of paths tracked
 /// around a pole.
 pub(super) fn settle_diverged_paths<H, S>(
     homotopy: &H,
@@ -251,6 +272,12 @@ where
         return 0;
     }
     let n = homotopy.dimension();
+    let known: Vec<Vec<C64>> = paths
+        .iter()
+        .filter(|p| p.status.is_finite())
+        .map(|p| p.solution.clone())
+        .collect();
+    let is_new = |x: &[C64]| !known.iter().any(|y| same_point(x, y));
     paths
         .par_iter_mut()
         .filter(|p| p.status == diverged)
@@ -273,11 +300,93 @@ where
                     return 0;
                 }
                 let pole = t_p.filter(|_| ahead);
-                if let Some(around) = around_the_pole(tracker, homotopy, x, p, pole, same_point) {
+                if let Some(around) =
+                    around_the_pole(tracker, homotopy, x, p, pole, same_point, is_new)
+                {
                     *p = around;
                 }
                 1
             },
         )
         .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::homotopy::tracker::tests::{pole, reciprocal_family};
+
+    /// Divergence at `‖x‖ > 10`, steps of at most 0.01, endgame from `s = 0.01`.
+    fn options() -> TrackerOptions {
+        let mut options = TrackerOptions::default();
+        options.step.initial_step = 0.01;
+        options.step.max_step = 0.01;
+        options.endgame.at_infinity_norm = 10.0;
+        options.endgame.endgame_start = 0.01;
+        options.endgame.growth_before_divergence = true;
+        options
+    }
+
+    /// The path `x(t) = 1/(p − t)` of `(p − t)x − 1` from `x(0) = 1/p`, tracked to
+    /// `t = 1`, with the singularity located from it.
+    fn diverged(p: f64) -> (PathResult, Option<C64>, Option<C64>) {
+        let system = reciprocal_family();
+        let homotopy = pole(&system, p);
+        let mut tracker = Tracker::new(&homotopy, options());
+        let start = [C64::new(1.0 / p, 0.0)];
+        let result = tracker.track(&start, 0);
+        let mut rates = GrowthRate::new(&homotopy);
+        let t_p = locate_singularity(&mut tracker, &mut rates, &homotopy, &start, &result);
+        let g = last_growth_rate(&mut rates, &homotopy, &result);
+        (result, t_p, g)
+    }
+
+    /// A simple pole halfway is located where it is, just ahead of the point where the
+    /// path diverged: never at infinity.
+    #[test]
+    fn a_pole_halfway_is_located_ahead_of_the_path() {
+        let (result, t_p, _) = diverged(0.5);
+        assert_eq!(
+            result.status,
+            PathStatus::Failed(FailureReason::DivergedBeforeEndgame)
+        );
+        let t_p = t_p.unwrap();
+        assert!((t_p - 0.5).norm() < 1e-6, "t_p = {t_p}");
+        assert!(pole_ahead(&result, t_p));
+    }
+
+    /// `1/(1 − t)` diverges before the endgame zone and grows like `s^{−1}`: its
+    /// singularity is the target and it is at infinity.
+    #[test]
+    fn growth_like_a_power_of_s_is_located_at_the_target() {
+        let (result, t_p, g) = diverged(1.0);
+        assert_eq!(
+            result.status,
+            PathStatus::Failed(FailureReason::DivergedBeforeEndgame)
+        );
+        let t_p = t_p.unwrap();
+        assert!((t_p - 1.0).norm() < 1e-6, "t_p = {t_p}");
+        assert!(!pole_ahead(&result, t_p));
+        assert!(power_of_s_growth(&result, g.unwrap(), 0.1));
+    }
+
+    /// The path past the pole at `t = ½` is rescued along the arcs to its finite
+    /// endpoint `x(1) = 1/(½ − 1) = −2`.
+    #[test]
+    fn a_path_past_a_pole_is_tracked_around_it_to_its_endpoint() {
+        let system = reciprocal_family();
+        let homotopy = pole(&system, 0.5);
+        let start = |_: usize, x: &mut [C64]| x[0] = C64::new(2.0, 0.0);
+        let mut paths = vec![Tracker::new(&homotopy, options()).track(&[C64::new(2.0, 0.0)], 0)];
+        let around = settle_diverged_paths(&homotopy, &mut paths, start, &options(), |a, b| {
+            (a[0] - b[0]).norm() < 1e-8
+        });
+        assert_eq!(around, 1);
+        assert_eq!(paths[0].status, PathStatus::Nonsingular, "{:?}", paths[0]);
+        assert!(
+            (paths[0].solution[0] + 2.0).norm() < 1e-10,
+            "{:?}",
+            paths[0]
+        );
+    }
 }
