@@ -210,14 +210,17 @@ pub(super) fn around_the_pole<H: Homotopy + ?Sized>(
         _ => 1.0,
     };
     let breakpoints = homotopy.breakpoints();
+    let mut tried = Vec::with_capacity(ARC_FACTORS.len());
     for factor in ARC_FACTORS {
         let r = (factor * distance)
             .clamp(MIN_ARC, MAX_ARC)
             .min(0.9 * t_c)
             .min(end - t_c);
-        if r.is_nan() || r <= 0.0 || t_c - r <= 0.0 {
+        // Without a located pole (or after clamping) the radii coincide: one try each.
+        if r.is_nan() || r <= 0.0 || t_c - r <= 0.0 || tried.contains(&r) {
             continue;
         }
+        tried.push(r);
         if breakpoints.iter().any(|b| (b - t_c).abs() <= r) {
             continue;
         }
