@@ -213,3 +213,35 @@ fn polyhedral_paths_are_the_mixed_volume_and_reach_every_root_for_two_seeds() {
         }
     }
 }
+
+/// eco8 (mixed volume 64 = its 64 nonsingular roots, none at infinity) under the
+/// polyhedral homotopy: in the second stage (random-coefficient system → eco8) a path
+/// of seeds 0x5eed and 1 passes a pole near `t = 0.5` (norm past 10⁸ halfway), which
+/// was once counted at infinity without any endgame — a silent lost root. No path may
+/// be at infinity here, and every path is a distinct root or a reported failure.
+#[test]
+fn a_pole_passed_halfway_is_not_a_point_at_infinity() {
+    let system = load("eco8");
+    let compiled = system.compile();
+    let supports = Supports::from_system(&system).unwrap();
+    for (seed, complete) in [(0x5eed, true), (1, false)] {
+        let options = SolveOptions {
+            seed,
+            ..SolveOptions::default()
+        };
+        let solved = solve_polyhedral(&compiled, &supports, &[], &options).unwrap();
+        let s = &solved.result.summary;
+        assert_eq!(solved.mixed_volume, 64);
+        assert_eq!(s.at_infinity, 0, "seed {seed}: {s:?}");
+        let roots = distinct_nonsingular_roots(&compiled, &solved.result.nonsingular_solutions());
+        assert_eq!(
+            roots.len(),
+            s.nonsingular,
+            "seed {seed}: a root counted twice"
+        );
+        assert_eq!(s.nonsingular + s.failed, 64, "seed {seed}: {s:?}");
+        if complete {
+            assert_eq!(s.nonsingular, 64, "seed {seed}: {s:?}");
+        }
+    }
+}

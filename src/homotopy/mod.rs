@@ -10,6 +10,7 @@
 //! re-runs of failed paths), [`monodromy`] (solutions of parametric families from one
 //! start pair, certified by a trace test).
 
+mod divergence;
 pub mod homotopies;
 pub mod linalg;
 pub mod monodromy;

@@ -9,11 +9,13 @@
 //! re-tracked with [`TrackerOptions::conservative`] — never dropped silently. Endpoints
 //! that still share a nonsingular root after that are reported as failed
 //! ([`FailureReason::PathJumped`]), so no root is counted twice. Paths whose norm
-//! passed `at_infinity_norm` before the endgame zone are at infinity if their last
-//! point grows like a power of `1 − t` (see `classify_early_divergence`; with
-//! [`EndgameOptions::growth_before_divergence`]), else they stay
-//! failed. Finite endpoints are then clustered to give multiplicities.
+//! passed `at_infinity_norm` before the endgame zone are at infinity only if the
+//! singularity they ran into is located at `t = 1`; any other is a pole passed on the
+//! way, and the path is tracked around it to the endgame (see the `divergence` module;
+//! with [`EndgameOptions::growth_before_divergence`]), else it stays failed. Finite
+//! endpoints are then clustered to give multiplicities.
 
+use super::divergence::settle_diverged_paths;
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine};
 use super::start::{TotalDegreeStartSystem, no_parameter_derivatives};
@@ -344,6 +346,13 @@ where
     let all: Vec<usize> = (0..count).collect();
     let mut paths = track_all(&all, &options.tracker);
     let mut retracked = 0;
+    let mut conservative = TrackerOptions::conservative();
+    conservative.step.max_steps = conservative
+        .step
+        .max_steps
+        .max(options.tracker.step.max_steps);
+    conservative.endgame.growth_before_divergence =
+        options.tracker.endgame.growth_before_divergence;
     if options.retry_failed {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
         let duplicated = duplicated_nonsingular(homotopy, &paths);
@@ -358,13 +367,6 @@ where
             .collect();
         if !suspicious.is_empty() {
             retracked = suspicious.len();
-            let mut conservative = TrackerOptions::conservative();
-            conservative.step.max_steps = conservative
-                .step
-                .max_steps
-                .max(options.tracker.step.max_steps);
-            conservative.endgame.growth_before_divergence =
-                options.tracker.endgame.growth_before_divergence;
             for redo in track_all(&suspicious, &conservative) {
                 let index = redo.path_index;
                 paths[index] = redo;
@@ -372,11 +374,9 @@ where
         }
     }
     if options.tracker.endgame.growth_before_divergence {
-        classify_early_divergence(
-            homotopy,
-            &mut paths,
-            options.tracker.endgame.valuation_threshold,
-        );
+        retracked += settle_diverged_paths(homotopy, &mut paths, &start, &conservative, |a, b| {
+            same_point(a, b, options.cluster_tolerance)
+        });
     }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
     mark_jumped_paths(homotopy, &mut paths);
@@ -385,61 +385,6 @@ where
         paths,
         summary,
         gamma: C64::new(1.0, 0.0),
-    }
-}
-
-/// Largest `|v|` of a valuation that [`classify_early_divergence`] takes for growth
-/// towards `t = 1`; a pole of the path at a complex `t_p` near the real segment gives
-/// `v ≈ −(1 − t)/|t_p − t|`, of the order of `10⁷` where the norm passes 10⁸.
-const MAX_EARLY_VALUATION: f64 = 100.0;
-
-/// Paths that still failed with [`FailureReason::DivergedBeforeEndgame`] after the
-/// re-runs (their norm passed `at_infinity_norm` before the endgame zone, e.g. ku10 and
-/// des18_3, whose paths to infinity grow like `s^v` with `v ≤ −8`, `s = 1 − t`): at the
-/// last point, the valuation `v = −Re(s ẋ_i / x_i)` of the largest coordinate
-/// (`ẋ = −J⁻¹ ∂H/∂t`) in `[−MAX_EARLY_VALUATION, −threshold]` means the path grows like
-/// a power of `s` towards `t = 1` and it is at infinity; otherwise (a pole passed on
-/// the way, or no velocity) it stays failed.
-fn classify_early_divergence<H: Homotopy + ?Sized>(
-    homotopy: &H,
-    paths: &mut [PathResult],
-    threshold: f64,
-) {
-    let n = homotopy.dimension();
-    let zero = C64::new(0.0, 0.0);
-    let mut work = vec![zero; homotopy.workspace_len()];
-    let (mut h, mut dh) = (vec![zero; n], vec![zero; n]);
-    let mut jac = vec![zero; n * n];
-    let mut lu = super::linalg::LuWorkspace::new(n);
-    for p in paths.iter_mut() {
-        if p.status != PathStatus::Failed(FailureReason::DivergedBeforeEndgame) {
-            continue;
-        }
-        let s = 1.0 - p.last_t.re;
-        if p.last_t.im != 0.0 || !(s > 0.0 && s < 1.0) {
-            continue;
-        }
-        homotopy.evaluate_with_jacobian_and_time_derivative(
-            &p.solution,
-            p.last_t,
-            &mut work,
-            &mut h,
-            &mut jac,
-            &mut dh,
-        );
-        if !lu.factor(&jac) {
-            continue;
-        }
-        lu.solve_in_place(&mut dh);
-        let Some(i) = (0..n).max_by(|&a, &b| p.solution[a].norm().total_cmp(&p.solution[b].norm()))
-        else {
-            continue;
-        };
-        // ẋ = −J⁻¹ ∂H/∂t = −dh after the solve; v = −Re(s ẋ_i / x_i).
-        let v = (dh[i] * s / p.solution[i]).re;
-        if v.is_finite() && (-MAX_EARLY_VALUATION..=-threshold).contains(&v) {
-            p.status = PathStatus::AtInfinity;
-        }
     }
 }
 
