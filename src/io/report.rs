@@ -3,7 +3,7 @@
 //! `K` with every metric's (3-RRR: every singularity kind's) closest singular
 //! configuration `K′` at the selected τ, redrawn as the slider moves. Everything is in
 //! the one file: the data as JSON, one pre-rendered drawing per pose
-//! ([`super::draw::scene_svg`] or [`super::rrr_draw::rrr_scene_svg`], all with one view
+//! ([`MechanismScene::svg`] of a 3-RPR or 3-RRR scene, all with one view
 //! so the robot does not jump), and a short hand-written script; no network access is
 //! needed.
 //!
@@ -12,8 +12,9 @@
 //! `<pre id="test-result">`, for headless browser tests.
 
 use super::chart::{PlotFrame, TickStyle, grid_and_ticks};
-use super::draw::{Extent, Scene, scene_extent, scene_svg};
-use super::rrr_draw::{RrrScene, rrr_scene_extent, rrr_scene_svg, rrr_style};
+use super::draw::{Extent, Scene};
+use super::rrr_draw::{RrrScene, rrr_style};
+use super::scene::{MechanismScene, scene_extent};
 use super::svg::{SeriesStyle, escape, metric_style, px, short, stroke_attributes};
 use crate::mechanism::rpr::Design;
 use crate::mechanism::rrr::RrrConfiguration;
@@ -67,18 +68,14 @@ const REPORT_TICKS: TickStyle = TickStyle {
 /// Chart geometry in pixels.
 const CHART: (f64, f64, f64, f64, f64, f64) = (640.0, 400.0, 72.0, 16.0, 548.0, 320.0);
 
-/// Every scene drawn (by `svg`) in the one view that holds them all (by `extent`): the
-/// frames the slider switches between.
-fn frames_in_one_view<S>(
-    scenes: &[S],
-    extent: fn(&S) -> Extent,
-    svg: fn(&S, &Extent) -> String,
-) -> Vec<String> {
+/// Every scene drawn in the one view that holds them all: the frames the slider
+/// switches between.
+fn frames_in_one_view<S: MechanismScene>(scenes: &[S]) -> Vec<String> {
     let view = scenes
         .iter()
-        .map(extent)
+        .map(scene_extent)
         .fold(Extent::empty(), |a, b| a.union(&b));
-    scenes.iter().map(|scene| svg(scene, &view)).collect()
+    scenes.iter().map(|scene| scene.svg(&view)).collect()
 }
 
 /// The report of a 3-RPR curve: signed distance of each metric in `metrics` against
@@ -118,7 +115,7 @@ pub fn rpr_report(
         poses: result.poses.iter().map(|p| p.pose).collect(),
         curves,
         singular: singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
-        frames: frames_in_one_view(&scenes, scene_extent, scene_svg),
+        frames: frames_in_one_view(&scenes),
     }
 }
 
@@ -171,7 +168,7 @@ pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) 
         poses: result.poses.iter().map(|p| p.pose).collect(),
         curves,
         singular,
-        frames: frames_in_one_view(&scenes, rrr_scene_extent, rrr_scene_svg),
+        frames: frames_in_one_view(&scenes),
     }
 }
 
