@@ -246,3 +246,52 @@ impl<S: PlainSystem + ?Sized> Evaluator for S {
         out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
     }
 }
+
+/// `F(·; p)`: a parametric system at fixed parameters `p`, as a system without
+/// parameters (the polyhedral random-coefficient system is its term family at the
+/// random coefficients).
+pub struct AtParameters<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    parameters: &'a [C64],
+}
+
+impl<'a, F: Evaluator + ?Sized> AtParameters<'a, F> {
+    /// `system` at `parameters` (of length `system.num_parameters()`).
+    pub fn new(system: &'a F, parameters: &'a [C64]) -> Self {
+        assert_eq!(parameters.len(), system.num_parameters());
+        AtParameters { system, parameters }
+    }
+}
+
+impl<F: Evaluator + ?Sized> PlainSystem for AtParameters<'_, F> {
+    fn num_variables(&self) -> usize {
+        self.system.num_variables()
+    }
+    fn num_equations(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn workspace_len(&self) -> usize {
+        self.system.workspace_len()
+    }
+    fn evaluate(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate(x, self.parameters, work, f);
+    }
+    fn evaluate_extended(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate_extended(x, self.parameters, work, f);
+    }
+    fn evaluate_with_jacobian(&self, x: &[C64], work: &mut [C64], f: &mut [C64], jac: &mut [C64]) {
+        self.system
+            .evaluate_with_jacobian(x, self.parameters, work, f, jac);
+    }
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        self.system
+            .evaluate_with_jacobian_extended(x, self.parameters, work, f, jac, jac_low);
+    }
+}
