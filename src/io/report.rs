@@ -68,14 +68,31 @@ const REPORT_TICKS: TickStyle = TickStyle {
 /// Chart geometry in pixels.
 const CHART: (f64, f64, f64, f64, f64, f64) = (640.0, 400.0, 72.0, 16.0, 548.0, 320.0);
 
-/// Every scene drawn in the one view that holds them all: the frames the slider
-/// switches between.
-fn frames_in_one_view<S: MechanismScene>(scenes: &[S]) -> Vec<String> {
+/// A report of signed distances (in the design's length unit) along a motion, both
+/// mechanisms' kind: `(title, description)`, `(τ, [x, y, φ])` of each pose, and the
+/// scene at each pose, all drawn in the one view that holds them (the frames the
+/// slider switches between, so the robot does not jump).
+fn signed_distance_report<S: MechanismScene>(
+    (title, description): (&str, &str),
+    poses: Vec<(f64, [f64; 3])>,
+    scenes: &[S],
+    curves: Vec<ReportCurve>,
+    singular: Vec<(f64, String)>,
+) -> Report {
     let view = scenes
         .iter()
         .map(scene_extent)
         .fold(Extent::empty(), |a, b| a.union(&b));
-    scenes.iter().map(|scene| scene.svg(&view)).collect()
+    Report {
+        title: title.into(),
+        description: description.into(),
+        y_title: "signed distance D (design length unit)".into(),
+        tau: poses.iter().map(|p| p.0).collect(),
+        poses: poses.iter().map(|p| p.1).collect(),
+        curves,
+        singular,
+        frames: scenes.iter().map(|scene| scene.svg(&view)).collect(),
+    }
 }
 
 /// The report of a 3-RPR curve: signed distance of each metric in `metrics` against
@@ -107,16 +124,16 @@ pub fn rpr_report(
                 .collect(),
         })
         .collect();
-    Report {
-        title: "3-RPR distance to the nearest singularity along the motion".into(),
-        description: "D(K, K′): distance from the configuration K to the closest singular configuration K′ under each metric (platform part / base part: plate, bars or rigid), signed with S(K), the singularity polynomial (S = 0: leg lines concurrent or parallel); τ: the motion parameter.".into(),
-        y_title: "signed distance D (design length unit)".into(),
-        tau: result.poses.iter().map(|p| p.tau).collect(),
-        poses: result.poses.iter().map(|p| p.pose).collect(),
+    signed_distance_report(
+        (
+            "3-RPR distance to the nearest singularity along the motion",
+            "D(K, K′): distance from the configuration K to the closest singular configuration K′ under each metric (platform part / base part: plate, bars or rigid), signed with S(K), the singularity polynomial (S = 0: leg lines concurrent or parallel); τ: the motion parameter.",
+        ),
+        result.poses.iter().map(|p| (p.tau, p.pose)).collect(),
+        &scenes,
         curves,
-        singular: singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
-        frames: frames_in_one_view(&scenes),
-    }
+        singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
+    )
 }
 
 /// The report of a 3-RRR curve: the signed distances to the parallel and the three
@@ -160,16 +177,16 @@ pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) 
         );
     }
     singular.sort_by(|a, b| a.0.total_cmp(&b.0));
-    Report {
-        title: "3-RRR distance to the parallel and leg singularities along the motion".into(),
-        description: "D(K, K′): distance from the configuration K to the closest singular configuration K′ of each kind under the all-deformable metric (base, platform and six links may all move); parallel: the distal-link lines B′C′ concurrent or parallel, legN: O′, B′, C′ of leg N collinear; each curve signed with its determinant at K; τ: the motion parameter.".into(),
-        y_title: "signed distance D (design length unit)".into(),
-        tau: result.poses.iter().map(|p| p.tau).collect(),
-        poses: result.poses.iter().map(|p| p.pose).collect(),
+    signed_distance_report(
+        (
+            "3-RRR distance to the parallel and leg singularities along the motion",
+            "D(K, K′): distance from the configuration K to the closest singular configuration K′ of each kind under the all-deformable metric (base, platform and six links may all move); parallel: the distal-link lines B′C′ concurrent or parallel, legN: O′, B′, C′ of leg N collinear; each curve signed with its determinant at K; τ: the motion parameter.",
+        ),
+        result.poses.iter().map(|p| (p.tau, p.pose)).collect(),
+        &scenes,
         curves,
         singular,
-        frames: frames_in_one_view(&scenes),
-    }
+    )
 }
 
 fn chart_svg(report: &Report) -> String {
