@@ -147,10 +147,7 @@ fn interval_values_enclose_sampled_values_and_agree_with_the_jacobian_tape() {
         let (n, m) = (system.num_variables(), system.num_equations());
         let center = &start.solutions[0];
         let radius = 1e-3;
-        let x: Vec<ComplexInterval> = center
-            .iter()
-            .map(|&c| ComplexInterval::centered(c, radius))
-            .collect();
+        let x = ComplexInterval::boxes(center, radius);
         let p: Vec<ComplexInterval> = parameters
             .iter()
             .map(|&v| ComplexInterval::point(v))

@@ -233,6 +233,17 @@ mod tests {
         })
     }
 
+    /// Uniform draws in `[−1, 1]` from stream `stream` of `seed`.
+    fn unit_draws(seed: u64, stream: u64) -> impl FnMut() -> f64 {
+        let mut rng = random::stream(seed, stream);
+        move || random::uniform(&mut rng, -1.0, 1.0)
+    }
+
+    /// `len` complex numbers with real and imaginary parts drawn from `unit`, in turn.
+    fn random_complex(unit: &mut impl FnMut() -> f64, len: usize) -> Vec<C64> {
+        (0..len).map(|_| C64::new(unit(), unit())).collect()
+    }
+
     fn assert_bounded(got: [f64; 2], exact: ComplexInterval) {
         assert!(
             exact.re.magnitude() <= got[0] && exact.im.magnitude() <= got[1],
@@ -244,22 +255,15 @@ mod tests {
     /// `E`, and is not much larger than `|I − Y·C|·ē` plus the radius term.
     #[test]
     fn bounds_sampled_products() {
-        let mut rng = random::stream(7, 3);
+        let mut unit = unit_draws(7, 3);
         let n = 5;
-        let mut unit = || random::uniform(&mut rng, -1.0, 1.0);
         for _ in 0..20 {
-            let y: Vec<C64> = (0..n * n).map(|_| C64::new(unit(), unit())).collect();
-            let centers: Vec<C64> = (0..n * n).map(|_| C64::new(unit(), unit())).collect();
-            let offsets: Vec<C64> = (0..n).map(|_| C64::new(unit(), unit())).collect();
+            let y = random_complex(&mut unit, n * n);
+            let centers = random_complex(&mut unit, n * n);
+            let offsets = random_complex(&mut unit, n);
             let width = 1e-6 * unit().abs();
-            let b: Vec<ComplexInterval> = centers
-                .iter()
-                .map(|&c| ComplexInterval::centered(c, width))
-                .collect();
-            let e: Vec<ComplexInterval> = offsets
-                .iter()
-                .map(|&c| ComplexInterval::centered(c, 0.3))
-                .collect();
+            let b = ComplexInterval::boxes(&centers, width);
+            let e = ComplexInterval::boxes(&offsets, 0.3);
             let mut out = vec![[0.0; 2]; n];
             let mut product = MidpointRadius::new(n);
             assert!(product.product_bound(&y, &b, &e, &mut out));
@@ -297,8 +301,7 @@ mod tests {
     #[test]
     fn the_radius_term_is_attained_at_the_worst_corner() {
         let n = 4;
-        let mut rng = random::stream(11, 5);
-        let mut unit = || random::uniform(&mut rng, -1.0, 1.0);
+        let mut unit = unit_draws(11, 5);
         // C = 2I + small (real), Y = C⁻¹ by Gauss–Jordan in double.
         let mut c: Vec<f64> = (0..n * n).map(|_| 0.3 * unit()).collect();
         for i in 0..n {
@@ -368,17 +371,16 @@ mod tests {
     /// enclosure, which is about as wide as the interval product's.
     #[test]
     fn negated_product_encloses_corners() {
-        let mut rng = random::stream(13, 2);
+        let mut unit = unit_draws(13, 2);
         let n = 6;
-        let mut unit = || random::uniform(&mut rng, -1.0, 1.0);
         for _ in 0..20 {
-            let y: Vec<C64> = (0..n * n).map(|_| C64::new(unit(), unit())).collect();
-            let centers: Vec<C64> = (0..n).map(|_| C64::new(unit(), unit()) * 1e-3).collect();
-            let width = 1e-9 * unit().abs();
-            let f: Vec<ComplexInterval> = centers
-                .iter()
-                .map(|&c| ComplexInterval::centered(c, width))
+            let y = random_complex(&mut unit, n * n);
+            let centers: Vec<C64> = random_complex(&mut unit, n)
+                .into_iter()
+                .map(|c| c * 1e-3)
                 .collect();
+            let width = 1e-9 * unit().abs();
+            let f = ComplexInterval::boxes(&centers, width);
             let mut out = vec![ComplexInterval::default(); n];
             assert!(negated_product(&y, &f, &mut out));
             for i in 0..n {

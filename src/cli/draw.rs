@@ -9,7 +9,8 @@ use super::outcome::Outcome;
 use super::output::{check_output_file, write_file};
 use anyhow::Result;
 use clap::Args;
-use singdist::io::draw::{Scene, scene_extent, scene_svg};
+use singdist::io::draw::Scene;
+use singdist::io::scene::{MechanismScene, scene_extent};
 use singdist::pipeline::curve::PathFailure;
 use std::path::{Path, PathBuf};
 
@@ -44,7 +45,7 @@ pub fn run(args: DrawArgs) -> Result<Outcome> {
         eprintln!("singdist: warning: {name}: no real critical point found, not drawn");
     }
     let scene = Scene::of_pose(design, at, &names, "design length unit");
-    let svg = scene_svg(&scene, &scene_extent(&scene));
+    let svg = scene.svg(&scene_extent(&scene));
     write_drawing(&output.out, svg, &result.failures)
 }
 

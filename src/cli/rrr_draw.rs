@@ -10,7 +10,8 @@ use super::resources::with_threads;
 use super::rrr::trajectory_of;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use singdist::io::rrr_draw::{RRR_SUBPROBLEMS, RrrScene, rrr_scene_extent, rrr_scene_svg};
+use singdist::io::rrr_draw::{RRR_SUBPROBLEMS, RrrScene};
+use singdist::io::scene::{MechanismScene, scene_extent};
 use singdist::mechanism::rpr::{Motion, PoseList};
 use singdist::pipeline::rrr_curve::{
     RrrCurveOptions, compute_rrr_curve_at, default_rrr_start_solutions,
@@ -53,6 +54,6 @@ pub fn run(args: RrrDrawArgs) -> Result<Outcome> {
         }
     }
     let scene = RrrScene::of_pose(&configuration, at, "design length unit");
-    let svg = rrr_scene_svg(&scene, &rrr_scene_extent(&scene));
+    let svg = scene.svg(&scene_extent(&scene));
     write_drawing(&output.out, svg, &result.failures)
 }

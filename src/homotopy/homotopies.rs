@@ -60,9 +60,6 @@ pub trait Homotopy: Send + Sync {
         self.evaluate_with_jacobian(x, t, work, h, jac);
         self.evaluate_time_derivative(x, t, work, dh);
     }
-    /// [`Homotopy::evaluate_with_jacobian_and_time_derivative`] in double-double
-    /// arithmetic where supported (the predictor's velocities in extended-precision
-    /// mode). The default evaluates in double precision.
     /// `h ← H`, `jac + jac_low ← ∂H/∂x` in double-double arithmetic where supported
     /// ([`Evaluator::evaluate_with_jacobian_extended`]). The default evaluates in double
     /// precision (`jac_low = 0`).
@@ -77,6 +74,10 @@ pub trait Homotopy: Send + Sync {
         self.evaluate_with_jacobian(x, t, work, h, jac);
         jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
     }
+    /// [`Homotopy::evaluate_with_jacobian_and_time_derivative`] in double-double
+    /// arithmetic where supported (the predictor's velocities in extended-precision
+    /// mode): `h ← H`, `jac + jac_low ← ∂H/∂x`, `dh ← ∂H/∂t`. The default evaluates in
+    /// double precision (`jac_low = 0`).
     #[allow(clippy::too_many_arguments)]
     fn evaluate_with_jacobian_and_time_derivative_extended(
         &self,

@@ -510,22 +510,6 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
         let slice: C64 = dq[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
         out[n] = -slice - dq[n];
     }
-
-    fn evaluate_parameter_jacobian(
-        &self,
-        x: &[C64],
-        _q: &[C64],
-        _work: &mut [C64],
-        jac_p: &mut [C64],
-    ) {
-        let (n, _) = self.layout();
-        let width = n + 1;
-        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-        for j in 0..n {
-            jac_p[n * width + j] = -x[j];
-        }
-        jac_p[n * width + n] = C64::new(-1.0, 0.0);
-    }
 }
 
 /// `F(x) − p`: a plain square system made a parametric family by its constant terms
@@ -588,19 +572,6 @@ impl<F: Evaluator + ?Sized> Evaluator for ConstantShift<'_, F> {
     ) {
         for (o, d) in out.iter_mut().zip(dp) {
             *o = -d;
-        }
-    }
-    fn evaluate_parameter_jacobian(
-        &self,
-        _x: &[C64],
-        _p: &[C64],
-        _work: &mut [C64],
-        jac_p: &mut [C64],
-    ) {
-        let k = self.system.num_equations();
-        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-        for i in 0..k {
-            jac_p[i * k + i] = C64::new(-1.0, 0.0);
         }
     }
 }

@@ -18,12 +18,12 @@
 use super::divergence::settle_diverged_paths;
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine};
-use super::start::{TotalDegreeStartSystem, no_parameter_derivatives};
+use super::start::TotalDegreeStartSystem;
 use super::tracker::{
     EndgameOptions, FailureReason, PathResult, PathStatus, Tracker, TrackerOptions,
 };
 use crate::C64;
-use crate::system::Evaluator;
+use crate::system::{Evaluator, PlainSystem};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -470,32 +470,24 @@ struct TargetSystem<'a, H: Homotopy + ?Sized> {
     homotopy: &'a H,
 }
 
-impl<H: Homotopy + ?Sized> Evaluator for TargetSystem<'_, H> {
+impl<H: Homotopy + ?Sized> PlainSystem for TargetSystem<'_, H> {
     fn num_variables(&self) -> usize {
         self.homotopy.dimension()
     }
     fn workspace_len(&self) -> usize {
         self.homotopy.workspace_len()
     }
-    fn evaluate(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+    fn evaluate(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
         self.homotopy.evaluate(x, C64::new(1.0, 0.0), work, f);
     }
-    fn evaluate_extended(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+    fn evaluate_extended(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
         self.homotopy
             .evaluate_extended(x, C64::new(1.0, 0.0), work, f);
     }
-    fn evaluate_with_jacobian(
-        &self,
-        x: &[C64],
-        _: &[C64],
-        work: &mut [C64],
-        f: &mut [C64],
-        jac: &mut [C64],
-    ) {
+    fn evaluate_with_jacobian(&self, x: &[C64], work: &mut [C64], f: &mut [C64], jac: &mut [C64]) {
         self.homotopy
             .evaluate_with_jacobian(x, C64::new(1.0, 0.0), work, f, jac);
     }
-    no_parameter_derivatives!();
 }
 
 /// Sets `multiplicity` of every finite path to the number of finite paths ending at

@@ -8,35 +8,7 @@
 //! `(d_1, …, d_n)`, so any subset of paths can be generated independently.
 
 use crate::C64;
-use crate::system::Evaluator;
-
-/// The parameter derivatives of a system without parameters: `∂G/∂p · dp` is zero and
-/// `∂G/∂p` is empty. For the `Evaluator` impls of start systems and of a homotopy's
-/// target `H(·, 1)`.
-macro_rules! no_parameter_derivatives {
-    () => {
-        fn evaluate_parameter_derivative(
-            &self,
-            _x: &[$crate::C64],
-            _p: &[$crate::C64],
-            _dp: &[$crate::C64],
-            _work: &mut [$crate::C64],
-            out: &mut [$crate::C64],
-        ) {
-            out.iter_mut().for_each(|v| *v = $crate::C64::new(0.0, 0.0));
-        }
-
-        fn evaluate_parameter_jacobian(
-            &self,
-            _x: &[$crate::C64],
-            _p: &[$crate::C64],
-            _work: &mut [$crate::C64],
-            _jac_p: &mut [$crate::C64],
-        ) {
-        }
-    };
-}
-pub(crate) use no_parameter_derivatives;
+use crate::system::PlainSystem;
 
 /// `G_i(x) = x_i^{d_i} − 1`, i = 1..n.
 #[derive(Clone, Debug)]
@@ -74,7 +46,7 @@ impl TotalDegreeStartSystem {
     }
 }
 
-impl Evaluator for TotalDegreeStartSystem {
+impl PlainSystem for TotalDegreeStartSystem {
     fn num_variables(&self) -> usize {
         self.degrees.len()
     }
@@ -82,20 +54,13 @@ impl Evaluator for TotalDegreeStartSystem {
         0
     }
 
-    fn evaluate(&self, x: &[C64], _p: &[C64], _work: &mut [C64], f: &mut [C64]) {
+    fn evaluate(&self, x: &[C64], _work: &mut [C64], f: &mut [C64]) {
         for ((fi, xi), &d) in f.iter_mut().zip(x).zip(&self.degrees) {
             *fi = xi.powu(d) - 1.0;
         }
     }
 
-    fn evaluate_with_jacobian(
-        &self,
-        x: &[C64],
-        _p: &[C64],
-        _work: &mut [C64],
-        f: &mut [C64],
-        jac: &mut [C64],
-    ) {
+    fn evaluate_with_jacobian(&self, x: &[C64], _work: &mut [C64], f: &mut [C64], jac: &mut [C64]) {
         let n = self.degrees.len();
         jac.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
         for i in 0..n {
@@ -109,6 +74,4 @@ impl Evaluator for TotalDegreeStartSystem {
             jac[i * n + i] = lower * d as f64;
         }
     }
-
-    no_parameter_derivatives!();
 }

@@ -86,8 +86,9 @@ pub(crate) fn centroid(points: &[[f64; 2]]) -> [f64; 2] {
     ]
 }
 
-/// Pixel layout of a drawing.
-pub(crate) struct Canvas {
+/// Pixel layout of a drawing (opaque outside the crate: the surface the
+/// [`super::scene::MechanismScene`] drawings draw on).
+pub struct Canvas {
     pub(crate) width: f64,
     pub(crate) height: f64,
     pub(crate) left: f64,

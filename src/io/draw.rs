@@ -18,11 +18,14 @@
 pub use super::canvas::Extent;
 use super::canvas::{
     Canvas, Legend, PointLabels, centroid, collinear_line, guide_attributes, joint_circle,
-    leg_line, norm, open_drawing, polygon, sub, svg_document,
+    leg_line, norm, sub, svg_document,
 };
+use super::leg_lines::mark_meeting;
 pub use super::leg_lines::{LegMeeting, leg_meeting};
-use super::leg_lines::{NEAR_MEETING, mark_meeting};
-use super::svg::{SeriesStyle, escape, metric_style, number, px, short, stroke_attributes};
+use super::scene::{
+    K_LEGS, K_PLATFORM, MechanismScene, draw_skeleton, joint as anchor, open_overlay, scene_body,
+};
+use super::svg::{SeriesStyle, escape, metric_style, number, px, short};
 use crate::mechanism::rpr::{Design, Pose};
 use crate::pipeline::curve::PoseResult;
 use std::fmt::Write;
@@ -90,55 +93,105 @@ impl Scene {
     }
 }
 
-fn anchor(k: &[f64; 12], j: usize) -> [f64; 2] {
-    [k[2 * j], k[2 * j + 1]]
-}
-
 fn configuration_extent(k: &[f64; 12]) -> Extent {
     Extent::of_points((0..6).map(|j| anchor(k, j)))
 }
 
-/// The box around every anchor of `K` and of each `K′`.
-fn anchors_extent(scene: &Scene) -> Extent {
-    let mut e = configuration_extent(&scene.configuration);
-    for overlay in &scene.overlays {
-        e = e.union(&configuration_extent(&overlay.closest));
+impl MechanismScene for Scene {
+    fn labels(&self) -> (&str, &str) {
+        (&self.title, &self.length_unit)
     }
-    e
-}
 
-/// The box the scene's drawing must show: every anchor of `K` and of each `K′`, and
-/// the leg lines' meeting points that lie near them.
-pub fn scene_extent(scene: &Scene) -> Extent {
-    let mut e = anchors_extent(scene);
-    let (centre, size) = (e.centre(), e.size());
-    for overlay in &scene.overlays {
-        if overlay.subproblem == "singularity"
-            && let LegMeeting::Point(p) = leg_meeting(&overlay.closest)
-            && norm(sub(p, centre)) <= NEAR_MEETING * size
-        {
-            e.include(p);
+    fn joints_extent(&self) -> Extent {
+        let mut e = configuration_extent(&self.configuration);
+        for overlay in &self.overlays {
+            e = e.union(&configuration_extent(&overlay.closest));
+        }
+        e
+    }
+
+    fn leg_meetings(&self) -> Vec<LegMeeting> {
+        self.overlays
+            .iter()
+            .filter(|o| o.subproblem == "singularity")
+            .map(|o| leg_meeting(&o.closest))
+            .collect()
+    }
+
+    fn draw_configuration(&self, out: &mut String, canvas: &Canvas) {
+        let k = &self.configuration;
+        out.push_str("<g id=\"K\" class=\"configuration\">\n");
+        let base = r##" fill="#e8e8e8" stroke="#222" stroke-width="2.5""##;
+        draw_skeleton(out, canvas, k, 3, legs, [base, K_PLATFORM, K_LEGS]);
+        let mut labels = PointLabels::default();
+        for (first, letter) in [(0, 'a'), (3, 'b')] {
+            let points: Vec<[f64; 2]> = (first..first + 3).map(|j| anchor(k, j)).collect();
+            let c = canvas.pixel(centroid(&points));
+            for (i, p) in points.iter().enumerate() {
+                let p = canvas.pixel(*p);
+                joint_circle(out, "anchor", p);
+                // The label sits outside the triangle, 18 px from the anchor.
+                let text = format!("{letter}{}", i + 1);
+                labels.place(out, "anchor-label", (p, sub(p, c)), &text);
+            }
+        }
+        out.push_str("</g>\n");
+    }
+
+    fn draw_overlays(&self, out: &mut String, canvas: &Canvas, near: &Extent) {
+        for overlay in &self.overlays {
+            let style = metric_style(&overlay.metric);
+            let k = &overlay.closest;
+            let data = format!(
+                r#"data-metric="{}" data-subproblem="{}""#,
+                escape(&overlay.metric),
+                escape(&overlay.subproblem)
+            );
+            open_overlay(out, canvas, k, 3, legs, style, &data);
+            let thin = guide_attributes(style);
+            let points =
+                |range: std::ops::Range<usize>| range.map(|j| anchor(k, j)).collect::<Vec<_>>();
+            match overlay.subproblem.as_str() {
+                "singularity" => mark_meeting(
+                    out,
+                    canvas,
+                    leg_meeting(k),
+                    &points(3..6),
+                    near,
+                    (style, &thin),
+                ),
+                "collinear-platform" => collinear_line(out, canvas, &points(3..6), &thin),
+                "collinear-base" => collinear_line(out, canvas, &points(0..3), &thin),
+                "all-collinear" => collinear_line(out, canvas, &points(0..6), &thin),
+                "coincident-platform" => {
+                    degenerate_point(out, canvas, centroid(&points(3..6)), style)
+                }
+                "coincident-base" => degenerate_point(out, canvas, centroid(&points(0..3)), style),
+                _ => {}
+            }
+            out.push_str("</g>\n");
         }
     }
-    e
-}
 
-/// Triangle `first..first + 3` of the anchors of `k` (0: base, 3: platform).
-fn triangle(
-    out: &mut String,
-    canvas: &Canvas,
-    k: &[f64; 12],
-    first: usize,
-    class: &str,
-    attributes: &str,
-) {
-    polygon(
-        out,
-        canvas,
-        (first..first + 3).map(|j| anchor(k, j)),
-        class,
-        attributes,
-    );
+    /// With a zoom inset on the platform region where the drawing shows it too small.
+    fn svg(&self, extent: &Extent) -> String {
+        let canvas = Canvas::new(extent);
+        let mut body = scene_body(self, &canvas);
+        let legend_bottom = legend(&mut body, &canvas, self);
+        let mut height = canvas.height;
+        let area = (
+            canvas.left + canvas.plot_width + 24.0,
+            legend_bottom + 34.0,
+            320.0,
+            250.0,
+        );
+        let zoom = zoom_canvas(&platform_extent(self), area);
+        if zoom.scale >= ZOOM_AT_LEAST * canvas.scale {
+            height = height.max(area.1 + area.3 + 16.0);
+            zoom_inset(&mut body, self, &zoom, canvas.scale);
+        }
+        svg_document("rpr-drawing", canvas.width, height, &body)
+    }
 }
 
 fn legs(out: &mut String, canvas: &Canvas, k: &[f64; 12], attributes: &str) {
@@ -146,45 +199,6 @@ fn legs(out: &mut String, canvas: &Canvas, k: &[f64; 12], attributes: &str) {
         let ends = (anchor(k, i), anchor(k, 3 + i));
         leg_line(out, canvas, "leg", i + 1, ends, attributes);
     }
-}
-
-fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; 12]) {
-    out.push_str("<g id=\"K\" class=\"configuration\">\n");
-    triangle(
-        out,
-        canvas,
-        k,
-        0,
-        "base",
-        r##" fill="#e8e8e8" stroke="#222" stroke-width="2.5""##,
-    );
-    triangle(
-        out,
-        canvas,
-        k,
-        3,
-        "platform",
-        r##" fill="#c8c8c8" fill-opacity="0.8" stroke="#222" stroke-width="2.5""##,
-    );
-    legs(
-        out,
-        canvas,
-        k,
-        r##" stroke="#222" stroke-width="4" stroke-linecap="round""##,
-    );
-    let mut labels = PointLabels::default();
-    for (first, letter) in [(0, 'a'), (3, 'b')] {
-        let points: Vec<[f64; 2]> = (first..first + 3).map(|j| anchor(k, j)).collect();
-        let c = canvas.pixel(centroid(&points));
-        for (i, p) in points.iter().enumerate() {
-            let p = canvas.pixel(*p);
-            joint_circle(out, "anchor", p);
-            // The label sits outside the triangle, 18 px from the anchor.
-            let text = format!("{letter}{}", i + 1);
-            labels.place(out, "anchor-label", (p, sub(p, c)), &text);
-        }
-    }
-    out.push_str("</g>\n");
 }
 
 /// The note on a `K′` that the legend prints under its distance.
@@ -201,40 +215,6 @@ fn overlay_note(overlay: &ClosestOverlay) -> String {
         "coincident-base" => "coincident base: a1′ = a2′ = a3′".into(),
         other => other.to_string(),
     }
-}
-
-fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &ClosestOverlay, near: &Extent) {
-    let style = metric_style(&overlay.metric);
-    let k = &overlay.closest;
-    let _ = writeln!(
-        out,
-        r#"<g class="closest" data-metric="{}" data-subproblem="{}">"#,
-        escape(&overlay.metric),
-        escape(&overlay.subproblem)
-    );
-    let stroke = stroke_attributes(style, 1.8);
-    triangle(out, canvas, k, 0, "base", &stroke);
-    triangle(out, canvas, k, 3, "platform", &stroke);
-    legs(out, canvas, k, &stroke);
-    let thin = guide_attributes(style);
-    let points = |range: std::ops::Range<usize>| range.map(|j| anchor(k, j)).collect::<Vec<_>>();
-    match overlay.subproblem.as_str() {
-        "singularity" => mark_meeting(
-            out,
-            canvas,
-            leg_meeting(k),
-            &points(3..6),
-            near,
-            (style, &thin),
-        ),
-        "collinear-platform" => collinear_line(out, canvas, &points(3..6), &thin),
-        "collinear-base" => collinear_line(out, canvas, &points(0..3), &thin),
-        "all-collinear" => collinear_line(out, canvas, &points(0..6), &thin),
-        "coincident-platform" => degenerate_point(out, canvas, centroid(&points(3..6)), style),
-        "coincident-base" => degenerate_point(out, canvas, centroid(&points(0..3)), style),
-        _ => {}
-    }
-    out.push_str("</g>\n");
 }
 
 fn degenerate_point(out: &mut String, canvas: &Canvas, p: [f64; 2], style: SeriesStyle) {
@@ -268,34 +248,6 @@ fn legend(out: &mut String, canvas: &Canvas, scene: &Scene) -> f64 {
         );
     }
     legend.close()
-}
-
-/// The scene as a standalone SVG document showing `extent` (pass
-/// [`scene_extent`] for one drawing, or the union over several scenes for frames that
-/// share a view).
-pub fn scene_svg(scene: &Scene, extent: &Extent) -> String {
-    let canvas = Canvas::new(extent);
-    let mut body = open_drawing(&canvas, &scene.title, &scene.length_unit);
-    draw_configuration(&mut body, &canvas, &scene.configuration);
-    let near = anchors_extent(scene);
-    for overlay in &scene.overlays {
-        draw_overlay(&mut body, &canvas, overlay, &near);
-    }
-    body.push_str("</g>\n");
-    let legend_bottom = legend(&mut body, &canvas, scene);
-    let mut height = canvas.height;
-    let area = (
-        canvas.left + canvas.plot_width + 24.0,
-        legend_bottom + 34.0,
-        320.0,
-        250.0,
-    );
-    let zoom = zoom_canvas(&platform_extent(scene), area);
-    if zoom.scale >= ZOOM_AT_LEAST * canvas.scale {
-        height = height.max(area.1 + area.3 + 16.0);
-        zoom_inset(&mut body, scene, &zoom, canvas.scale);
-    }
-    svg_document("rpr-drawing", canvas.width, height, &body)
 }
 
 /// A zoom inset is drawn when it enlarges the platform region at least this much.
@@ -351,11 +303,8 @@ fn zoom_inset(out: &mut String, scene: &Scene, canvas: &Canvas, main_scale: f64)
         px(w),
         px(h)
     );
-    draw_configuration(&mut inset, canvas, &scene.configuration);
-    let near = platform_extent(scene);
-    for overlay in &scene.overlays {
-        draw_overlay(&mut inset, canvas, overlay, &near);
-    }
+    scene.draw_configuration(&mut inset, canvas);
+    scene.draw_overlays(&mut inset, canvas, &platform_extent(scene));
     inset.push_str("</g>\n");
     out.push_str("<g class=\"zoom\">\n");
     out.push_str(
@@ -369,6 +318,7 @@ fn zoom_inset(out: &mut String, scene: &Scene, canvas: &Canvas, main_scale: f64)
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::scene::scene_extent;
 
     #[test]
     fn parallel_leg_lines_are_drawn_as_an_arrow() {
@@ -386,7 +336,7 @@ mod tests {
             }],
             length_unit: "m".into(),
         };
-        let svg = scene_svg(&scene, &scene_extent(&scene));
+        let svg = scene.svg(&scene_extent(&scene));
         assert_eq!(svg.matches(r#"class="meet-direction""#).count(), 1);
         assert_eq!(svg.matches(r#"<circle class="meet""#).count(), 0);
         assert!(
@@ -420,7 +370,7 @@ mod tests {
             ],
             length_unit: "m".into(),
         };
-        let svg = scene_svg(&scene, &scene_extent(&scene));
+        let svg = scene.svg(&scene_extent(&scene));
         assert_eq!(svg.matches(r#"<g id="K""#).count(), 1);
         assert_eq!(svg.matches(r#"class="leg""#).count(), 3 * 3);
         assert_eq!(svg.matches(r#"class="base""#).count(), 3);
@@ -435,7 +385,7 @@ mod tests {
         for overlay in &mut small.overlays {
             overlay.closest[6..].copy_from_slice(&small.configuration[6..]);
         }
-        let svg = scene_svg(&small, &scene_extent(&small));
+        let svg = small.svg(&scene_extent(&small));
         assert_eq!(svg.matches(r#"<g class="zoom">"#).count(), 1);
         assert_eq!(svg.matches(r#"<g id="K-zoom""#).count(), 1);
         assert_eq!(svg.matches(r#"<g class="zoom-closest""#).count(), 2);
@@ -455,7 +405,7 @@ mod tests {
             overlays: vec![],
             length_unit: "m".into(),
         };
-        let svg = scene_svg(&scene, &scene_extent(&scene));
+        let svg = scene.svg(&scene_extent(&scene));
         let centre = |label: &str| -> [f64; 2] {
             let end = svg.find(&format!(">{label}</text>")).expect(label);
             let start = svg[..end].rfind("<text").expect("text element");

@@ -7,6 +7,7 @@
 //! to it; a far one, or a common direction, becomes an arrow.
 
 use super::canvas::{Canvas, Extent, arrow, centroid, line, norm, sub};
+use super::scene::joint as anchor;
 use super::svg::{SeriesStyle, number, px};
 use std::fmt::Write;
 
@@ -19,10 +20,6 @@ pub enum LegMeeting {
     Direction([f64; 2]),
     /// Fewer than two legs of non-zero length.
     Undefined,
-}
-
-fn anchor(k: &[f64; 12], j: usize) -> [f64; 2] {
-    [k[2 * j], k[2 * j + 1]]
 }
 
 fn cross(p: [f64; 2], q: [f64; 2]) -> f64 {

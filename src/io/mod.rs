@@ -8,6 +8,7 @@ pub mod report;
 pub mod rpr;
 pub mod rrr;
 pub mod rrr_draw;
+pub mod scene;
 pub mod svg;
 
 pub use rpr::{load_design, load_motion};

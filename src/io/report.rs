@@ -3,7 +3,7 @@
 //! `K` with every metric's (3-RRR: every singularity kind's) closest singular
 //! configuration `K′` at the selected τ, redrawn as the slider moves. Everything is in
 //! the one file: the data as JSON, one pre-rendered drawing per pose
-//! ([`super::draw::scene_svg`] or [`super::rrr_draw::rrr_scene_svg`], all with one view
+//! ([`MechanismScene::svg`] of a 3-RPR or 3-RRR scene, all with one view
 //! so the robot does not jump), and a short hand-written script; no network access is
 //! needed.
 //!
@@ -12,8 +12,9 @@
 //! `<pre id="test-result">`, for headless browser tests.
 
 use super::chart::{PlotFrame, TickStyle, grid_and_ticks};
-use super::draw::{Extent, Scene, scene_extent, scene_svg};
-use super::rrr_draw::{RrrScene, rrr_scene_extent, rrr_scene_svg, rrr_style};
+use super::draw::{Extent, Scene};
+use super::rrr_draw::{RrrScene, rrr_style};
+use super::scene::{MechanismScene, scene_extent};
 use super::svg::{SeriesStyle, escape, metric_style, px, short, stroke_attributes};
 use crate::mechanism::rpr::Design;
 use crate::mechanism::rrr::RrrConfiguration;
@@ -67,18 +68,31 @@ const REPORT_TICKS: TickStyle = TickStyle {
 /// Chart geometry in pixels.
 const CHART: (f64, f64, f64, f64, f64, f64) = (640.0, 400.0, 72.0, 16.0, 548.0, 320.0);
 
-/// Every scene drawn (by `svg`) in the one view that holds them all (by `extent`): the
-/// frames the slider switches between.
-fn frames_in_one_view<S>(
+/// A report of signed distances (in the design's length unit) along a motion, both
+/// mechanisms' kind: `(title, description)`, `(τ, [x, y, φ])` of each pose, and the
+/// scene at each pose, all drawn in the one view that holds them (the frames the
+/// slider switches between, so the robot does not jump).
+fn signed_distance_report<S: MechanismScene>(
+    (title, description): (&str, &str),
+    poses: Vec<(f64, [f64; 3])>,
     scenes: &[S],
-    extent: fn(&S) -> Extent,
-    svg: fn(&S, &Extent) -> String,
-) -> Vec<String> {
+    curves: Vec<ReportCurve>,
+    singular: Vec<(f64, String)>,
+) -> Report {
     let view = scenes
         .iter()
-        .map(extent)
+        .map(scene_extent)
         .fold(Extent::empty(), |a, b| a.union(&b));
-    scenes.iter().map(|scene| svg(scene, &view)).collect()
+    Report {
+        title: title.into(),
+        description: description.into(),
+        y_title: "signed distance D (design length unit)".into(),
+        tau: poses.iter().map(|p| p.0).collect(),
+        poses: poses.iter().map(|p| p.1).collect(),
+        curves,
+        singular,
+        frames: scenes.iter().map(|scene| scene.svg(&view)).collect(),
+    }
 }
 
 /// The report of a 3-RPR curve: signed distance of each metric in `metrics` against
@@ -110,16 +124,16 @@ pub fn rpr_report(
                 .collect(),
         })
         .collect();
-    Report {
-        title: "3-RPR distance to the nearest singularity along the motion".into(),
-        description: "D(K, K′): distance from the configuration K to the closest singular configuration K′ under each metric (platform part / base part: plate, bars or rigid), signed with S(K), the singularity polynomial (S = 0: leg lines concurrent or parallel); τ: the motion parameter.".into(),
-        y_title: "signed distance D (design length unit)".into(),
-        tau: result.poses.iter().map(|p| p.tau).collect(),
-        poses: result.poses.iter().map(|p| p.pose).collect(),
+    signed_distance_report(
+        (
+            "3-RPR distance to the nearest singularity along the motion",
+            "D(K, K′): distance from the configuration K to the closest singular configuration K′ under each metric (platform part / base part: plate, bars or rigid), signed with S(K), the singularity polynomial (S = 0: leg lines concurrent or parallel); τ: the motion parameter.",
+        ),
+        result.poses.iter().map(|p| (p.tau, p.pose)).collect(),
+        &scenes,
         curves,
-        singular: singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
-        frames: frames_in_one_view(&scenes, scene_extent, scene_svg),
-    }
+        singular.iter().map(|&t| (t, "S = 0".to_string())).collect(),
+    )
 }
 
 /// The report of a 3-RRR curve: the signed distances to the parallel and the three
@@ -163,16 +177,16 @@ pub fn rrr_report(configurations: &[RrrConfiguration], result: &RrrCurveResult) 
         );
     }
     singular.sort_by(|a, b| a.0.total_cmp(&b.0));
-    Report {
-        title: "3-RRR distance to the parallel and leg singularities along the motion".into(),
-        description: "D(K, K′): distance from the configuration K to the closest singular configuration K′ of each kind under the all-deformable metric (base, platform and six links may all move); parallel: the distal-link lines B′C′ concurrent or parallel, legN: O′, B′, C′ of leg N collinear; each curve signed with its determinant at K; τ: the motion parameter.".into(),
-        y_title: "signed distance D (design length unit)".into(),
-        tau: result.poses.iter().map(|p| p.tau).collect(),
-        poses: result.poses.iter().map(|p| p.pose).collect(),
+    signed_distance_report(
+        (
+            "3-RRR distance to the parallel and leg singularities along the motion",
+            "D(K, K′): distance from the configuration K to the closest singular configuration K′ of each kind under the all-deformable metric (base, platform and six links may all move); parallel: the distal-link lines B′C′ concurrent or parallel, legN: O′, B′, C′ of leg N collinear; each curve signed with its determinant at K; τ: the motion parameter.",
+        ),
+        result.poses.iter().map(|p| (p.tau, p.pose)).collect(),
+        &scenes,
         curves,
         singular,
-        frames: frames_in_one_view(&scenes, rrr_scene_extent, rrr_scene_svg),
-    }
+    )
 }
 
 fn chart_svg(report: &Report) -> String {

@@ -17,10 +17,13 @@
 
 use super::canvas::{
     Canvas, Extent, Legend, PointLabels, centroid, collinear_line, guide_attributes, joint_circle,
-    leg_line, norm, open_drawing, polygon, sub, svg_document,
+    leg_line, norm, sub, svg_document,
 };
-use super::leg_lines::{LegMeeting, NEAR_MEETING, leg_meeting, mark_meeting};
-use super::svg::{SeriesStyle, escape, px, series_style, short, stroke_attributes};
+use super::leg_lines::{LegMeeting, leg_meeting, mark_meeting};
+use super::scene::{
+    K_LEGS, K_PLATFORM, MechanismScene, draw_skeleton, joint, open_overlay, scene_body,
+};
+use super::svg::{SeriesStyle, escape, px, series_style, short};
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrConfiguration};
 use crate::pipeline::rrr_curve::RrrPoseResult;
 use std::fmt::Write;
@@ -111,11 +114,6 @@ impl RrrScene {
     }
 }
 
-/// Joint `j` of an 18-vector (`O_1 … O_3` = 0…2, `B_i` = 3…5, `C_i` = 6…8).
-fn joint(k: &[f64; CONFIGURATION_LEN], j: usize) -> [f64; 2] {
-    [k[2 * j], k[2 * j + 1]]
-}
-
 /// The 12-vector `(B_1, B_2, B_3, C_1, C_2, C_3)` of the distal links, in the layout
 /// of [`leg_meeting`].
 fn distal_links(k: &[f64; CONFIGURATION_LEN]) -> [f64; 12] {
@@ -126,48 +124,104 @@ fn configuration_extent(k: &[f64; CONFIGURATION_LEN]) -> Extent {
     Extent::of_points((0..9).map(|j| joint(k, j)))
 }
 
-fn joints_extent(scene: &RrrScene) -> Extent {
-    scene
-        .overlays
-        .iter()
-        .map(|o| configuration_extent(&o.closest))
-        .fold(configuration_extent(&scene.configuration), |a, b| {
-            a.union(&b)
-        })
-}
+/// Joints of an 18-vector: `O_1 … O_3` = 0…2, `B_i` = 3…5, `C_i` = 6…8.
+impl MechanismScene for RrrScene {
+    fn labels(&self) -> (&str, &str) {
+        (&self.title, &self.length_unit)
+    }
 
-/// The box the drawing must show: every joint of `K` and of each `K′`, and the
-/// distal-link lines' meeting points that lie near them.
-pub fn rrr_scene_extent(scene: &RrrScene) -> Extent {
-    let mut e = joints_extent(scene);
-    let (centre, size) = (e.centre(), e.size());
-    for overlay in scene.overlays.iter().filter(|o| o.subproblem == "parallel") {
-        if let LegMeeting::Point(p) = leg_meeting(&distal_links(&overlay.closest))
-            && norm(sub(p, centre)) <= NEAR_MEETING * size
-        {
-            e.include(p);
+    fn joints_extent(&self) -> Extent {
+        self.overlays
+            .iter()
+            .map(|o| configuration_extent(&o.closest))
+            .fold(configuration_extent(&self.configuration), |a, b| {
+                a.union(&b)
+            })
+    }
+
+    fn leg_meetings(&self) -> Vec<LegMeeting> {
+        self.overlays
+            .iter()
+            .filter(|o| o.subproblem == "parallel")
+            .map(|o| leg_meeting(&distal_links(&o.closest)))
+            .collect()
+    }
+
+    fn draw_configuration(&self, out: &mut String, canvas: &Canvas) {
+        let k = &self.configuration;
+        out.push_str("<g id=\"K\" class=\"configuration\">\n");
+        let base = r##" fill="#eeeeee" stroke="#999" stroke-width="1.5" stroke-dasharray="6 4""##;
+        draw_skeleton(out, canvas, k, 6, links, [base, K_PLATFORM, K_LEGS]);
+        let pixel = |p: [f64; 2]| canvas.pixel(p);
+        let centre = |first: usize| {
+            pixel(centroid(
+                &(first..first + 3).map(|j| joint(k, j)).collect::<Vec<_>>(),
+            ))
+        };
+        let mut labels = PointLabels::default();
+        for i in 0..3 {
+            let (o, b, c) = (
+                pixel(joint(k, i)),
+                pixel(joint(k, 3 + i)),
+                pixel(joint(k, 6 + i)),
+            );
+            let _ = writeln!(
+                out,
+                r##"<rect class="joint base-joint" x="{}" y="{}" width="10" height="10" fill="#fff" stroke="#222" stroke-width="1.5"/>"##,
+                px(o[0] - 5.0),
+                px(o[1] - 5.0)
+            );
+            for p in [b, c] {
+                joint_circle(out, "joint", p);
+            }
+            // O_i and C_i labels outside their triangles, B_i's beside its elbow, away
+            // from the midpoint of O_i and C_i.
+            let class = "joint-label";
+            labels.place(out, class, (o, sub(o, centre(0))), &format!("O{}", i + 1));
+            labels.place(out, class, (c, sub(c, centre(6))), &format!("C{}", i + 1));
+            let mid = [0.5 * (o[0] + c[0]), 0.5 * (o[1] + c[1])];
+            let away = sub(b, mid);
+            let away = if norm(away) > 1.0 {
+                away
+            } else {
+                [-(c[1] - o[1]), c[0] - o[0]]
+            };
+            labels.place(out, class, (b, away), &format!("B{}", i + 1));
+        }
+        out.push_str("</g>\n");
+    }
+
+    fn draw_overlays(&self, out: &mut String, canvas: &Canvas, near: &Extent) {
+        for overlay in &self.overlays {
+            let style = rrr_style(&overlay.subproblem);
+            let k = &overlay.closest;
+            let data = format!(r#"data-metric="{}""#, escape(&overlay.subproblem));
+            open_overlay(out, canvas, k, 6, links, style, &data);
+            let thin = guide_attributes(style);
+            if overlay.subproblem == "parallel" {
+                let platform: Vec<[f64; 2]> = (6..9).map(|j| joint(k, j)).collect();
+                let meeting = leg_meeting(&distal_links(k));
+                mark_meeting(out, canvas, meeting, &platform, near, (style, &thin));
+            } else if let Some(i) = overlay
+                .subproblem
+                .trim_start_matches("leg")
+                .parse::<usize>()
+                .ok()
+                .filter(|i| (1..=3).contains(i))
+            {
+                let leg = [joint(k, i - 1), joint(k, 2 + i), joint(k, 5 + i)];
+                collinear_line(out, canvas, &leg, &thin);
+            }
+            out.push_str("</g>\n");
         }
     }
-    e
-}
 
-/// Triangle `first..first + 3` of the joints of `k` (0: base joints, 6: platform
-/// joints).
-fn triangle(
-    out: &mut String,
-    canvas: &Canvas,
-    k: &[f64; CONFIGURATION_LEN],
-    first: usize,
-    class: &str,
-    attributes: &str,
-) {
-    polygon(
-        out,
-        canvas,
-        (first..first + 3).map(|j| joint(k, j)),
-        class,
-        attributes,
-    );
+    fn svg(&self, extent: &Extent) -> String {
+        let canvas = Canvas::new(extent);
+        let mut body = scene_body(self, &canvas);
+        legend(&mut body, &canvas, self);
+        svg_document("rrr-drawing", canvas.width, canvas.height, &body)
+    }
 }
 
 fn links(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN], attributes: &str) {
@@ -177,69 +231,6 @@ fn links(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN], attrib
             leg_line(out, canvas, &format!("leg {kind}"), i + 1, ends, attributes);
         }
     }
-}
-
-fn draw_configuration(out: &mut String, canvas: &Canvas, k: &[f64; CONFIGURATION_LEN]) {
-    out.push_str("<g id=\"K\" class=\"configuration\">\n");
-    triangle(
-        out,
-        canvas,
-        k,
-        0,
-        "base",
-        r##" fill="#eeeeee" stroke="#999" stroke-width="1.5" stroke-dasharray="6 4""##,
-    );
-    triangle(
-        out,
-        canvas,
-        k,
-        6,
-        "platform",
-        r##" fill="#c8c8c8" fill-opacity="0.8" stroke="#222" stroke-width="2.5""##,
-    );
-    links(
-        out,
-        canvas,
-        k,
-        r##" stroke="#222" stroke-width="4" stroke-linecap="round""##,
-    );
-    let pixel = |p: [f64; 2]| canvas.pixel(p);
-    let centre = |first: usize| {
-        pixel(centroid(
-            &(first..first + 3).map(|j| joint(k, j)).collect::<Vec<_>>(),
-        ))
-    };
-    let mut labels = PointLabels::default();
-    for i in 0..3 {
-        let (o, b, c) = (
-            pixel(joint(k, i)),
-            pixel(joint(k, 3 + i)),
-            pixel(joint(k, 6 + i)),
-        );
-        let _ = writeln!(
-            out,
-            r##"<rect class="joint base-joint" x="{}" y="{}" width="10" height="10" fill="#fff" stroke="#222" stroke-width="1.5"/>"##,
-            px(o[0] - 5.0),
-            px(o[1] - 5.0)
-        );
-        for p in [b, c] {
-            joint_circle(out, "joint", p);
-        }
-        // O_i and C_i labels outside their triangles, B_i's beside its elbow, away
-        // from the midpoint of O_i and C_i.
-        let class = "joint-label";
-        labels.place(out, class, (o, sub(o, centre(0))), &format!("O{}", i + 1));
-        labels.place(out, class, (c, sub(c, centre(6))), &format!("C{}", i + 1));
-        let mid = [0.5 * (o[0] + c[0]), 0.5 * (o[1] + c[1])];
-        let away = sub(b, mid);
-        let away = if norm(away) > 1.0 {
-            away
-        } else {
-            [-(c[1] - o[1]), c[0] - o[0]]
-        };
-        labels.place(out, class, (b, away), &format!("B{}", i + 1));
-    }
-    out.push_str("</g>\n");
 }
 
 /// The note on a `K′` that the legend prints under its distance.
@@ -253,36 +244,6 @@ fn overlay_note(overlay: &RrrOverlay) -> String {
             format!("O{i}′, B{i}′, C{i}′ collinear (leg {i} stretched or folded)")
         }
     }
-}
-
-fn draw_overlay(out: &mut String, canvas: &Canvas, overlay: &RrrOverlay, near: &Extent) {
-    let style = rrr_style(&overlay.subproblem);
-    let k = &overlay.closest;
-    let _ = writeln!(
-        out,
-        r#"<g class="closest" data-metric="{}">"#,
-        escape(&overlay.subproblem)
-    );
-    let stroke = stroke_attributes(style, 1.8);
-    triangle(out, canvas, k, 0, "base", &stroke);
-    triangle(out, canvas, k, 6, "platform", &stroke);
-    links(out, canvas, k, &stroke);
-    let thin = guide_attributes(style);
-    if overlay.subproblem == "parallel" {
-        let platform: Vec<[f64; 2]> = (6..9).map(|j| joint(k, j)).collect();
-        let meeting = leg_meeting(&distal_links(k));
-        mark_meeting(out, canvas, meeting, &platform, near, (style, &thin));
-    } else if let Some(i) = overlay
-        .subproblem
-        .trim_start_matches("leg")
-        .parse::<usize>()
-        .ok()
-        .filter(|i| (1..=3).contains(i))
-    {
-        let leg = [joint(k, i - 1), joint(k, 2 + i), joint(k, 5 + i)];
-        collinear_line(out, canvas, &leg, &thin);
-    }
-    out.push_str("</g>\n");
 }
 
 /// Writes the legend right of the drawing.
@@ -323,24 +284,10 @@ fn legend(out: &mut String, canvas: &Canvas, scene: &RrrScene) {
     legend.close();
 }
 
-/// The scene as a standalone SVG document showing `extent` (pass [`rrr_scene_extent`]
-/// for one drawing, or the union over several scenes for frames that share a view).
-pub fn rrr_scene_svg(scene: &RrrScene, extent: &Extent) -> String {
-    let canvas = Canvas::new(extent);
-    let mut body = open_drawing(&canvas, &scene.title, &scene.length_unit);
-    draw_configuration(&mut body, &canvas, &scene.configuration);
-    let near = joints_extent(scene);
-    for overlay in &scene.overlays {
-        draw_overlay(&mut body, &canvas, overlay, &near);
-    }
-    body.push_str("</g>\n");
-    legend(&mut body, &canvas, scene);
-    svg_document("rrr-drawing", canvas.width, canvas.height, &body)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::scene::scene_extent;
 
     /// A 3-RRR with legs along the axes; leg 1's K′ stretched out along y.
     fn scene() -> RrrScene {
@@ -379,7 +326,7 @@ mod tests {
     #[test]
     fn drawing_has_six_links_two_triangles_and_one_overlay_per_kind() {
         let scene = scene();
-        let svg = rrr_scene_svg(&scene, &rrr_scene_extent(&scene));
+        let svg = scene.svg(&scene_extent(&scene));
         assert_eq!(svg.matches(r#"<g id="K""#).count(), 1);
         assert_eq!(svg.matches(r#"class="leg proximal""#).count(), 3 * 3);
         assert_eq!(svg.matches(r#"class="leg distal""#).count(), 3 * 3);

@@ -218,6 +218,15 @@ impl Default for ComplexInterval {
 }
 
 impl ComplexInterval {
+    /// The rectangles of half-width `radius` (outward rounded) around each of
+    /// `centers`: a box of points as an interval vector.
+    pub fn boxes(centers: &[C64], radius: f64) -> Vec<ComplexInterval> {
+        centers
+            .iter()
+            .map(|&c| ComplexInterval::centered(c, radius))
+            .collect()
+    }
+
     /// The degenerate rectangle `{z}`.
     #[inline]
     pub fn point(z: C64) -> ComplexInterval {

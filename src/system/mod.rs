@@ -136,12 +136,162 @@ pub trait Evaluator: Send + Sync {
         out: &mut [C64],
     );
 
-    /// `jac_p ← ∂F/∂p (x; p)` (row-major, k × m).
+    /// `jac_p ← ∂F/∂p (x; p)` (row-major, k × m). The default builds it column by
+    /// column from [`Evaluator::evaluate_parameter_derivative`] along the unit
+    /// directions (allocating two vectors); [`CompiledSystem`] has a tape for it.
     fn evaluate_parameter_jacobian(
         &self,
         x: &[C64],
         p: &[C64],
         work: &mut [C64],
         jac_p: &mut [C64],
-    );
+    ) {
+        let (k, m) = (self.num_equations(), self.num_parameters());
+        let mut direction = vec![C64::new(0.0, 0.0); m];
+        let mut column = vec![C64::new(0.0, 0.0); k];
+        for j in 0..m {
+            direction[j] = C64::new(1.0, 0.0);
+            self.evaluate_parameter_derivative(x, p, &direction, work, &mut column);
+            direction[j] = C64::new(0.0, 0.0);
+            for (i, value) in column.iter().enumerate() {
+                jac_p[i * m + j] = *value;
+            }
+        }
+    }
+}
+
+/// A system without parameters `G: Cⁿ → Cᵏ` (start systems, a homotopy's target
+/// `H(·, 1)`, the polyhedral random-coefficient system), written without the parameter
+/// arguments of [`Evaluator`]. Every `PlainSystem` is an [`Evaluator`] with no
+/// parameters: `∂G/∂p · dp` is zero and `∂G/∂p` is empty.
+pub trait PlainSystem: Send + Sync {
+    /// Number of unknowns n.
+    fn num_variables(&self) -> usize;
+    /// Number of equations k; the default is n (a square system).
+    fn num_equations(&self) -> usize {
+        self.num_variables()
+    }
+    /// Length of the scratch buffer the evaluation calls need.
+    fn workspace_len(&self) -> usize;
+    /// `f ← G(x)`.
+    fn evaluate(&self, x: &[C64], work: &mut [C64], f: &mut [C64]);
+    /// `f ← G(x)` in double-double arithmetic where supported
+    /// ([`Evaluator::evaluate_extended`]). The default evaluates in double precision.
+    fn evaluate_extended(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.evaluate(x, work, f);
+    }
+    /// `f ← G(x)` and `jac ← ∂G/∂x (x)`.
+    fn evaluate_with_jacobian(&self, x: &[C64], work: &mut [C64], f: &mut [C64], jac: &mut [C64]);
+    /// `f ← G(x)`, `jac + jac_low ← ∂G/∂x (x)` in double-double arithmetic where
+    /// supported ([`Evaluator::evaluate_with_jacobian_extended`]). The default evaluates
+    /// in double precision (`jac_low = 0`).
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        self.evaluate_with_jacobian(x, work, f, jac);
+        jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
+}
+
+impl<S: PlainSystem + ?Sized> Evaluator for S {
+    fn num_variables(&self) -> usize {
+        PlainSystem::num_variables(self)
+    }
+    fn num_equations(&self) -> usize {
+        PlainSystem::num_equations(self)
+    }
+    fn workspace_len(&self) -> usize {
+        PlainSystem::workspace_len(self)
+    }
+    fn evaluate(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+        PlainSystem::evaluate(self, x, work, f);
+    }
+    fn evaluate_extended(&self, x: &[C64], _: &[C64], work: &mut [C64], f: &mut [C64]) {
+        PlainSystem::evaluate_extended(self, x, work, f);
+    }
+    fn evaluate_with_jacobian(
+        &self,
+        x: &[C64],
+        _: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        PlainSystem::evaluate_with_jacobian(self, x, work, f, jac);
+    }
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        _: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        PlainSystem::evaluate_with_jacobian_extended(self, x, work, f, jac, jac_low);
+    }
+    fn evaluate_parameter_derivative(
+        &self,
+        _: &[C64],
+        _: &[C64],
+        _: &[C64],
+        _: &mut [C64],
+        out: &mut [C64],
+    ) {
+        out.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+    }
+}
+
+/// `F(·; p)`: a parametric system at fixed parameters `p`, as a system without
+/// parameters (the polyhedral random-coefficient system is its term family at the
+/// random coefficients).
+pub struct AtParameters<'a, F: Evaluator + ?Sized> {
+    system: &'a F,
+    parameters: &'a [C64],
+}
+
+impl<'a, F: Evaluator + ?Sized> AtParameters<'a, F> {
+    /// `system` at `parameters` (of length `system.num_parameters()`).
+    pub fn new(system: &'a F, parameters: &'a [C64]) -> Self {
+        assert_eq!(parameters.len(), system.num_parameters());
+        AtParameters { system, parameters }
+    }
+}
+
+impl<F: Evaluator + ?Sized> PlainSystem for AtParameters<'_, F> {
+    fn num_variables(&self) -> usize {
+        self.system.num_variables()
+    }
+    fn num_equations(&self) -> usize {
+        self.system.num_equations()
+    }
+    fn workspace_len(&self) -> usize {
+        self.system.workspace_len()
+    }
+    fn evaluate(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate(x, self.parameters, work, f);
+    }
+    fn evaluate_extended(&self, x: &[C64], work: &mut [C64], f: &mut [C64]) {
+        self.system.evaluate_extended(x, self.parameters, work, f);
+    }
+    fn evaluate_with_jacobian(&self, x: &[C64], work: &mut [C64], f: &mut [C64], jac: &mut [C64]) {
+        self.system
+            .evaluate_with_jacobian(x, self.parameters, work, f, jac);
+    }
+    fn evaluate_with_jacobian_extended(
+        &self,
+        x: &[C64],
+        work: &mut [C64],
+        f: &mut [C64],
+        jac: &mut [C64],
+        jac_low: &mut [C64],
+    ) {
+        self.system
+            .evaluate_with_jacobian_extended(x, self.parameters, work, f, jac, jac_low);
+    }
 }

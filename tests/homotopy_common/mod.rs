@@ -118,23 +118,6 @@ impl Evaluator for TermSystem {
                 .sum();
         }
     }
-    fn evaluate_parameter_jacobian(
-        &self,
-        x: &[C64],
-        _p: &[C64],
-        _w: &mut [C64],
-        jac_p: &mut [C64],
-    ) {
-        let m = self.m;
-        jac_p.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-        for (i, eq) in self.equations.iter().enumerate() {
-            for t in eq {
-                if let Some(k) = t.parameter {
-                    jac_p[i * m + k] += t.coefficient * Self::monomial(x, &t.exponents);
-                }
-            }
-        }
-    }
 }
 
 fn term(c: f64, exps: Vec<u32>) -> Term {

@@ -24,8 +24,7 @@
 use super::bezout::{BezoutError, BezoutTable, VariablePartition};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
-use crate::homotopy::start::no_parameter_derivatives;
-use crate::system::Evaluator;
+use crate::system::PlainSystem;
 
 /// Largest Bézout table a start system builds (states `Π (k_j + 1)`).
 const MAX_TABLE_STATES: usize = 1 << 24;
@@ -173,7 +172,7 @@ impl MultiHomogeneousStartSystem {
     }
 }
 
-impl Evaluator for MultiHomogeneousStartSystem {
+impl PlainSystem for MultiHomogeneousStartSystem {
     fn num_variables(&self) -> usize {
         self.partition.num_variables()
     }
@@ -182,7 +181,7 @@ impl Evaluator for MultiHomogeneousStartSystem {
         2 * self.max_factors + 1
     }
 
-    fn evaluate(&self, x: &[C64], _p: &[C64], _work: &mut [C64], f: &mut [C64]) {
+    fn evaluate(&self, x: &[C64], _work: &mut [C64], f: &mut [C64]) {
         for (i, fi) in f.iter_mut().enumerate() {
             let range = self.equation_start[i]..self.equation_start[i + 1];
             *fi = self.factors[range]
@@ -196,14 +195,7 @@ impl Evaluator for MultiHomogeneousStartSystem {
     /// Row i of the Jacobian is `Σ_f (Π_{g ≠ f} L_g) ∇L_f`, with the products of the
     /// other factors from prefix and suffix products (no division, so exact at the
     /// start solutions where a factor vanishes).
-    fn evaluate_with_jacobian(
-        &self,
-        x: &[C64],
-        _p: &[C64],
-        work: &mut [C64],
-        f: &mut [C64],
-        jac: &mut [C64],
-    ) {
+    fn evaluate_with_jacobian(&self, x: &[C64], work: &mut [C64], f: &mut [C64], jac: &mut [C64]) {
         let n = self.partition.num_variables();
         jac.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
         let (values, prefix) = work.split_at_mut(self.max_factors);
@@ -228,8 +220,6 @@ impl Evaluator for MultiHomogeneousStartSystem {
             }
         }
     }
-
-    no_parameter_derivatives!();
 }
 
 #[cfg(test)]
@@ -259,7 +249,7 @@ mod tests {
         for index in 0..count {
             let mut x = vec![C64::new(0.0, 0.0); n];
             assert!(g.start_solution(index, &mut x));
-            g.evaluate_with_jacobian(&x, &[], &mut work, &mut f, &mut jac);
+            g.evaluate_with_jacobian(&x, &mut work, &mut f, &mut jac);
             let scale = 1.0 + x.iter().map(|v| v.norm()).fold(0.0, f64::max);
             assert!(f.iter().all(|v| v.norm() < 1e-10 * scale.powi(3)), "{f:?}");
             let mut lu = LuWorkspace::new(n);
@@ -292,8 +282,8 @@ mod tests {
         let mut f = vec![C64::new(0.0, 0.0); n];
         let mut f_plain = vec![C64::new(0.0, 0.0); n];
         let mut jac = vec![C64::new(0.0, 0.0); n * n];
-        g.evaluate_with_jacobian(&x, &[], &mut work, &mut f, &mut jac);
-        g.evaluate(&x, &[], &mut work, &mut f_plain);
+        g.evaluate_with_jacobian(&x, &mut work, &mut f, &mut jac);
+        g.evaluate(&x, &mut work, &mut f_plain);
         for (a, b) in f.iter().zip(&f_plain) {
             assert!((a - b).norm() < 1e-12 * (1.0 + a.norm()));
         }
@@ -305,8 +295,8 @@ mod tests {
             xm[k] -= h;
             let mut fp = vec![C64::new(0.0, 0.0); n];
             let mut fm = vec![C64::new(0.0, 0.0); n];
-            g.evaluate(&xp, &[], &mut work, &mut fp);
-            g.evaluate(&xm, &[], &mut work, &mut fm);
+            g.evaluate(&xp, &mut work, &mut fp);
+            g.evaluate(&xm, &mut work, &mut fm);
             for i in 0..n {
                 let numeric = (fp[i] - fm[i]) / (2.0 * h);
                 let exact = jac[i * n + k];

@@ -133,7 +133,7 @@ pub fn solve_from_polyhedral_start<F: Evaluator + ?Sized>(
     let stage_one = start_roots(start, mixed_volume as usize, options);
     let (roots, lost, start_retracked) = (stage_one.roots, stage_one.lost, stage_one.retracked);
     let mut result = solve_from_start_system(
-        start.system(),
+        &start.system().evaluator(),
         system,
         roots.len(),
         |index, x| x.copy_from_slice(&roots[index]),
@@ -253,5 +253,5 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
 /// For every stage-one path, the group (index of its first path) of its nonsingular
 /// endpoint after Newton refinement on `Q`; `None` for other statuses.
 fn root_groups(start: &PolyhedralStartSystem, paths: &[PathResult]) -> Vec<Option<usize>> {
-    root_groups_on(start.system(), paths)
+    root_groups_on(&start.system().evaluator(), paths)
 }

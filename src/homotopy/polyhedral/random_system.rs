@@ -20,9 +20,8 @@
 
 use super::supports::Supports;
 use crate::C64;
-use crate::homotopy::start::no_parameter_derivatives;
 use crate::system::expr::Expr;
-use crate::system::{CompiledSystem, Evaluator, System};
+use crate::system::{AtParameters, CompiledSystem, System};
 
 /// The term layout of a system: how many unknowns, and which terms (in term order:
 /// equations in order, points in support order) belong to each equation.
@@ -134,55 +133,9 @@ impl RandomCoefficientSystem {
     pub fn family(&self) -> &CompiledSystem {
         &self.family
     }
-}
 
-impl Evaluator for RandomCoefficientSystem {
-    fn num_variables(&self) -> usize {
-        self.terms.num_variables()
+    /// `Q = G(·; c)`, the family at the coefficients, as a system.
+    pub fn evaluator(&self) -> AtParameters<'_, CompiledSystem> {
+        AtParameters::new(&self.family, &self.coefficients)
     }
-    fn num_equations(&self) -> usize {
-        self.terms.num_equations()
-    }
-    fn num_parameters(&self) -> usize {
-        0
-    }
-    fn workspace_len(&self) -> usize {
-        self.family.workspace_len()
-    }
-
-    fn evaluate(&self, x: &[C64], _p: &[C64], work: &mut [C64], f: &mut [C64]) {
-        self.family.evaluate(x, &self.coefficients, work, f);
-    }
-
-    fn evaluate_extended(&self, x: &[C64], _p: &[C64], work: &mut [C64], f: &mut [C64]) {
-        self.family
-            .evaluate_extended(x, &self.coefficients, work, f);
-    }
-
-    fn evaluate_with_jacobian(
-        &self,
-        x: &[C64],
-        _p: &[C64],
-        work: &mut [C64],
-        f: &mut [C64],
-        jac: &mut [C64],
-    ) {
-        self.family
-            .evaluate_with_jacobian(x, &self.coefficients, work, f, jac);
-    }
-
-    fn evaluate_with_jacobian_extended(
-        &self,
-        x: &[C64],
-        _p: &[C64],
-        work: &mut [C64],
-        f: &mut [C64],
-        jac: &mut [C64],
-        jac_low: &mut [C64],
-    ) {
-        self.family
-            .evaluate_with_jacobian_extended(x, &self.coefficients, work, f, jac, jac_low);
-    }
-
-    no_parameter_derivatives!();
 }
