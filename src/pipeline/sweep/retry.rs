@@ -446,33 +446,20 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             && long_runs.len() <= LAST_CHANCE_PATHS
             && per_path > retry_tracker.step.max_steps
         {
-            // First with the first run's (larger) steps, then with the re-run's: a
-            // cycle to infinity of winding number 3 on a design with similar base and
-            // platform closes its Cauchy loops and is classified in about a thousand
-            // steps of the former, and exhausts 30,000 of the latter at `s = 0.1`;
-            // paths in a cluster of critical points need the latter's small steps.
-            let long = |options: &TrackerOptions| {
-                let mut long = options.clone();
-                long.step.max_steps = per_path;
-                long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
-                long
-            };
-            let mut bold = Tracker::new(&reference, long(tracker));
-            let mut patient = Tracker::new(&reference, long(retry_tracker));
+            let mut long = retry_tracker.clone();
+            long.step.max_steps = per_path;
+            long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
+            let mut patient = Tracker::new(&reference, long);
             let mut reference_at_infinity = count_at_infinity(&paths);
             for i in long_runs {
-                for runner in [&mut bold, &mut patient] {
-                    let again = runner.track(&starts[i], i);
-                    tracked += 1;
-                    if again.status == PathStatus::AtInfinity {
-                        reference_at_infinity += 1;
-                        break;
-                    } else if simple_endpoint(&again)
-                        && !endpoints.iter().any(|y| same_endpoint(y, &again.solution))
-                    {
-                        endpoints.push(again.solution);
-                        break;
-                    }
+                let again = patient.track(&starts[i], i);
+                tracked += 1;
+                if again.status == PathStatus::AtInfinity {
+                    reference_at_infinity += 1;
+                } else if simple_endpoint(&again)
+                    && !endpoints.iter().any(|y| same_endpoint(y, &again.solution))
+                {
+                    endpoints.push(again.solution);
                 }
             }
             best = best.max(endpoints.len() + reference_at_infinity);
