@@ -25,7 +25,6 @@
 //! the same way.
 
 use super::homotopies::Homotopy;
-use super::linalg::LuWorkspace;
 use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
 use crate::C64;
 use rayon::prelude::*;
@@ -59,55 +58,17 @@ const MIN_ARC: f64 = 0.02;
 /// Largest radius of the arcs of [`around_the_pole`].
 const MAX_ARC: f64 = 0.25;
 
-/// The growth rate `ẋ_i / x_i` of the largest coordinate along the path (at a point
-/// `x` of it, `ẋ = −J⁻¹ ∂H/∂t`), with buffers allocated once.
-pub(super) struct GrowthRate {
-    work: Vec<C64>,
-    h: Vec<C64>,
-    dh: Vec<C64>,
-    jac: Vec<C64>,
-    lu: LuWorkspace,
-}
-
-impl GrowthRate {
-    /// Buffers for `homotopy`.
-    pub(super) fn new<H: Homotopy + ?Sized>(homotopy: &H) -> Self {
-        let n = homotopy.dimension();
-        let zero = C64::new(0.0, 0.0);
-        GrowthRate {
-            work: vec![zero; homotopy.workspace_len()],
-            h: vec![zero; n],
-            dh: vec![zero; n],
-            jac: vec![zero; n * n],
-            lu: LuWorkspace::new(n),
-        }
-    }
-
-    /// `ẋ_i / x_i` at `(x, t)` for coordinate `i`; `None` if the Jacobian is singular
-    /// or the value not finite.
-    pub(super) fn rate<H: Homotopy + ?Sized>(
-        &mut self,
-        homotopy: &H,
-        x: &[C64],
-        t: C64,
-        i: usize,
-    ) -> Option<C64> {
-        homotopy.evaluate_with_jacobian_and_time_derivative(
-            x,
-            t,
-            &mut self.work,
-            &mut self.h,
-            &mut self.jac,
-            &mut self.dh,
-        );
-        if !self.lu.factor(&self.jac) {
-            return None;
-        }
-        self.lu.solve_in_place(&mut self.dh);
-        // ẋ = −J⁻¹ ∂H/∂t = −dh after the solve.
-        let g = -self.dh[i] / x[i];
-        (g.re.is_finite() && g.im.is_finite() && g.norm() > 0.0).then_some(g)
-    }
+/// The growth rate `ẋ_i / x_i` of coordinate `i` at the point `x` of a path at `t`
+/// ([`Tracker::velocity_at`]); `None` if the Jacobian is singular or the rate is zero or
+/// not finite.
+fn growth_rate<H: Homotopy + ?Sized>(
+    tracker: &mut Tracker<'_, H>,
+    x: &[C64],
+    t: C64,
+    i: usize,
+) -> Option<C64> {
+    let g = tracker.velocity_at(x, t)?[i] / x[i];
+    (g.re.is_finite() && g.im.is_finite() && g.norm() > 0.0).then_some(g)
 }
 
 /// Index of the largest coordinate of `x`.
@@ -122,14 +83,12 @@ fn largest(x: &[C64]) -> Option<usize> {
 /// `m = (1/g₂ − 1/g₁)/(t₂ − t₁)`. `None` if a rate is unavailable or the re-run fails.
 pub(super) fn locate_singularity<H: Homotopy + ?Sized>(
     tracker: &mut Tracker<'_, H>,
-    rates: &mut GrowthRate,
-    homotopy: &H,
     start: &[C64],
     p: &PathResult,
 ) -> Option<C64> {
     let t2 = p.last_t;
     let i = largest(&p.solution)?;
-    let g2 = rates.rate(homotopy, &p.solution, t2, i)?;
+    let g2 = growth_rate(tracker, &p.solution, t2, i)?;
     let t1 = t2.re - RATE_STEP / g2.norm();
     if t2.im != 0.0 || t1.is_nan() || t1 <= 0.0 {
         return None;
@@ -138,7 +97,7 @@ pub(super) fn locate_singularity<H: Homotopy + ?Sized>(
     if !earlier.status.is_finite() {
         return None;
     }
-    let g1 = rates.rate(homotopy, &earlier.solution, C64::new(t1, 0.0), i)?;
+    let g1 = growth_rate(tracker, &earlier.solution, C64::new(t1, 0.0), i)?;
     let slope = (g2.inv() - g1.inv()) / (t2.re - t1);
     let t_p = t2 - g2.inv() / slope;
     (t_p.re.is_finite() && t_p.im.is_finite()).then_some(t_p)
@@ -162,11 +121,10 @@ pub(super) fn power_of_s_growth(p: &PathResult, growth_rate: C64, threshold: f64
 
 /// The growth rate of `p`'s largest coordinate at its last point.
 pub(super) fn last_growth_rate<H: Homotopy + ?Sized>(
-    rates: &mut GrowthRate,
-    homotopy: &H,
+    tracker: &mut Tracker<'_, H>,
     p: &PathResult,
 ) -> Option<C64> {
-    rates.rate(homotopy, &p.solution, p.last_t, largest(&p.solution)?)
+    growth_rate(tracker, &p.solution, p.last_t, largest(&p.solution)?)
 }
 
 /// Tracks the path from `start` that diverged near the pole `t_p` just ahead of it
@@ -288,14 +246,13 @@ where
             || {
                 (
                     Tracker::new(homotopy, options.clone()),
-                    GrowthRate::new(homotopy),
                     vec![C64::new(0.0, 0.0); n],
                 )
             },
-            |(tracker, rates, x), p| {
+            |(tracker, x), p| {
                 start(p.path_index, x);
-                let t_p = locate_singularity(tracker, rates, homotopy, x, p);
-                let g = last_growth_rate(rates, homotopy, p);
+                let t_p = locate_singularity(tracker, x, p);
+                let g = last_growth_rate(tracker, p);
                 let ahead = t_p.is_some_and(|t_p| pole_ahead(p, t_p));
                 let threshold = options.endgame.valuation_threshold;
                 if !ahead && g.is_some_and(|g| power_of_s_growth(p, g, threshold)) {
@@ -338,9 +295,8 @@ mod tests {
         let mut tracker = Tracker::new(&homotopy, options());
         let start = [C64::new(1.0 / p, 0.0)];
         let result = tracker.track(&start, 0);
-        let mut rates = GrowthRate::new(&homotopy);
-        let t_p = locate_singularity(&mut tracker, &mut rates, &homotopy, &start, &result);
-        let g = last_growth_rate(&mut rates, &homotopy, &result);
+        let t_p = locate_singularity(&mut tracker, &start, &result);
+        let g = last_growth_rate(&mut tracker, &result);
         (result, t_p, g)
     }
 

@@ -423,6 +423,17 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
     }
 
+    /// The path's velocity `ẋ = −J⁻¹ ∂H/∂t` at `(x, t)`, in double precision (the
+    /// tracker leaves extended mode; the next route resets it anyway); `None` where the
+    /// Jacobian is singular or the velocity not finite.
+    pub fn velocity_at(&mut self, x: &[C64], t: C64) -> Option<&[C64]> {
+        self.precision.extended = false;
+        self.eval.extended = false;
+        self.eval
+            .velocity(self.homotopy, x, t, C64::new(1.0, 0.0), &mut self.k1)
+            .then_some(self.k1.as_slice())
+    }
+
     /// Tracks along the real interval `[t0, t1]`, stopping at the homotopy's breakpoints.
     fn track_real_interval(&mut self, t0: f64, t1: f64) -> Result<(), RouteStop> {
         let mut a = t0;
