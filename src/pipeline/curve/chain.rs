@@ -30,11 +30,16 @@ pub(super) fn track_pose(
     (index, sample): (usize, SampledPose),
     options: &CurveOptions,
 ) -> (Vec<PoseEntry>, [f64; 12]) {
+    let context = SolveContext {
+        stage,
+        motion,
+        options,
+    };
     let entries = (0..stage.problems.len())
         .into_par_iter()
         .map(|problem_index| {
             let at = (index, sample);
-            track_problem(stage, motion, at, problem_index, Route::Seed, options).entry
+            track_problem(context, at, problem_index, Route::Seed).entry
         })
         .collect();
     (entries, design.configuration(sample.pose).to_array())
@@ -49,21 +54,18 @@ pub(super) const POSES_PER_BLOCK: usize = 10;
 /// Newton jumps ([`jump_problem`]), else pose-to-pose paths from the latest set, else
 /// the seed route. Returns the result and whether its solution set is in the order of
 /// `history` (not after the seed route).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn solve_problem_in_chain(
-    stage: &SeedStage,
-    motion: &Motion,
+    context: SolveContext<'_>,
     samples: &[SampledPose],
     (j, sample): (usize, SampledPose),
     problem_index: usize,
     (previous, history): (usize, &[Vec<Vec<C64>>]),
-    options: &CurveOptions,
 ) -> (ProblemAtPose, bool) {
     let at = (j, sample);
-    let from = || MotionPoint::target(motion, &samples[previous]);
-    if options.jump && !history.is_empty() {
+    let from = || MotionPoint::target(context.motion, &samples[previous]);
+    if context.options.jump && !history.is_empty() {
         let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
-        let jumped = jump_problem(stage, motion, at, problem_index, from(), &sets, options);
+        let jumped = jump_problem(context, at, problem_index, from(), &sets);
         if let Some(result) = jumped {
             return (result, true);
         }
@@ -73,13 +75,13 @@ pub(super) fn solve_problem_in_chain(
             from: from(),
             solutions,
         };
-        track_problem(stage, motion, at, problem_index, route, options)
+        track_problem(context, at, problem_index, route)
     });
     match from_neighbour {
         Some(result) if result.complete.is_some() => (result, true),
         neighbour => {
             let seed = Route::Seed;
-            let mut result = track_problem(stage, motion, at, problem_index, seed, options);
+            let mut result = track_problem(context, at, problem_index, seed);
             if let Some(neighbour) = neighbour {
                 let tracked = result.entry.3 + neighbour.entry.3;
                 if neighbour.entry.1 > result.entry.1 {
@@ -123,17 +125,14 @@ pub(super) fn chain_anchor(
 /// order) complete finite solution set, or from the seed when that set is incomplete
 /// or the pose-to-pose paths do not reach a complete set. Calls `on_pose` per pose;
 /// returns the poses in index order.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn solve_chain(
-    stage: &SeedStage,
-    design: &Design,
-    motion: &Motion,
-    metrics: &[Metric],
+    context: SolveContext<'_>,
+    (design, metrics): (&Design, &[Metric]),
     samples: &[SampledPose],
     poses: std::ops::Range<usize>,
-    options: &CurveOptions,
     on_pose: &(dyn Fn(&PoseResult) + Sync),
 ) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
+    let SolveContext { stage, options, .. } = context;
     let problems = stage.problems.len();
     let anchor = chain_anchor(stage, samples, &poses);
     // The two directions, in chain order after the anchor.
@@ -167,13 +166,11 @@ pub(super) fn solve_chain(
                 .map(|&j| {
                     let (previous, sets) = (history.0, &history.1);
                     let (result, same_order) = solve_problem_in_chain(
-                        stage,
-                        motion,
+                        context,
                         samples,
                         (j, samples[j]),
                         problem_index,
                         (previous, sets),
-                        options,
                     );
                     let sets = &mut history.1;
                     if !same_order {
@@ -274,12 +271,11 @@ fn release_unneeded_sets(out: &mut [(PoseResult, Vec<ProblemAtPose>)], position:
 /// runs and neighbours stay within the window. Returns the window-local indices of
 /// the poses whose entries changed.
 pub(super) fn rescue_from_neighbours(
-    stage: &SeedStage,
-    motion: &Motion,
+    context: SolveContext<'_>,
     (offset, samples): (usize, &[SampledPose]),
     work: &mut [Vec<ProblemAtPose>],
-    options: &CurveOptions,
 ) -> Vec<usize> {
+    let SolveContext { stage, motion, .. } = context;
     let n = samples.len();
     let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.2.is_some();
     // (sub-problem, first pose, last pose) of every run of failing poses.
@@ -310,15 +306,13 @@ pub(super) fn rescue_from_neighbours(
             // complete set at `to`, if reached.
             let mut step = |from: usize, to: usize, solutions: &[Vec<C64>]| {
                 let result = track_problem(
-                    stage,
-                    motion,
+                    context,
                     (offset + to, samples[to]),
                     p,
                     Route::Neighbour {
                         from: MotionPoint::target(motion, &samples[from]),
                         solutions,
                     },
-                    options,
                 );
                 *tracked.entry(to).or_default() += result.entry.3;
                 let best = improved.get(&to).map_or(view[to][p].entry.1, |r| r.entry.1);

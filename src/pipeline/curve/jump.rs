@@ -174,16 +174,18 @@ pub(super) fn conjugate_partners(
 /// one, so `start_count` distinct nonsingular limits are all the critical points.
 /// Limits that fail or coincide are re-tracked from the latest pose (short paths
 /// through a random complex midpoint); `None` when the set is still incomplete.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn jump_problem(
-    stage: &SeedStage,
-    motion: &Motion,
+    context: SolveContext<'_>,
     (index, sample): (usize, SampledPose),
     problem_index: usize,
     from: MotionPoint,
     history: &[&[Vec<C64>]],
-    options: &CurveOptions,
 ) -> Option<ProblemAtPose> {
+    let SolveContext {
+        stage,
+        motion,
+        options,
+    } = context;
     let seeded = &stage.problems[problem_index];
     // The sub-problem's own labelling (its rigid parts' reference anchors).
     let design = &seeded.design;
@@ -197,11 +199,9 @@ pub(super) fn jump_problem(
     let rng = random::stream(options.seed, stream.wrapping_mul(16) + 8);
     let path = route_path(
         (stage, seeded),
-        design,
-        motion,
+        (design, motion),
         (from, target),
-        true,
-        0,
+        RouteLeg::BetweenNeighbours,
         rng,
         parameters[12..].to_vec(),
     );

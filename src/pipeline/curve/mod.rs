@@ -490,21 +490,31 @@ fn candidates(
         .collect()
 }
 
-/// The parameter path of attempt `attempt` from `origin` to `target`: from the seed
-/// (with its perturbation fading) straight, or for `attempt > 0` through a random
-/// complex point near the target; between neighbouring poses through a random complex
-/// midpoint.
-#[allow(clippy::too_many_arguments)]
+/// Which leg of a route a parameter path is: from the seed (attempt 0 straight, a
+/// later attempt through a random complex point near the target), or between
+/// neighbouring poses.
+#[derive(Clone, Copy)]
+enum RouteLeg {
+    FromSeed { attempt: usize },
+    BetweenNeighbours,
+}
+
+/// The parameter path of `leg` from `origin` to `target`: from the seed (with its
+/// perturbation fading) straight, or for `attempt > 0` through a random complex point
+/// near the target; between neighbouring poses through a random complex midpoint.
 fn route_path<'a>(
     (stage, seeded): (&SeedStage, &SeededProblem),
-    design: &'a Design,
-    motion: &'a Motion,
+    (design, motion): (&'a Design, &'a Motion),
     (origin, target): (MotionPoint, MotionPoint),
-    neighbour: bool,
-    attempt: usize,
+    leg: RouteLeg,
     mut rng: random::SeededRng,
     shape: Vec<C64>,
 ) -> MotionPath<'a> {
+    let neighbour = matches!(leg, RouteLeg::BetweenNeighbours);
+    let attempt = match leg {
+        RouteLeg::FromSeed { attempt } => attempt,
+        RouteLeg::BetweenNeighbours => 0,
+    };
     let mut waypoints = vec![origin];
     if neighbour {
         // Between two real poses the straight segment may meet a real branch point
@@ -554,16 +564,28 @@ struct ProblemAtPose {
     complete: Option<Vec<Vec<C64>>>,
 }
 
+/// What stage 2 solves every (pose, sub-problem) with: the seed stage (the
+/// sub-problems, their seed solutions and the normalisation), the motion and the
+/// options.
+#[derive(Clone, Copy)]
+pub(super) struct SolveContext<'a> {
+    pub stage: &'a SeedStage,
+    pub motion: &'a Motion,
+    pub options: &'a CurveOptions,
+}
+
 /// Tracks one sub-problem to pose `index` along `route`, with re-runs and detours.
-#[allow(clippy::too_many_arguments)]
 fn track_problem(
-    stage: &SeedStage,
-    motion: &Motion,
+    context: SolveContext<'_>,
     (index, sample): (usize, SampledPose),
     problem_index: usize,
     route: Route<'_>,
-    options: &CurveOptions,
 ) -> ProblemAtPose {
+    let SolveContext {
+        stage,
+        motion,
+        options,
+    } = context;
     let seeded = &stage.problems[problem_index];
     // The sub-problem's own labelling (its rigid parts' reference anchors).
     let design = &seeded.design;
@@ -590,16 +612,16 @@ fn track_problem(
                 options.seed,
                 stream.wrapping_mul(16) + salt + attempt as u64,
             );
-            let neighbour = matches!(route, Route::Neighbour { .. });
-            let ends = (origin, target);
+            let leg = match route {
+                Route::Seed => RouteLeg::FromSeed { attempt },
+                Route::Neighbour { .. } => RouteLeg::BetweenNeighbours,
+            };
             let shape = parameters[12..].to_vec();
             route_path(
                 (stage, seeded),
-                design,
-                motion,
-                ends,
-                neighbour,
-                attempt,
+                (design, motion),
+                (origin, target),
+                leg,
                 rng,
                 shape,
             )

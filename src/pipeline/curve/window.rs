@@ -140,6 +140,11 @@ impl<'a> CurveRun<'a> {
             self.metrics,
             self.options,
         );
+        let context = SolveContext {
+            stage,
+            motion,
+            options,
+        };
         let samples = &self.samples;
         let blocks = chain_blocks(
             design,
@@ -151,21 +156,13 @@ impl<'a> CurveRun<'a> {
             .par_iter()
             .flat_map_iter(|&(first, last)| {
                 let poses = range.start + first..range.start + last;
-                solve_chain(
-                    stage, design, motion, metrics, samples, poses, options, on_pose,
-                )
+                solve_chain(context, (design, metrics), samples, poses, on_pose)
             })
             .collect::<Vec<_>>()
             .into_iter()
             .unzip();
         let window_samples = &samples[range.clone()];
-        let rescued = rescue_from_neighbours(
-            stage,
-            motion,
-            (range.start, window_samples),
-            &mut work,
-            options,
-        );
+        let rescued = rescue_from_neighbours(context, (range.start, window_samples), &mut work);
         for local in rescued {
             let j = range.start + local;
             let k = design.configuration(samples[j].pose).to_array();
