@@ -155,6 +155,8 @@
 //!   colours).
 
 pub mod algebra;
+#[macro_use]
+pub mod choice;
 pub mod analysis;
 pub mod certify;
 pub mod homotopy;

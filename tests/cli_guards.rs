@@ -28,19 +28,30 @@ fn run(args: &[&str]) -> Run {
     }
 }
 
-/// A fresh temporary folder for one test.
-fn folder(test: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("singdist-cli-guards-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+/// A fresh temporary folder for one test, with the inputs it writes and the outputs it
+/// names.
+struct Scratch(PathBuf);
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("write temp file");
-    path.display().to_string()
+impl Scratch {
+    fn new(test: &str) -> Scratch {
+        let dir =
+            std::env::temp_dir().join(format!("singdist-cli-guards-{}-{test}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        Scratch(dir)
+    }
+
+    /// The path of `name` inside the folder, as a command-line argument.
+    fn path(&self, name: &str) -> String {
+        self.0.join(name).display().to_string()
+    }
+
+    /// Writes `text` to `name` inside the folder; returns its path.
+    fn write(&self, name: &str, text: &str) -> String {
+        let path = self.path(name);
+        std::fs::write(&path, text).expect("write temp file");
+        path
+    }
 }
 
 /// Exit code 1, one line on stderr (no panic, no Debug text) containing every needle.
@@ -72,20 +83,15 @@ const DESIGN: &str = r#"{"base": [[0,0],[10,0],[4,8]], "platform": [[0,0],[3,0],
 
 #[test]
 fn numbers_beyond_the_input_range_are_refused_with_file_field_and_index() {
-    let dir = folder("range");
-    let out = dir.join("out.csv").display().to_string();
+    let dir = Scratch::new("range");
+    let out = dir.path("out.csv");
 
-    let poses = write(
-        &dir,
-        "poses.json",
-        r#"{"poses": [[1e308,3,0.3],[4,3,0.3]]}"#,
-    );
+    let poses = dir.write("poses.json", r#"{"poses": [[1e308,3,0.3],[4,3,0.3]]}"#);
     let r = run(&["curve", "--quiet", "--motion", &poses, "--out", &out]);
     assert_one_line_error(&r, &["poses.json: poses[0][0]: 1e308 is outside ±1e12"]);
     assert_no_output(&out);
 
-    let design = write(
-        &dir,
+    let design = dir.write(
         "design.json",
         r#"{"base": [[0,0],[1e308,0],[4,8]], "platform": [[0,0],[3,0],[1,2]]}"#,
     );
@@ -95,8 +101,7 @@ fn numbers_beyond_the_input_range_are_refused_with_file_field_and_index() {
     assert_no_output(&out);
 
     // Finite coefficients whose motion leaves the range inside tau_range.
-    let blow_up = write(
-        &dir,
+    let blow_up = dir.write(
         "blow_up.json",
         r#"{"tau_range": [0, 1e6], "x": {"polynomial": [4, 0, 0, 1]}, "y": {"polynomial": [3]}, "phi": {"polynomial": [0.3]}}"#,
     );
@@ -113,8 +118,7 @@ fn numbers_beyond_the_input_range_are_refused_with_file_field_and_index() {
     let r = run(&["prrr", "index", "--pose", "1e300,0,0"]);
     assert_one_line_error(&r, &["--pose", "1e300", "1e12"]);
 
-    let rrr = write(
-        &dir,
+    let rrr = dir.write(
         "rrr.json",
         r#"{"base": [[0,0],[1e13,0],[4,8]], "proximal": [1,1,1], "distal": [1,1,1], "platform": [[0,0],[1,0],[0,1]]}"#,
     );
@@ -128,9 +132,8 @@ fn numbers_beyond_the_input_range_are_refused_with_file_field_and_index() {
 
 #[test]
 fn errors_print_their_cause_once() {
-    let dir = folder("once");
-    let collapsed = write(
-        &dir,
+    let dir = Scratch::new("once");
+    let collapsed = dir.write(
         "collapsed.json",
         r#"{"base": [[0,0],[10,0],[4,8]], "platform": [[1,2],[1,2],[1,2]]}"#,
     );
@@ -138,8 +141,7 @@ fn errors_print_their_cause_once() {
     assert_one_line_error(&r, &["collapsed.json: platform: collapsed to a point"]);
     assert_eq!(r.stderr.matches("collapsed").count(), 2, "{}", r.stderr);
 
-    let rrr = write(
-        &dir,
+    let rrr = dir.write(
         "rrr.json",
         r#"{"base": [[0,0],[10,0],[4,8]], "proximal": [1,-0.8,1], "distal": [1,1,1], "platform": [[0,0],[1,0],[0,1]]}"#,
     );
@@ -152,7 +154,7 @@ fn errors_print_their_cause_once() {
         r.stderr
     );
 
-    let malformed = write(&dir, "malformed.json", "{\"poses\": [[0,0,");
+    let malformed = dir.write("malformed.json", "{\"poses\": [[0,0,");
     let r = run(&["curve", "--quiet", "--motion", &malformed]);
     assert_one_line_error(&r, &["malformed.json: malformed JSON"]);
     assert_eq!(r.stderr.matches("EOF").count(), 1, "{}", r.stderr);
@@ -219,10 +221,9 @@ fn more_threads_than_cores_are_clamped_with_a_warning() {
 
 #[test]
 fn solve_with_failed_paths_warns_and_exits_3() {
-    let dir = folder("solve");
+    let dir = Scratch::new("solve");
     // Coefficients of 1e300 overflow in every evaluation: every path fails.
-    let failing = write(
-        &dir,
+    let failing = dir.write(
         "failing.input",
         "INPUT\nvariable_group x,y;\nfunction f,g;\nf = 1e300*x^2 - 1e300;\ng = y^2 - 1;\nEND;\n",
     );
@@ -238,8 +239,7 @@ fn solve_with_failed_paths_warns_and_exits_3() {
     let r = run(&["solve", &failing, "--json"]);
     assert_eq!(r.code, 3, "{}", r.stderr);
 
-    let fine = write(
-        &dir,
+    let fine = dir.write(
         "fine.input",
         "INPUT\nvariable_group x,y;\nfunction f,g;\nf = x^2 - 1;\ng = y^2 - 4;\nEND;\n",
     );
@@ -250,19 +250,14 @@ fn solve_with_failed_paths_warns_and_exits_3() {
 
 #[test]
 fn output_paths_are_checked_before_computing() {
-    let dir = folder("paths");
-    let inside = |name: &str| dir.join(name).display().to_string();
-    let missing = dir
-        .join("no-such-folder")
-        .join("x.csv")
-        .display()
-        .to_string();
-    let svg = inside("one.svg");
+    let dir = Scratch::new("paths");
+    let missing = dir.path("no-such-folder/x.csv");
+    let svg = dir.path("one.svg");
     let (png, txt, pdf, rpng) = (
-        inside("x.png"),
-        inside("x.txt"),
-        inside("i.pdf"),
-        inside("r.png"),
+        dir.path("x.png"),
+        dir.path("x.txt"),
+        dir.path("i.pdf"),
+        dir.path("r.png"),
     );
     // 20,000 poses would take minutes: a refusal within seconds comes before the work.
     let curve = |option: &str, out: &str| -> Vec<String> {
@@ -336,8 +331,8 @@ fn a_failed_write_names_its_partial_file() {
     if !Path::new("/dev/full").exists() {
         return;
     }
-    let dir = folder("full");
-    let out = dir.join("full.csv");
+    let dir = Scratch::new("full");
+    let out = dir.0.join("full.csv");
     std::os::unix::fs::symlink("/dev/full", &out).expect("symlink");
     let out = out.display().to_string();
     let r = run(&[
@@ -361,9 +356,9 @@ fn a_failed_write_names_its_partial_file() {
 
 #[test]
 fn csv_tables_carry_lost_paths_per_pose() {
-    let dir = folder("csv");
-    let out = dir.join("curve.csv").display().to_string();
-    let design = write(&dir, "design.json", DESIGN);
+    let dir = Scratch::new("csv");
+    let out = dir.path("curve.csv");
+    let design = dir.write("design.json", DESIGN);
     let r = run(&[
         "curve",
         "--quiet",
@@ -389,7 +384,7 @@ fn csv_tables_carry_lost_paths_per_pose() {
     assert!(rows.iter().all(|row| row.ends_with(",0")), "{text}");
     assert!(!Path::new(&format!("{out}.partial")).exists());
 
-    let out = dir.join("rrr.csv").display().to_string();
+    let out = dir.path("rrr.csv");
     let r = run(&["rrr", "curve", "--quiet", "--poses", "3", "--out", &out]);
     assert_eq!(r.code, 0, "{}", r.stderr);
     let text = std::fs::read_to_string(&out).expect("CSV written");

@@ -16,6 +16,7 @@
 //! [`maximize`]: GA, then the local projected quasi-Newton refinement from the
 //! GA's best.
 
+use crate::choice::UnknownChoice;
 use crate::index::prrr::{LciVariant, lci, nsir};
 use crate::mechanism::prrr::{Pose, PrrrDesign, PrrrError, Robot, WorkingMode};
 use crate::optimize::{
@@ -34,7 +35,10 @@ pub enum RedundancyError {
     /// Optimiser rejected its input.
     #[error(transparent)]
     Optimize(#[from] OptimizeError),
-    /// Unknown name or bad option.
+    /// Unknown trajectory, scheme, index or aggregate.
+    #[error(transparent)]
+    UnknownChoice(#[from] UnknownChoice),
+    /// Bad option.
     #[error("`{field}`: {reason}")]
     InvalidOption {
         /// Option name.
@@ -44,51 +48,27 @@ pub enum RedundancyError {
     },
 }
 
-/// The four tasks of Farias Filho et al. (2021) §4 (docs/theory.md §11.3), parametrised
-/// by `s ∈ [0, 1]`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Trajectory {
-    /// Straight line from (−0.02, −0.09, α = 0.2) to (0.02, 0.09, α = 0); α interpolated linearly.
-    Line,
-    /// Circle of radius 0.05 about the origin from (0, 0.05), `(0.05 sin 2πs, 0.05 cos 2πs)`
-    /// (clockwise, as the spiral), α = 0.5.
-    Circle,
-    /// Archimedean spiral `x = (0.01 + k u) sin 2πu`, `y = (0.01 + k u) cos 2πu`,
-    /// `u = 6s ∈ [0, 6]`, `k = 0.04/6`, α = 0.5.
-    Spiral,
-    /// Square of side 0.12 centred at the origin from (−0.06, −0.06), counter-clockwise at
-    /// constant speed, α = 0.3.
-    Square,
+named_choices! {
+    option "trajectory", error RedundancyError, serde "lowercase";
+    /// The four tasks of Farias Filho et al. (2021) §4 (docs/theory.md §11.3), parametrised
+    /// by `s ∈ [0, 1]`; `ALL` in the order of the paper.
+    pub enum Trajectory {
+        /// Straight line from (−0.02, −0.09, α = 0.2) to (0.02, 0.09, α = 0); α interpolated
+        /// linearly.
+        Line = "line",
+        /// Circle of radius 0.05 about the origin from (0, 0.05), `(0.05 sin 2πs, 0.05 cos 2πs)`
+        /// (clockwise, as the spiral), α = 0.5.
+        Circle = "circle",
+        /// Archimedean spiral `x = (0.01 + k u) sin 2πu`, `y = (0.01 + k u) cos 2πu`,
+        /// `u = 6s ∈ [0, 6]`, `k = 0.04/6`, α = 0.5.
+        Spiral = "spiral",
+        /// Square of side 0.12 centred at the origin from (−0.06, −0.06), counter-clockwise at
+        /// constant speed, α = 0.3.
+        Square = "square",
+    }
 }
 
 impl Trajectory {
-    /// All four, in the order of Farias Filho et al. (2021).
-    pub const ALL: [Trajectory; 4] = [
-        Trajectory::Line,
-        Trajectory::Circle,
-        Trajectory::Spiral,
-        Trajectory::Square,
-    ];
-
-    /// Name as used on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Trajectory::Line => "line",
-            Trajectory::Circle => "circle",
-            Trajectory::Spiral => "spiral",
-            Trajectory::Square => "square",
-        }
-    }
-
-    /// Default number of samples: 361 for the six-turn spiral, 121 otherwise.
-    pub fn default_samples(self) -> usize {
-        match self {
-            Trajectory::Spiral => 361,
-            _ => 121,
-        }
-    }
-
     /// Pose at `s ∈ [0, 1]`.
     pub fn pose_at(self, s: f64) -> Pose {
         match self {
@@ -117,58 +97,28 @@ impl Trajectory {
             }
         }
     }
-}
 
-/// The option of `all` whose `name` is `s` (trimmed, in any case); otherwise an
-/// [`RedundancyError::InvalidOption`] for `field` listing the names.
-fn parse_option<T: Copy>(
-    s: &str,
-    all: &[T],
-    name: fn(T) -> &'static str,
-    field: &'static str,
-) -> Result<T, RedundancyError> {
-    let wanted = s.trim().to_ascii_lowercase();
-    all.iter()
-        .copied()
-        .find(|&t| name(t) == wanted)
-        .ok_or_else(|| {
-            let names: Vec<&str> = all.iter().map(|&t| name(t)).collect();
-            RedundancyError::InvalidOption {
-                field,
-                reason: format!("unknown {field} `{s}` ({})", names.join(", ")),
-            }
-        })
-}
-
-impl std::str::FromStr for Trajectory {
-    type Err = RedundancyError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_option(s, &Trajectory::ALL, Trajectory::name, "trajectory")
+    /// Default number of samples: 361 for the six-turn spiral, 121 otherwise.
+    pub fn default_samples(self) -> usize {
+        match self {
+            Trajectory::Spiral => 361,
+            _ => 121,
+        }
     }
 }
 
-/// Redundancy-resolution scheme (Farias Filho et al. (2021) Eqs. 27–28).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Scheme {
-    /// δ fixed along the task: 3 variables.
-    Prepositioning,
-    /// Quintic δ(s) from δ_o to δ_f: 6 variables.
-    Continuous,
+named_choices! {
+    option "scheme", error RedundancyError, serde "lowercase";
+    /// Redundancy-resolution scheme (Farias Filho et al. (2021) Eqs. 27–28).
+    pub enum Scheme {
+        /// δ fixed along the task: 3 variables.
+        Prepositioning = "prepositioning",
+        /// Quintic δ(s) from δ_o to δ_f: 6 variables.
+        Continuous = "continuous",
+    }
 }
 
 impl Scheme {
-    /// Both schemes.
-    pub const ALL: [Scheme; 2] = [Scheme::Prepositioning, Scheme::Continuous];
-
-    /// Command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Scheme::Prepositioning => "prepositioning",
-            Scheme::Continuous => "continuous",
-        }
-    }
-
     /// Number of optimisation variables (3 or 6).
     pub fn dimension(self) -> usize {
         match self {
@@ -178,64 +128,25 @@ impl Scheme {
     }
 }
 
-impl std::str::FromStr for Scheme {
-    type Err = RedundancyError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_option(s, &Scheme::ALL, Scheme::name, "scheme")
+named_choices! {
+    option "index", error RedundancyError, serde "lowercase";
+    /// Index optimised along the task.
+    pub enum TaskIndex {
+        /// LCI `1/κ(Ā⁻¹B̄)` (Farias Filho et al. (2021)).
+        Lci = "lci",
+        /// NSIR.
+        Nsir = "nsir",
     }
 }
 
-/// Index optimised along the task.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum TaskIndex {
-    /// LCI `1/κ(Ā⁻¹B̄)` (Farias Filho et al. (2021)).
-    Lci,
-    /// NSIR.
-    Nsir,
-}
-
-impl TaskIndex {
-    /// Both indices.
-    pub const ALL: [TaskIndex; 2] = [TaskIndex::Lci, TaskIndex::Nsir];
-
-    /// Command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            TaskIndex::Lci => "lci",
-            TaskIndex::Nsir => "nsir",
-        }
-    }
-}
-
-impl std::str::FromStr for TaskIndex {
-    type Err = RedundancyError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_option(s, &TaskIndex::ALL, TaskIndex::name, "index")
-    }
-}
-
-/// How per-sample index values become the objective F.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Aggregate {
-    /// Arithmetic mean (default).
-    Mean,
-    /// Minimum.
-    Min,
-}
-
-impl std::str::FromStr for Aggregate {
-    type Err = RedundancyError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "mean" => Ok(Aggregate::Mean),
-            "min" => Ok(Aggregate::Min),
-            _ => Err(RedundancyError::InvalidOption {
-                field: "aggregate",
-                reason: format!("unknown aggregate `{s}` (mean, min)"),
-            }),
-        }
+named_choices! {
+    option "aggregate", error RedundancyError, serde "lowercase";
+    /// How per-sample index values become the objective F.
+    pub enum Aggregate {
+        /// Arithmetic mean (default).
+        Mean = "mean",
+        /// Minimum.
+        Min = "min",
     }
 }
 

@@ -437,6 +437,28 @@ impl<F: Evaluator + ?Sized> IncidenceSlice<'_, F> {
     fn layout(&self) -> (usize, usize) {
         (self.system.num_variables(), self.system.num_parameters())
     }
+
+    /// `p ← p₀ + μ v`, the family's parameters at `μ = x[n]`, at the head of `work`;
+    /// returns `(n, p, the rest of work)`.
+    fn parameters_at<'w>(
+        &self,
+        x: &[C64],
+        work: &'w mut [C64],
+    ) -> (usize, &'w [C64], &'w mut [C64]) {
+        let (n, m) = self.layout();
+        let (p, rest) = work.split_at_mut(m);
+        for ((pi, b), d) in p.iter_mut().zip(&self.base).zip(&self.direction) {
+            *pi = b + x[n] * d;
+        }
+        (n, p, rest)
+    }
+
+    /// `μ − a·x − c`, the slice equation at `(x, μ)` with `q = (a, c)`.
+    fn slice_residual(x: &[C64], q: &[C64]) -> C64 {
+        let n = x.len() - 1;
+        let slice: C64 = q[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
+        x[n] - slice - q[n]
+    }
 }
 
 impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
@@ -452,16 +474,10 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
     }
 
     fn evaluate(&self, x: &[C64], q: &[C64], work: &mut [C64], f: &mut [C64]) {
-        let (n, m) = self.layout();
-        let mu = x[n];
-        let (p, rest) = work.split_at_mut(m);
-        for ((pi, b), d) in p.iter_mut().zip(&self.base).zip(&self.direction) {
-            *pi = b + mu * d;
-        }
+        let (n, p, rest) = self.parameters_at(x, work);
         let rest = &mut rest[n * n + n..];
         self.system.evaluate(&x[..n], p, rest, &mut f[..n]);
-        let slice: C64 = q[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
-        f[n] = mu - slice - q[n];
+        f[n] = Self::slice_residual(x, q);
     }
 
     fn evaluate_with_jacobian(
@@ -472,12 +488,7 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
         f: &mut [C64],
         jac: &mut [C64],
     ) {
-        let (n, m) = self.layout();
-        let mu = x[n];
-        let (p, rest) = work.split_at_mut(m);
-        for ((pi, b), d) in p.iter_mut().zip(&self.base).zip(&self.direction) {
-            *pi = b + mu * d;
-        }
+        let (n, p, rest) = self.parameters_at(x, work);
         let (inner_jac, rest) = rest.split_at_mut(n * n);
         let (column, rest) = rest.split_at_mut(n);
         self.system
@@ -493,8 +504,7 @@ impl<F: Evaluator + ?Sized> Evaluator for IncidenceSlice<'_, F> {
             jac[n * width + j] = -q[j];
         }
         jac[n * width + n] = C64::new(1.0, 0.0);
-        let slice: C64 = q[..n].iter().zip(&x[..n]).map(|(a, v)| a * v).sum();
-        f[n] = mu - slice - q[n];
+        f[n] = Self::slice_residual(x, q);
     }
 
     fn evaluate_parameter_derivative(

@@ -207,6 +207,12 @@ pub(super) fn check_length(
     }
 }
 
+/// `values` has `expected` entries, all finite (`field` names it in the error).
+fn check_values(field: &'static str, expected: usize, values: &[C64]) -> Result<(), HomotopyError> {
+    check_length(field, expected, values.len())?;
+    check_finite(field, values)
+}
+
 pub(super) fn check_square<F: Evaluator + ?Sized>(system: &F) -> Result<(), HomotopyError> {
     if system.num_equations() != system.num_variables() {
         return Err(HomotopyError::NotSquare {
@@ -255,12 +261,11 @@ pub(super) fn check_target_parameters<F: Evaluator + ?Sized>(
     system: &F,
     target_parameters: &[C64],
 ) -> Result<(), HomotopyError> {
-    check_length(
+    check_values(
         "target_parameters",
         system.num_parameters(),
-        target_parameters.len(),
-    )?;
-    check_finite("target_parameters", target_parameters)
+        target_parameters,
+    )
 }
 
 /// Tracks the `count` paths of `(1 − t)·γ·G + t·F` (γ random from `options.seed`) from
@@ -295,14 +300,14 @@ pub fn solve_parameter_homotopy<F: Evaluator + ?Sized>(
     options: &SolveOptions,
 ) -> Result<SolveResult, HomotopyError> {
     check_square(system)?;
-    let m = system.num_parameters();
-    check_length("start_parameters", m, start_parameters.len())?;
-    check_length("target_parameters", m, target_parameters.len())?;
-    check_finite("start_parameters", start_parameters)?;
-    check_finite("target_parameters", target_parameters)?;
+    check_values(
+        "start_parameters",
+        system.num_parameters(),
+        start_parameters,
+    )?;
+    check_target_parameters(system, target_parameters)?;
     for s in start_solutions {
-        check_length("start_solutions", system.num_variables(), s.len())?;
-        check_finite("start_solutions", s)?;
+        check_values("start_solutions", system.num_variables(), s)?;
     }
     let homotopy = ParameterHomotopy::segment(system, start_parameters, target_parameters);
     Ok(solve_with_homotopy(

@@ -69,6 +69,7 @@
 //! Table IV. With the reachable-only mean as objective the GA degenerates to tiny
 //! workspaces with GCI → 1, which is why the GA uses the grid mean by default.
 
+use crate::choice::UnknownChoice;
 use crate::mechanism::rrr::{
     ElbowMode, Point, RrrConfiguration, RrrDesign, RrrError, RrrPose, WorkingModes, det3,
 };
@@ -91,15 +92,8 @@ pub enum ActuationError {
     )]
     UnknownScheme(String),
     /// An unknown option value (norm, domain, ψ model).
-    #[error("unknown {field} `{value}` (expected one of: {expected})")]
-    UnknownOption {
-        /// Option name.
-        field: &'static str,
-        /// Given value.
-        value: String,
-        /// Accepted values.
-        expected: &'static str,
-    },
+    #[error(transparent)]
+    UnknownChoice(#[from] UnknownChoice),
     /// A grid or option field out of range.
     #[error("invalid {field}: {reason}")]
     InvalidField {
@@ -130,40 +124,17 @@ pub enum Actuator {
     Psi,
 }
 
-/// Which elbow input a ψ-actuated leg has (docs/theory.md §11.5 **Choice**).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum PsiModel {
-    /// The matrices of Ramana Babu et al.: input = absolute distal angle
-    /// `ψ_i = atan2(C_i − B_i)`.
-    #[default]
-    Seed,
-    /// Physical elbow motor: input = relative angle `ψ_i − θ_i`; `J_x` row built on
-    /// `d_i = C_i − O_i`.
-    RelativeElbow,
-}
-
-impl PsiModel {
-    /// Name used on the command line and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            PsiModel::Seed => "seed",
-            PsiModel::RelativeElbow => "relative",
-        }
-    }
-}
-
-impl FromStr for PsiModel {
-    type Err = ActuationError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.to_ascii_lowercase().as_str() {
-            "seed" | "absolute" => Ok(PsiModel::Seed),
-            "relative" | "relative-elbow" | "elbow" => Ok(PsiModel::RelativeElbow),
-            _ => Err(ActuationError::UnknownOption {
-                field: "psi model",
-                value: s.to_string(),
-                expected: "seed, relative",
-            }),
-        }
+named_choices! {
+    option "psi model", error ActuationError, default Seed;
+    /// Which elbow input a ψ-actuated leg has (docs/theory.md §11.5 **Choice**).
+    #[derive(Hash)]
+    pub enum PsiModel {
+        /// The matrices of Ramana Babu et al.: input = absolute distal angle
+        /// `ψ_i = atan2(C_i − B_i)`.
+        Seed = "seed" | "absolute",
+        /// Physical elbow motor: input = relative angle `ψ_i − θ_i`; `J_x` row built on
+        /// `d_i = C_i − O_i`.
+        RelativeElbow = "relative" | "relative-elbow" | "elbow",
     }
 }
 
@@ -317,38 +288,14 @@ pub fn active_joints(config: &RrrConfiguration, scheme: Scheme, model: PsiModel)
     q
 }
 
-/// Matrix norm used in the condition number `κ = ‖J‖ ‖J⁻¹‖` (Ramana Babu et al. Eq. 19).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ConditionNorm {
-    /// 2-norm: `κ = σ_max/σ_min` (default).
-    #[default]
-    Spectral,
-    /// Weighted Frobenius norm `‖A‖ = sqrt(tr(A Aᵀ)/3)` (Gosselin–Angeles), `κ ≥ 1`.
-    WeightedFrobenius,
-}
-
-impl ConditionNorm {
-    /// Name used on the command line and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            ConditionNorm::Spectral => "2-norm",
-            ConditionNorm::WeightedFrobenius => "weighted-frobenius",
-        }
-    }
-}
-
-impl FromStr for ConditionNorm {
-    type Err = ActuationError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.to_ascii_lowercase().as_str() {
-            "2" | "2-norm" | "two" | "spectral" => Ok(ConditionNorm::Spectral),
-            "frobenius" | "weighted-frobenius" | "f" => Ok(ConditionNorm::WeightedFrobenius),
-            _ => Err(ActuationError::UnknownOption {
-                field: "norm",
-                value: s.to_string(),
-                expected: "2-norm, weighted-frobenius",
-            }),
-        }
+named_choices! {
+    option "norm", error ActuationError, default Spectral;
+    /// Matrix norm used in the condition number `κ = ‖J‖ ‖J⁻¹‖` (Ramana Babu et al. Eq. 19).
+    pub enum ConditionNorm {
+        /// 2-norm: `κ = σ_max/σ_min` (default).
+        Spectral = "2-norm" | "2" | "two" | "spectral",
+        /// Weighted Frobenius norm `‖A‖ = sqrt(tr(A Aᵀ)/3)` (Gosselin–Angeles), `κ ≥ 1`.
+        WeightedFrobenius = "weighted-frobenius" | "frobenius" | "f",
     }
 }
 
@@ -571,39 +518,15 @@ impl WorkspaceGrid {
     }
 }
 
-/// Which nodes the GCI mean runs over (module documentation, **Choice**).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum GciDomain {
-    /// Mean over reachable nodes (Ramana Babu et al., Eq. 20, `∫_W dw` = workspace).
-    /// Default for analysis.
-    #[default]
-    Reachable,
-    /// Mean over all grid nodes, unreachable nodes counting 0 (fixed task region).
-    Grid,
-}
-
-impl GciDomain {
-    /// Name used on the command line and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            GciDomain::Reachable => "reachable",
-            GciDomain::Grid => "grid",
-        }
-    }
-}
-
-impl FromStr for GciDomain {
-    type Err = ActuationError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.to_ascii_lowercase().as_str() {
-            "reachable" | "workspace" => Ok(GciDomain::Reachable),
-            "grid" | "task" => Ok(GciDomain::Grid),
-            _ => Err(ActuationError::UnknownOption {
-                field: "gci domain",
-                value: s.to_string(),
-                expected: "reachable, grid",
-            }),
-        }
+named_choices! {
+    option "gci domain", error ActuationError, default Reachable;
+    /// Which nodes the GCI mean runs over (module documentation, **Choice**).
+    pub enum GciDomain {
+        /// Mean over reachable nodes (Ramana Babu et al., Eq. 20, `∫_W dw` = workspace).
+        /// Default for analysis.
+        Reachable = "reachable" | "workspace",
+        /// Mean over all grid nodes, unreachable nodes counting 0 (fixed task region).
+        Grid = "grid" | "task",
     }
 }
 
@@ -917,20 +840,15 @@ pub fn plot_loci_svg(path: &Path, maps: &[LociMap], columns: usize) -> Result<()
         chart
             .draw_series(runs)
             .map_err(|e| plot_error(e.to_string()))?;
-        chart
-            .draw_series(
-                map.type_i
-                    .iter()
-                    .map(|&(x, y)| Circle::new((x, y), 1, BLUE.filled())),
-            )
-            .map_err(|e| plot_error(e.to_string()))?;
-        chart
-            .draw_series(
-                map.type_ii
-                    .iter()
-                    .map(|&(x, y)| Circle::new((x, y), 1, RED.filled())),
-            )
-            .map_err(|e| plot_error(e.to_string()))?;
+        for (points, colour) in [(&map.type_i, BLUE), (&map.type_ii, RED)] {
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&(x, y)| Circle::new((x, y), 1, colour.filled())),
+                )
+                .map_err(|e| plot_error(e.to_string()))?;
+        }
     }
     root.present().map_err(|e| plot_error(e.to_string()))?;
     Ok(())

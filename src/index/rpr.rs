@@ -13,27 +13,19 @@
 use super::polynomial::{polynomial_roots, trimmed};
 use crate::C64;
 use crate::algebra::{Point, cross, difference, dot};
+use crate::choice::UnknownChoice;
 use crate::mechanism::rpr::{Configuration, Design, Pose, rotate_quarter};
 use nalgebra::{Matrix3, Matrix6x3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
-use std::fmt;
-use std::str::FromStr;
 use thiserror::Error;
 
 /// Errors of index options.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum IndexError {
     /// Unknown option value.
-    #[error("{option}: unknown value `{value}` (expected one of: {valid})")]
-    UnknownVariant {
-        /// The option.
-        option: &'static str,
-        /// The value given.
-        value: String,
-        /// The valid values.
-        valid: &'static str,
-    },
+    #[error(transparent)]
+    UnknownChoice(#[from] UnknownChoice),
     /// An orientation range that is not `lo ≤ hi`, both finite.
     #[error("orientation range: expected finite lo <= hi, got [{lo}, {hi}]")]
     BadRange {
@@ -48,30 +40,21 @@ pub enum IndexError {
 // Options
 // ---------------------------------------------------------------------------------
 
-/// How DS combines the three pressure-angle cosines (docs/theory.md §9, **Choice**; the
-/// original formula of Gómez et al. was not available to us, so DS is *reconstructed*).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum DsAggregate {
-    /// `DS = Π_i |cos α_i|` (default).
-    #[default]
-    Product,
-    /// `DS = (Π_i |cos α_i|)^{1/3}`.
-    GeometricMean,
-    /// `DS = (Σ_i |cos α_i|) / 3`.
-    ArithmeticMean,
+named_choices! {
+    option "DS aggregate", error IndexError, serde "kebab-case", default Product;
+    /// How DS combines the three pressure-angle cosines (docs/theory.md §9, **Choice**; the
+    /// original formula of Gómez et al. was not available to us, so DS is *reconstructed*).
+    pub enum DsAggregate {
+        /// `DS = Π_i |cos α_i|` (default).
+        Product = "product",
+        /// `DS = (Π_i |cos α_i|)^{1/3}`.
+        GeometricMean = "geometric-mean",
+        /// `DS = (Σ_i |cos α_i|) / 3`.
+        ArithmeticMean = "arithmetic-mean",
+    }
 }
 
 impl DsAggregate {
-    /// Name used on the command line and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            DsAggregate::Product => "product",
-            DsAggregate::GeometricMean => "geometric-mean",
-            DsAggregate::ArithmeticMean => "arithmetic-mean",
-        }
-    }
-
     /// Aggregates three cosines.
     pub fn apply(self, c: [f64; 3]) -> f64 {
         let c = c.map(f64::abs);
@@ -83,56 +66,14 @@ impl DsAggregate {
     }
 }
 
-impl FromStr for DsAggregate {
-    type Err = IndexError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        [
-            DsAggregate::Product,
-            DsAggregate::GeometricMean,
-            DsAggregate::ArithmeticMean,
-        ]
-        .into_iter()
-        .find(|v| v.name() == s)
-        .ok_or_else(|| IndexError::UnknownVariant {
-            option: "DS aggregate",
-            value: s.into(),
-            valid: "product, geometric-mean, arithmetic-mean",
-        })
-    }
-}
-
-/// Which control number (docs/theory.md §9, **Choice**).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CnVariant {
-    /// `CN = λ_min / λ_max` (default; Nawratil's control number).
-    #[default]
-    Ratio,
-    /// `CN = sqrt(λ_min / λ_max)` (inverse condition number of G).
-    SquareRoot,
-}
-
-impl CnVariant {
-    /// Name used on the command line and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            CnVariant::Ratio => "lambda-ratio",
-            CnVariant::SquareRoot => "sqrt-lambda-ratio",
-        }
-    }
-}
-
-impl FromStr for CnVariant {
-    type Err = IndexError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        [CnVariant::Ratio, CnVariant::SquareRoot]
-            .into_iter()
-            .find(|v| v.name() == s)
-            .ok_or_else(|| IndexError::UnknownVariant {
-                option: "CN variant",
-                value: s.into(),
-                valid: "lambda-ratio, sqrt-lambda-ratio",
-            })
+named_choices! {
+    option "CN variant", error IndexError, serde "kebab-case", default Ratio;
+    /// Which control number (docs/theory.md §9, **Choice**).
+    pub enum CnVariant {
+        /// `CN = λ_min / λ_max` (default; Nawratil's control number).
+        Ratio = "lambda-ratio",
+        /// `CN = sqrt(λ_min / λ_max)` (inverse condition number of G).
+        SquareRoot = "sqrt-lambda-ratio",
     }
 }
 
@@ -1104,16 +1045,4 @@ pub fn index_columns(indices: &RprIndices) -> [(&'static str, Option<f64>); 14] 
         indices.cylinder_radius,
     ];
     std::array::from_fn(|j| (INDEX_COLUMN_NAMES[j], values[j]))
-}
-
-impl fmt::Display for DsAggregate {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl fmt::Display for CnVariant {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
 }

@@ -137,9 +137,9 @@ pub struct ProblemId {
 }
 
 impl ProblemId {
-    /// `PLATFORM/BASE:SUBPROBLEM`.
+    /// `PLATFORM/BASE:SUBPROBLEM` (the [`Display`](fmt::Display) form).
     pub fn name(&self) -> String {
-        format!("{}:{}", self.metric.name(), self.subproblem.name())
+        self.to_string()
     }
 
     /// File stem of the start-solution file: `PLATFORM-BASE-SUBPROBLEM`.
@@ -167,7 +167,7 @@ impl ProblemId {
 
 impl fmt::Display for ProblemId {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.name())
+        write!(f, "{}:{}", self.metric.name(), self.subproblem)
     }
 }
 

@@ -194,6 +194,15 @@ impl Neg for DoubleDouble {
     }
 }
 
+impl Sub for DoubleDouble {
+    type Output = Self;
+    /// Difference `a + (−b)` (negation is exact).
+    #[inline(always)]
+    fn sub(self, other: Self) -> Self {
+        self + -other
+    }
+}
+
 impl Mul for DoubleDouble {
     type Output = Self;
     /// Product (FMA for the exact error of `hi·hi`).
@@ -268,27 +277,7 @@ impl ComplexDd {
     }
 }
 
-impl Add for ComplexDd {
-    type Output = Self;
-    #[inline(always)]
-    fn add(self, other: Self) -> Self {
-        ComplexDd {
-            re: self.re + other.re,
-            im: self.im + other.im,
-        }
-    }
-}
-
-impl Sub for ComplexDd {
-    type Output = Self;
-    #[inline(always)]
-    fn sub(self, other: Self) -> Self {
-        ComplexDd {
-            re: self.re + -other.re,
-            im: self.im + -other.im,
-        }
-    }
-}
+complex_add_sub_neg!(ComplexDd);
 
 impl Mul for ComplexDd {
     type Output = Self;

@@ -282,27 +282,7 @@ impl ComplexInterval {
     }
 }
 
-impl Add for ComplexInterval {
-    type Output = ComplexInterval;
-    #[inline]
-    fn add(self, o: ComplexInterval) -> ComplexInterval {
-        ComplexInterval {
-            re: self.re + o.re,
-            im: self.im + o.im,
-        }
-    }
-}
-
-impl Sub for ComplexInterval {
-    type Output = ComplexInterval;
-    #[inline]
-    fn sub(self, o: ComplexInterval) -> ComplexInterval {
-        ComplexInterval {
-            re: self.re - o.re,
-            im: self.im - o.im,
-        }
-    }
-}
+complex_add_sub_neg!(ComplexInterval);
 
 impl Mul for ComplexInterval {
     type Output = ComplexInterval;
@@ -311,17 +291,6 @@ impl Mul for ComplexInterval {
         ComplexInterval {
             re: self.re * o.re - self.im * o.im,
             im: self.re * o.im + self.im * o.re,
-        }
-    }
-}
-
-impl Neg for ComplexInterval {
-    type Output = ComplexInterval;
-    #[inline]
-    fn neg(self) -> ComplexInterval {
-        ComplexInterval {
-            re: -self.re,
-            im: -self.im,
         }
     }
 }

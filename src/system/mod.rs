@@ -34,6 +34,47 @@
 
 use crate::C64;
 
+/// `Add`, `Sub` and `Neg` of a complex type `$complex { re, im }` over a real type with
+/// `Add`, `Sub` and `Neg`, part by part: `(a + ib) ± (c + id) = (a ± c) + i(b ± d)` and
+/// `−(a + ib) = −a − ib` (the rounding is the real type's, one operation per part).
+/// Shared by [`double_double::ComplexDd`] and [`interval::ComplexInterval`].
+macro_rules! complex_add_sub_neg {
+    ($complex:ident) => {
+        impl std::ops::Add for $complex {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, other: Self) -> Self {
+                $complex {
+                    re: self.re + other.re,
+                    im: self.im + other.im,
+                }
+            }
+        }
+
+        impl std::ops::Sub for $complex {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, other: Self) -> Self {
+                $complex {
+                    re: self.re - other.re,
+                    im: self.im - other.im,
+                }
+            }
+        }
+
+        impl std::ops::Neg for $complex {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                $complex {
+                    re: -self.re,
+                    im: -self.im,
+                }
+            }
+        }
+    };
+}
+
 pub mod bertini;
 pub mod builder;
 pub mod compile;

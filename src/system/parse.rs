@@ -259,6 +259,9 @@ pub(crate) enum Resolved {
     Invalid(ParseErrorKind),
 }
 
+/// Maps a name inside an expression to its value (see [`Resolved`]).
+type Resolver<'r> = &'r dyn Fn(&str) -> Resolved;
+
 /// A cursor over tokens with the expression grammar.
 pub(crate) struct TokenCursor {
     pub tokens: Vec<Spanned>,
@@ -333,37 +336,22 @@ impl TokenCursor {
     }
 
     /// Parses a sum; `resolve` maps names to expressions.
-    pub fn expression(&mut self, resolve: &dyn Fn(&str) -> Resolved) -> Result<Expr, ParseError> {
+    pub fn expression(&mut self, resolve: Resolver) -> Result<Expr, ParseError> {
         self.sum(resolve, 0)
     }
 
-    fn sum(
-        &mut self,
-        resolve: &dyn Fn(&str) -> Resolved,
-        depth: usize,
-    ) -> Result<Expr, ParseError> {
+    fn sum(&mut self, resolve: Resolver, depth: usize) -> Result<Expr, ParseError> {
         // Terms are combined as a balanced tree so that long sums stay shallow.
         let mut terms = vec![self.product(resolve, depth)?];
-        loop {
-            match self.peek().token {
-                Token::Plus => {
-                    self.advance();
-                    terms.push(self.product(resolve, depth)?);
-                }
-                Token::Minus => {
-                    self.advance();
-                    terms.push(-self.product(resolve, depth)?);
-                }
-                _ => return Ok(Expr::balanced_sum(terms)),
-            }
+        while matches!(self.peek().token, Token::Plus | Token::Minus) {
+            let negative = self.advance().token == Token::Minus;
+            let term = self.product(resolve, depth)?;
+            terms.push(if negative { -term } else { term });
         }
+        Ok(Expr::balanced_sum(terms))
     }
 
-    fn product(
-        &mut self,
-        resolve: &dyn Fn(&str) -> Resolved,
-        depth: usize,
-    ) -> Result<Expr, ParseError> {
+    fn product(&mut self, resolve: Resolver, depth: usize) -> Result<Expr, ParseError> {
         let mut factors = vec![self.unary(resolve, depth)?];
         loop {
             match self.peek().token {
@@ -392,11 +380,7 @@ impl TokenCursor {
         }
     }
 
-    fn unary(
-        &mut self,
-        resolve: &dyn Fn(&str) -> Resolved,
-        depth: usize,
-    ) -> Result<Expr, ParseError> {
+    fn unary(&mut self, resolve: Resolver, depth: usize) -> Result<Expr, ParseError> {
         if depth > MAX_NESTING {
             return Err(self.error_here(ParseErrorKind::TooDeeplyNested));
         }
@@ -413,11 +397,7 @@ impl TokenCursor {
         }
     }
 
-    fn power(
-        &mut self,
-        resolve: &dyn Fn(&str) -> Resolved,
-        depth: usize,
-    ) -> Result<Expr, ParseError> {
+    fn power(&mut self, resolve: Resolver, depth: usize) -> Result<Expr, ParseError> {
         let mut base = self.atom(resolve, depth)?;
         while self.peek().token == Token::Caret {
             self.advance();
@@ -457,11 +437,7 @@ impl TokenCursor {
         Ok(value)
     }
 
-    fn atom(
-        &mut self,
-        resolve: &dyn Fn(&str) -> Resolved,
-        depth: usize,
-    ) -> Result<Expr, ParseError> {
+    fn atom(&mut self, resolve: Resolver, depth: usize) -> Result<Expr, ParseError> {
         let at = self.peek().clone();
         match &at.token {
             Token::Number(value, _) => {
