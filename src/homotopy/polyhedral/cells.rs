@@ -32,7 +32,8 @@
 //! child adds the rows of one support to a copy of it. A child's test is split in two:
 //! the 1-point test (the rows "`p` is lowest in `Â_i`", shared by every edge `{p, q}`
 //! of the branching support: an infeasible point prunes all its edges at once), then
-//! the one row closing the equality of `{p, q}`. The relation tests of an edge are
+//! the one row closing the equality of `{p, q}`, whose slack then leaves the tableau
+//! (one column fewer per depth). The relation tests of an edge are
 //! warm-started from the edge's own tableau in the same way, and an infeasible row
 //! ends a test at once. Every test is one LP test of the budget. The order of the
 //! search, hence the cells and their order, are those of the tests from scratch.
@@ -457,6 +458,8 @@ impl Search<'_> {
                     self.lp_tests += 1;
                 }
                 if lp.repair() {
+                    // The equality of the pair closes one dimension for good.
+                    lp.fix_last();
                     self.chosen[i] = edge;
                     self.descend(remaining, &child)?;
                 }

@@ -233,6 +233,9 @@ impl Feasibility {
 pub struct Incremental {
     /// Number of free unknowns d.
     d: usize,
+    /// Number of nonbasic columns (d less the equalities fixed by
+    /// [`Incremental::fix_last`]).
+    columns: usize,
     /// Absolute tolerance of the values (right-hand sides, ratios).
     eps: f64,
     /// Absolute tolerance of the coefficients.
@@ -253,6 +256,7 @@ impl Clone for Incremental {
     fn clone(&self) -> Self {
         Incremental {
             d: self.d,
+            columns: self.columns,
             eps: self.eps,
             coefficient_eps: self.coefficient_eps,
             tableau: self.tableau.clone(),
@@ -265,6 +269,7 @@ impl Clone for Incremental {
     /// Reuses the allocations (the search copies a parent's system for every child).
     fn clone_from(&mut self, source: &Self) {
         self.d = source.d;
+        self.columns = source.columns;
         self.eps = source.eps;
         self.coefficient_eps = source.coefficient_eps;
         self.tableau.clone_from(&source.tableau);
@@ -280,6 +285,7 @@ impl Incremental {
     pub fn new(d: usize, eps: f64, coefficient_eps: f64) -> Self {
         Incremental {
             d,
+            columns: d,
             eps,
             coefficient_eps,
             tableau: Vec::new(),
@@ -295,6 +301,7 @@ impl Incremental {
         self.basic.clear();
         self.nonbasic.clear();
         self.nonbasic.extend(0..self.d);
+        self.columns = self.d;
         self.free_rows.clear();
         self.free_rows.resize(self.d, usize::MAX);
     }
@@ -302,14 +309,15 @@ impl Incremental {
     /// Appends the rows `Σ_j rows[i·d + j] z_j ≥ rhs[i]` (not yet repaired).
     pub fn push(&mut self, rows: &[f64], rhs: &[f64]) {
         let d = self.d;
-        let width = d + 1;
+        let columns = self.columns;
+        let width = columns + 1;
         for (k, &r) in rhs.iter().enumerate() {
             let m = &rows[k * d..(k + 1) * d];
             let start = self.tableau.len();
             let new = self.basic.len();
             self.tableau.resize(start + width, 0.0);
             // s − ⟨m, z⟩ = −r, the basic unknowns substituted by their rows.
-            self.tableau[start + d] = -r;
+            self.tableau[start + columns] = -r;
             for (c, &v) in self.nonbasic.iter().enumerate() {
                 if v < d {
                     self.tableau[start + c] -= m[v];
@@ -345,18 +353,19 @@ impl Incremental {
     /// tolerance). After `false` the tableau is no longer a basis of the system.
     pub fn repair(&mut self) -> bool {
         let d = self.d;
-        let width = d + 1;
+        let columns = self.columns;
+        let width = columns + 1;
         let m = self.basic.len();
         let (eps, ceps) = (self.eps, self.coefficient_eps);
         let mut budget = (50 * (m + d)).max(1000);
         loop {
             let Some(r) =
-                (0..m).find(|&i| self.basic[i] >= d && self.tableau[i * width + d] < -eps)
+                (0..m).find(|&i| self.basic[i] >= d && self.tableau[i * width + columns] < -eps)
             else {
                 return true;
             };
             let mut degenerate = 0usize;
-            while self.tableau[r * width + d] < -eps {
+            while self.tableau[r * width + columns] < -eps {
                 if budget == 0 {
                     // Iteration limit: the cautious answer.
                     return true;
@@ -365,7 +374,7 @@ impl Incremental {
                 let row = &self.tableau[r * width..(r + 1) * width];
                 let bland = degenerate >= DEGENERATE_RUN;
                 let mut entering: Option<usize> = None;
-                for c in 0..d {
+                for c in 0..columns {
                     let t = row[c];
                     if t >= -ceps || self.nonbasic[c] < d {
                         continue;
@@ -381,13 +390,13 @@ impl Incremental {
                     return false;
                 };
                 let mut best = r;
-                let mut best_ratio = row[d] / row[c];
+                let mut best_ratio = row[columns] / row[c];
                 for i in 0..m {
                     if i == r || self.basic[i] < d {
                         continue;
                     }
                     let t = self.tableau[i * width + c];
-                    let v = self.tableau[i * width + d];
+                    let v = self.tableau[i * width + columns];
                     if t <= ceps || v < -eps {
                         continue;
                     }
@@ -411,9 +420,57 @@ impl Incremental {
         }
     }
 
+    /// Fixes the slack of the last row at zero for good (the row closing an equality,
+    /// after a successful [`Incremental::repair`]): made nonbasic (a pivot on its row,
+    /// whose value is zero, keeps every row feasible), its column is dropped, so the
+    /// tableau narrows by one column per equality (the dimension of the feasible set).
+    /// Nothing happens when the slack's row has no usable pivot.
+    pub fn fix_last(&mut self) {
+        let m = self.basic.len();
+        if m == 0 {
+            return;
+        }
+        let label = self.d + m - 1;
+        let width = self.columns + 1;
+        let c = match self.nonbasic.iter().position(|&v| v == label) {
+            Some(c) => c,
+            None => {
+                let Some(r) = self.basic.iter().position(|&v| v == label) else {
+                    return;
+                };
+                let row = &self.tableau[r * width..(r + 1) * width];
+                let mut best: Option<(usize, f64)> = None;
+                for (c, (t, &v)) in row[..self.columns].iter().zip(&self.nonbasic).enumerate() {
+                    let t = t.abs();
+                    if v >= self.d && t > self.coefficient_eps && best.is_none_or(|(_, b)| t > b) {
+                        best = Some((c, t));
+                    }
+                }
+                let Some((c, _)) = best else {
+                    return;
+                };
+                self.pivot(r, c);
+                c
+            }
+        };
+        // Drop column c.
+        let mut write = 0;
+        for i in 0..m {
+            for j in 0..width {
+                if j != c {
+                    self.tableau[write] = self.tableau[i * width + j];
+                    write += 1;
+                }
+            }
+        }
+        self.tableau.truncate(write);
+        self.nonbasic.remove(c);
+        self.columns -= 1;
+    }
+
     /// Exchanges the basic variable of row `r` with nonbasic column `c`.
     fn pivot(&mut self, r: usize, c: usize) {
-        let width = self.d + 1;
+        let width = self.columns + 1;
         let p = self.tableau[r * width + c];
         {
             let row = &mut self.tableau[r * width..(r + 1) * width];
@@ -485,9 +542,20 @@ mod tests {
                     rows.extend((0..d).map(|_| (rng.next_u64() % 7) as f64 - 3.0));
                     rhs.push((rng.next_u64() % 9) as f64 - 6.0);
                 }
+                // Every other batch ends with an equality (its last row negated), whose
+                // slack is fixed after the repair, as the mixed-cell search does.
+                let equality = trial % 2 == 1;
+                if equality {
+                    let last: Vec<f64> = rows[rows.len() - d..].iter().map(|v| -v).collect();
+                    rows.extend(last);
+                    rhs.push(-rhs[rhs.len() - 1]);
+                }
                 system.push(&rows[start * d..], &rhs[start..]);
                 let expected = lp.feasible(d, &rows, &rhs);
                 assert_eq!(system.repair(), expected, "trial {trial}: {rows:?} {rhs:?}");
+                if expected && equality {
+                    system.fix_last();
+                }
                 if !expected {
                     infeasible += 1;
                     break;
