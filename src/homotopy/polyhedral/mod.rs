@@ -2,11 +2,12 @@
 //! Newton polytopes (the BKK bound) instead of the Bézout number, for sparse systems.
 //!
 //! Read in this order: [`supports`] (supports, the origin for roots in `C^n`, random
-//! integer liftings), [`lp`] (the LP feasibility test), [`cells`] (mixed cells of the
-//! lifted supports and the mixed volume), [`binomial`] (the start system of a cell,
-//! solved exactly by Hermite normal form), [`random_system`] (the random-coefficient
-//! system `Q` on the supports), [`cell_homotopy`] (the homotopy from a cell's binomial
-//! system to `Q`), [`start`] (all of it for one system).
+//! integer liftings), [`lp`] (the LP feasibility tests, from scratch and
+//! warm-started), [`cells`] (mixed cells of the lifted supports and the mixed volume),
+//! [`binomial`] (the start system of a cell, solved exactly by Hermite normal form),
+//! [`random_system`] (the random-coefficient system `Q` on the supports),
+//! [`cell_homotopy`] (the homotopy from a cell's binomial system to `Q`), [`start`]
+//! (all of it for one system).
 //!
 //! [`solve_polyhedral`] runs two stages (Huber and Sturmfels, "A polyhedral method for
 //! solving sparse polynomial systems", Math. Comp. 1995; Verschelde, Verlinden and
@@ -53,8 +54,9 @@ const MAX_PATHS: u128 = 1 << 32;
 const ENDGAME_SCALE: f64 = 0.1;
 
 /// LP feasibility tests the automatic start-system choice may spend on the mixed cells,
-/// per path of the start system they would replace (an LP test costs about as much as
-/// 25 µs, a path some 100 predictor–corrector steps of 5 µs) …
+/// per path of the start system they would replace (an LP test from scratch cost
+/// about 25 µs, a path some 100 predictor–corrector steps of 5 µs; the warm-started
+/// tests of [`cells`] cost some 5 µs, so the budget is conservative) …
 pub const AUTOMATIC_LP_TESTS_PER_PATH: usize = 20;
 /// … and in addition to those.
 pub const AUTOMATIC_LP_TESTS: usize = 20_000;
