@@ -165,3 +165,62 @@ fn scaled_design_with_scattered_poses_is_certified() {
     );
     assert!(global * 2 >= total, "{global} of {total}");
 }
+
+#[test]
+fn short_subproblems_certify_only_their_minimiser() {
+    // rigid/rigid: the example's fixed shapes send 8 of the 88 generic critical points
+    // of the singularity sub-problem to infinity, so completeness cannot be proved;
+    // only the real points are tested, in the order of D, until one is certified, and
+    // the rest are reported as not tested.
+    let options = CurveOptions {
+        certify: true,
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let metrics: Vec<Metric> = ["rigid/rigid", "plate/plate"]
+        .iter()
+        .map(|m| m.parse().expect("metric"))
+        .collect();
+    let result = compute_curve(
+        &example_design(),
+        &example_motion(),
+        4,
+        &metrics,
+        &options,
+        &default_start_solutions,
+        &|_| {},
+    )
+    .expect("curve runs");
+    for pose in &result.poses {
+        for (name, metric) in &pose.metrics {
+            let certificate = metric.certificate.as_ref().expect("certificate");
+            for (sub, distance) in &metric.subproblems {
+                let Some(c) = distance.certificate.as_ref() else {
+                    continue;
+                };
+                if name == "rigid/rigid" && sub == "singularity" {
+                    let found = c.certified + c.uncertified + c.untested;
+                    assert!(found < c.expected, "{c:?}");
+                    assert_eq!((c.certified, c.real), (1, 1), "{c:?}");
+                    assert!(c.untested > 0 && found <= distance.accounted_paths, "{c:?}");
+                    assert!(!c.complete);
+                    let [lo, hi] = c.distance.expect("the minimiser's enclosure");
+                    let reported = distance.distance.expect("a real critical point");
+                    assert!(lo <= reported * (1.0 + 1e-9) && reported <= hi * (1.0 + 1e-9));
+                } else {
+                    assert_eq!(c.untested, 0, "{name} {sub}: {c:?}");
+                }
+            }
+            if name == "rigid/rigid" {
+                assert_eq!(certificate.status, CertifiedStatus::MinimiserOnly);
+                assert!(
+                    certificate.reason.contains("not tested"),
+                    "{}",
+                    certificate.reason
+                );
+            } else {
+                assert_eq!(certificate.status, CertifiedStatus::GlobalMinimum, "{name}");
+            }
+        }
+    }
+}

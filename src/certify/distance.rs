@@ -14,7 +14,9 @@
 //!    (`e = p₂ − p₁`, `w = p₃ − p₁`) computed from the design's anchors;
 //! 2. every computed critical point is certified by [`super::krawczyk`] for every
 //!    parameter in those boxes (unique solution in its box, distinct from the others,
-//!    real or not);
+//!    real or not); where fewer points were computed than the generic count, so that
+//!    completeness cannot be proved whatever is certified, only the real points are
+//!    tested, in the order of their `D`, until one (the minimiser) is certified;
 //! 3. for each certified real one, `D(K, K′)` is enclosed by evaluating the
 //!    configuration map `K′(x; p)` and the metric over the boxes: `D = s·D((K − c)/s,
 //!    K′_normalised)`;
@@ -59,12 +61,21 @@ pub struct SubproblemCertificate {
     pub undecided: usize,
     /// Computed points that failed the test (singular, or too ill-conditioned).
     pub uncertified: usize,
+    /// Computed points not put to the test: where fewer points were computed than
+    /// `expected`, completeness cannot be proved, and only the real points are tested,
+    /// in the order of their `D`, until one is certified (the minimiser).
+    #[serde(skip_serializing_if = "is_zero", default)]
+    pub untested: usize,
     /// `certified == expected` with every realness decided: no other isolated
     /// critical point exists.
     pub complete: bool,
     /// Enclosure `[lo, hi]` of the smallest `D` over the certified real points.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub distance: Option<[f64; 2]>,
+}
+
+fn is_zero(v: &usize) -> bool {
+    *v == 0
 }
 
 /// Interval shape constants `(u, v, r²)` of a rigid part from its anchors.
@@ -161,6 +172,7 @@ pub fn certify_subproblem(
         real: 0,
         undecided: 0,
         uncertified: solutions.len(),
+        untested: 0,
         complete: false,
         distance: None,
     };
@@ -176,11 +188,34 @@ pub fn certify_subproblem(
     // The parameter boxes are real: the Cartesian system is real, and so is the
     // isotropic one under (u, v) ↦ (v̄, ū).
     let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
+    // Fewer points than the generic count: no certificate can be complete, and only
+    // the minimiser matters. The real points are tested in the order of their `D`
+    // (computed in double at the parameters' midpoints) until one is certified.
+    let minimiser_only = solutions.len() < expected;
+    let order: Vec<usize> = if minimiser_only {
+        let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
+        let mut real: Vec<(f64, usize)> = solutions
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| test.nearly_real(x))
+            .map(|(i, x)| {
+                let k_prime = problem
+                    .configuration(x, &midpoints, &mut work)
+                    .map(|v| v.re);
+                let k: [f64; 12] = std::array::from_fn(|i| midpoints[i].re);
+                (metric.distance_sq(&k, &k_prime), i)
+            })
+            .collect();
+        real.sort_by(|a, b| a.0.total_cmp(&b.0));
+        real.into_iter().map(|(_, i)| i).collect()
+    } else {
+        (0..solutions.len()).collect()
+    };
     // A conjugate partner of a certified non-real point is certified by the mirror
     // image of its box ([`Krawczyk::mirror`]) instead of a second test.
     let mut mirrors: Vec<(RootBox, f64)> = Vec::new();
     let mut boxes: Vec<Option<RootBox>> = Vec::with_capacity(solutions.len());
-    for x in solutions {
+    for x in order.iter().map(|&i| &solutions[i]) {
         if let Some(at) = mirrors
             .iter()
             .position(|(m, scale)| approximates(x, &m.center, *scale))
@@ -193,8 +228,17 @@ pub fn certify_subproblem(
             let scale = 1.0 + mirror.center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
             mirrors.push((mirror, scale));
         }
+        let found = minimiser_only
+            && certified.as_ref().is_some_and(|b| {
+                b.realness == Realness::Real
+                    && distance_enclosure(problem, metric, b, &parameter_boxes, frame).is_some()
+            });
         boxes.push(certified);
+        if found {
+            break;
+        }
     }
+    let untested = solutions.len() - boxes.len();
     // Keep the first of every group of overlapping enclosures.
     let mut kept: Vec<&RootBox> = Vec::new();
     let mut uncertified = 0;
@@ -239,6 +283,7 @@ pub fn certify_subproblem(
         real: real.len(),
         undecided,
         uncertified,
+        untested,
         complete: kept.len() == expected && undecided == 0 && enclosed_all,
         distance: distance.map(|d| [d.lo, d.hi]),
     }
@@ -307,11 +352,19 @@ pub fn combine(
             Some(c) => {
                 if !c.complete {
                     missing.push(format!(
-                        "{name}: {} of {} critical points certified{}",
+                        "{name}: {} of {} critical points certified{}{}",
                         c.certified,
                         c.expected,
                         if c.undecided > 0 {
                             format!(", {} of undecided realness", c.undecided)
+                        } else {
+                            String::new()
+                        },
+                        if c.untested > 0 {
+                            format!(
+                                ", {} more found and not tested (fewer than {} found)",
+                                c.untested, c.expected
+                            )
                         } else {
                             String::new()
                         }

@@ -37,7 +37,7 @@
 use super::midrad::{MidpointRadius, negated_product};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
-use crate::homotopy::newton::{NewtonBuffers, NewtonOptions, NewtonStop, newton};
+use crate::homotopy::newton::max_norm;
 use crate::system::Evaluator;
 use crate::system::compile::CompiledSystem;
 use crate::system::interval::{ComplexInterval, Interval};
@@ -91,8 +91,9 @@ impl RootBox {
 const INFLATION_STEPS: usize = 12;
 /// Newton steps that polish an approximation before it is tested (at most).
 const POLISH_STEPS: usize = 3;
-/// Relative Newton update below which polishing stops.
-const POLISHED: f64 = 1e-15;
+/// Relative Newton update below which polishing stops (the next update would be of
+/// the order of its square times the condition: below the rounding error).
+const POLISHED: f64 = 1e-10;
 
 /// A reusable Krawczyk test for one square system at one parameter point.
 pub struct Krawczyk<'a> {
@@ -206,6 +207,15 @@ impl<'a> Krawczyk<'a> {
             .collect()
     }
 
+    /// Whether `x` is within `10⁻⁶·(1 + ‖x‖∞)` of its mirror image `σ(x)` (a real point
+    /// to the tracker's accuracy; [`Krawczyk::certify`] then tries a σ-closed box).
+    pub fn nearly_real(&self, x: &[C64]) -> bool {
+        let scale = 1.0 + max_norm(x);
+        x.iter()
+            .zip(self.involution(x))
+            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale)
+    }
+
     /// Whether the system at these parameters has real coefficients (realness can
     /// then be decided).
     pub fn is_real_system(&self) -> bool {
@@ -220,13 +230,8 @@ impl<'a> Krawczyk<'a> {
             return None;
         }
         let center = self.polish(approximation)?;
-        let scale = 1.0 + center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
         let mirrored = self.involution(&center);
-        let nearly_real = center
-            .iter()
-            .zip(&mirrored)
-            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale);
-        if self.real_system && nearly_real {
+        if self.real_system && self.nearly_real(&center) {
             // The nearest fixed point of σ: (x + σ(x))/2.
             let real_center: Vec<C64> = center
                 .iter()
@@ -265,29 +270,38 @@ impl<'a> Krawczyk<'a> {
         })
     }
 
-    /// Newton's method from `x` ([`newton`], residual in double-double) for at most
-    /// [`POLISH_STEPS`] updates, until one is below [`POLISHED`] relative; `None` if
-    /// the Jacobian is singular or a value is not finite. `self.lu` then holds the
-    /// factorisation at the iterate before the last update.
+    /// Newton's method from `x` in double precision for at most [`POLISH_STEPS`]
+    /// updates, until one is below [`POLISHED`] relative; `None` if the Jacobian is
+    /// singular or a value is not finite. `self.lu` then holds the factorisation at the
+    /// iterate before the last update.
+    ///
+    /// The residual is the double one of the Jacobian evaluation (no double-double
+    /// evaluation): the endpoints handed over are refined already, one update brings a
+    /// point within about `κ·u` of the solution, and closer is of no use, since the box
+    /// is at least as wide as the interval enclosure of `Y·F(c)`, itself about `κ·u`
+    /// wide. Neither the centre nor `Y` has to be accurate for the proof.
     fn polish(&mut self, x: &[C64]) -> Option<Vec<C64>> {
         let mut x = x.to_vec();
         let Buffers { f, jac, .. } = &mut self.buffers;
-        let options = NewtonOptions {
-            tolerance: POLISHED,
-            max_iterations: POLISH_STEPS,
-            stop_when_growing: false,
-        };
-        let buffers = NewtonBuffers {
-            work: &mut self.work,
-            f,
-            jac,
-            lu: &mut self.lu,
-        };
-        let outcome = newton(self.system, &mut x, &self.parameters, &options, buffers);
-        match outcome.stop {
-            NewtonStop::Singular | NewtonStop::NonFinite => None,
-            _ => x.iter().all(|v| v.is_finite()).then_some(x),
+        for _ in 0..POLISH_STEPS {
+            self.system
+                .evaluate_with_jacobian(&x, &self.parameters, &mut self.work, f, jac);
+            if !self.lu.factor(jac) || f.iter().any(|v| !v.is_finite()) {
+                return None;
+            }
+            self.lu.solve_in_place(f);
+            let correction = max_norm(f) / (1.0 + max_norm(&x));
+            if !correction.is_finite() {
+                return None;
+            }
+            for (xi, di) in x.iter_mut().zip(f.iter()) {
+                *xi -= di;
+            }
+            if correction <= POLISHED {
+                break;
+            }
         }
+        x.iter().all(|v| v.is_finite()).then_some(x)
     }
 
     /// The Krawczyk test on boxes around `center` of growing size. With `symmetric`

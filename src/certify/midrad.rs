@@ -89,10 +89,14 @@ pub fn negated_product(y: &[C64], f: &[ComplexInterval], out: &mut [ComplexInter
         return false;
     }
     let gamma_dot = gamma(2 * n);
+    // Midpoints and weights of `f`, once for all rows.
+    let splits: Vec<((f64, f64), (f64, f64))> = f
+        .iter()
+        .map(|v| (split(v.re, gamma_dot), split(v.im, gamma_dot)))
+        .collect();
     for (row, z) in y.chunks_exact(n).zip(out.iter_mut()) {
         let (mut c_re, mut c_im, mut r_re, mut r_im) = (0.0, 0.0, 0.0, 0.0);
-        for (&yv, v) in row.iter().zip(f) {
-            let ((m_re, w_re), (m_im, w_im)) = (split(v.re, gamma_dot), split(v.im, gamma_dot));
+        for (&yv, &((m_re, w_re), (m_im, w_im))) in row.iter().zip(&splits) {
             c_re += yv.re * m_re - yv.im * m_im;
             c_im += yv.re * m_im + yv.im * m_re;
             let (ar, ai) = (yv.re.abs(), yv.im.abs());

@@ -1,6 +1,8 @@
-//! Newton's method on a square system `F(x; p) = 0` at fixed parameters, the one
-//! implementation behind endpoint refinement ([`super::refine::newton_refine`]) and
-//! the polishing before a Krawczyk test ([`crate::certify::krawczyk`]).
+//! Newton's method on a square system `F(x; p) = 0` at fixed parameters, the
+//! implementation behind endpoint refinement ([`super::refine::newton_refine`]). (The
+//! polishing before a Krawczyk test, [`crate::certify::krawczyk`], takes double-
+//! precision steps of its own: the certified box is as wide as the enclosure of the
+//! residual in any case.)
 //!
 //! Each iteration solves `J(x) Δ = F(x)` by LU with partial pivoting and sets
 //! `x ← x − Δ`. The residual `F(x)` is evaluated in double-double arithmetic
