@@ -5,8 +5,31 @@
 use singdist::certify::distance::CertifiedStatus;
 use singdist::mechanism::rpr::{Design, Motion, Pose, PoseList, example_design, example_motion};
 use singdist::metric::Metric;
-use singdist::pipeline::curve::{CurveOptions, compute_curve, default_start_solutions};
+use singdist::pipeline::curve::{
+    CurveOptions, CurveResult, compute_curve, default_start_solutions,
+};
 use std::time::Instant;
+
+/// The certified curve (no self-check) of the example design and motion for `metrics`
+/// at `poses` poses.
+fn certified_example(metrics: &[&str], poses: usize) -> CurveResult {
+    let options = CurveOptions {
+        certify: true,
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let metrics: Vec<Metric> = metrics.iter().map(|m| m.parse().expect("metric")).collect();
+    compute_curve(
+        &example_design(),
+        &example_motion(),
+        poses,
+        &metrics,
+        &options,
+        &default_start_solutions,
+        &|_| {},
+    )
+    .expect("curve runs")
+}
 
 /// Runs the curve with certification; returns (global minima, metric-poses, lines).
 fn certified_run(design: &Design, motion: &Motion, poses: usize) -> (usize, usize, Vec<String>) {
@@ -94,25 +117,7 @@ fn pedal_point_subproblems_are_certified_complete() {
     // closed form; both critical points (major and minor axis of the scatter matrix)
     // are proved against the generic count 2, so bars/plate and bars/bars are
     // certified global minima wherever their singularity sub-problem is complete.
-    let options = CurveOptions {
-        certify: true,
-        self_check: false,
-        ..CurveOptions::default()
-    };
-    let metrics: Vec<Metric> = ["bars/plate", "bars/bars", "plate/bars"]
-        .iter()
-        .map(|m| m.parse().expect("metric"))
-        .collect();
-    let result = compute_curve(
-        &example_design(),
-        &example_motion(),
-        5,
-        &metrics,
-        &options,
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("curve runs");
+    let result = certified_example(&["bars/plate", "bars/bars", "plate/bars"], 5);
     let mut collinear = 0;
     for pose in &result.poses {
         for (name, metric) in &pose.metrics {
@@ -172,25 +177,7 @@ fn short_subproblems_certify_only_their_minimiser() {
     // of the singularity sub-problem to infinity, so completeness cannot be proved;
     // only the real points are tested, in the order of D, until one is certified, and
     // the rest are reported as not tested.
-    let options = CurveOptions {
-        certify: true,
-        self_check: false,
-        ..CurveOptions::default()
-    };
-    let metrics: Vec<Metric> = ["rigid/rigid", "plate/plate"]
-        .iter()
-        .map(|m| m.parse().expect("metric"))
-        .collect();
-    let result = compute_curve(
-        &example_design(),
-        &example_motion(),
-        4,
-        &metrics,
-        &options,
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("curve runs");
+    let result = certified_example(&["rigid/rigid", "plate/plate"], 4);
     for pose in &result.poses {
         for (name, metric) in &pose.metrics {
             let certificate = metric.certificate.as_ref().expect("certificate");

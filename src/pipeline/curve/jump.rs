@@ -186,15 +186,9 @@ pub(super) fn jump_problem(
         motion,
         options,
     } = context;
-    let seeded = &stage.problems[problem_index];
-    // The sub-problem's own labelling (its rigid parts' reference anchors).
-    let design = &seeded.design;
     let latest = *history.first()?;
-    let k = design.configuration(sample.pose).to_array();
-    let target = MotionPoint::target(motion, &sample);
-    let k_normalized = stage.normalization.apply(&to_real(&k));
-    let parameters =
-        normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
+    let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
+    let design = &seeded.design;
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let rng = random::stream(options.seed, stream.wrapping_mul(16) + 8);
     let path = route_path(

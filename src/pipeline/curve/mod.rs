@@ -574,6 +574,27 @@ pub(super) struct SolveContext<'a> {
     pub options: &'a CurveOptions,
 }
 
+impl<'a> SolveContext<'a> {
+    /// Sub-problem `problem_index` at `sample`: the seeded problem, the pose's
+    /// configuration in the sub-problem's own labelling (its rigid parts' reference
+    /// anchors), the pose's point of the motion and its normalised parameters.
+    fn problem_at(
+        &self,
+        problem_index: usize,
+        sample: &SampledPose,
+    ) -> (&'a SeededProblem, [f64; 12], MotionPoint, Vec<C64>) {
+        let seeded = &self.stage.problems[problem_index];
+        let design = &seeded.design;
+        let k = design.configuration(sample.pose).to_array();
+        let target = MotionPoint::target(self.motion, sample);
+        let normalization = self.stage.normalization;
+        let k_normalized = normalization.apply(&to_real(&k));
+        let parameters =
+            normalized_parameters(&seeded.problem, design, &k_normalized, normalization);
+        (seeded, k, target, parameters)
+    }
+}
+
 /// Tracks one sub-problem to pose `index` along `route`, with re-runs and detours.
 fn track_problem(
     context: SolveContext<'_>,
@@ -586,14 +607,8 @@ fn track_problem(
         motion,
         options,
     } = context;
-    let seeded = &stage.problems[problem_index];
-    // The sub-problem's own labelling (its rigid parts' reference anchors).
+    let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
     let design = &seeded.design;
-    let k = design.configuration(sample.pose).to_array();
-    let target = MotionPoint::target(motion, &sample);
-    let k_normalized = stage.normalization.apply(&to_real(&k));
-    let parameters =
-        normalized_parameters(&seeded.problem, design, &k_normalized, stage.normalization);
     let (starts, origin, salt) = match route {
         Route::Seed => (seeded.seed_solutions.as_slice(), seeded.seed.point, 0),
         Route::Neighbour { from, solutions } => (solutions, from, 8),
