@@ -653,7 +653,6 @@ fn track_problem(
             retry: &options.retry_tracker,
             endgame: false,
             whole_detours: true,
-            last_chance: true,
         },
     );
     let (endpoints, best, tracked, reasons) =

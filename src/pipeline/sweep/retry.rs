@@ -258,10 +258,6 @@ pub(crate) struct TrackingPlan<'a> {
     /// Whether a detour re-tracks every path when the lost ones alone do not complete
     /// the set (`false`: only the lost ones, along each detour in turn).
     pub whole_detours: bool,
-    /// Whether paths still lost after the detours get the last chance (a long step
-    /// budget: up to seconds per path). The seed stage skips it while another seed
-    /// point may still confirm the count.
-    pub last_chance: bool,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -272,7 +268,6 @@ impl<'a> TrackingPlan<'a> {
             retry,
             endgame: true,
             whole_detours: true,
-            last_chance: true,
         }
     }
 
@@ -280,14 +275,6 @@ impl<'a> TrackingPlan<'a> {
     pub fn lost_paths_only(self) -> Self {
         TrackingPlan {
             whole_detours: false,
-            ..self
-        }
-    }
-
-    /// The same plan without the last chance ([`TrackingPlan::last_chance`]).
-    pub fn without_last_chance(self) -> Self {
-        TrackingPlan {
-            last_chance: false,
             ..self
         }
     }
@@ -322,7 +309,6 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         retry: retry_tracker,
         endgame,
         whole_detours,
-        last_chance,
     } = plan;
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
@@ -442,7 +428,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
     }
-    if best < expected && last_chance {
+    if best < expected {
         // Last chance: the reference route's paths that ran out of steps or failed
         // otherwise (not those that passed close to infinity: that is the route's
         // property), once more with a long step budget shared among them. Paths near

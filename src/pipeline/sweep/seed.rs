@@ -115,14 +115,10 @@ pub(crate) fn seed_problem<F: Family>(
 ) -> Seeded<F::Seed> {
     let (source, starts) = family.generic_start(problem);
     let generic = starts.len();
-    // Every seed point first re-tracks only its lost paths along the detours, without
-    // the last chance (a lost path costs up to seconds in each): a second point
-    // usually confirms the count. A later point that does not confirm runs the whole
-    // plan.
-    let light = TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
-        .lost_paths_only()
-        .without_last_chance();
-    let full = TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker);
+    let plans = [
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).lost_paths_only(),
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker),
+    ];
     let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
     let mut tracked = 0;
     for point in 0..policy.points {
@@ -154,16 +150,11 @@ pub(crate) fn seed_problem<F: Family>(
             count == generic || (count >= most && runs.iter().any(|r| r.solutions.len() == count))
         };
         let lost_first = point > 0 && policy.confirm_lost_paths_first;
-        let plan = if policy.confirm_lost_paths_first {
-            &light
-        } else {
-            &full
-        };
-        let mut retried: Retried = track(plan);
+        let mut retried: Retried = track(&plans[if lost_first { 0 } else { 1 }]);
         tracked += retried.tracked;
         let mut solutions = distinct_solutions(retried.endpoints, generic);
         if lost_first && retried.accounted < generic && !confirms(solutions.len()) {
-            retried = track(&full);
+            retried = track(&plans[1]);
             tracked += retried.tracked;
             solutions = distinct_solutions(retried.endpoints, generic);
         }
