@@ -289,3 +289,37 @@ fn congruent_design_loses_no_path_on_scattered_poses() {
             .all(|p| p.metrics["bars/bars"].distance.is_finite())
     );
 }
+
+/// A seed count must not be settled by two seed points that both lost paths and
+/// skipped the detours of every path: on two base anchors 1e-4 apart (`close-base-12`)
+/// the whole seed plan finds 79 finite `plate/rigid` critical points (of the generic
+/// 80), where two such light runs agreed on 77 and every pose then expected 77.
+#[test]
+fn close_base_anchors_seed_count_is_not_settled_too_low() {
+    use singdist::pipeline::curve::seed_stage;
+    use singdist::reference::designs::design_case;
+    let case = design_case("close-base-12", 1).expect("a class of the matrix");
+    let design = Design::new(case.base, case.platform).unwrap();
+    let motion = Motion::Analytic(case.motion.clone());
+    let metric: Metric = "plate/rigid".parse().unwrap();
+    let options = CurveOptions::default();
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &[metric],
+        &options,
+        &default_start_solutions,
+    )
+    .expect("the seed stage runs");
+    let singularity = stage
+        .problems
+        .iter()
+        .find(|p| p.id.name() == "plate/rigid:singularity")
+        .expect("the singularity sub-problem");
+    assert!(
+        singularity.start_count >= 79,
+        "seed count {} of the generic {}",
+        singularity.start_count,
+        singularity.generic_count
+    );
+}
