@@ -10,10 +10,10 @@
 //!
 //! `DIR` defaults to `/usr/share/doc/phcpack/examples` (files possibly gzipped).
 
+mod bench_support;
 use singdist::homotopy::polyhedral::{
     CellError, Supports, mixed_cells, random_lifting, start::LIFTING_RANGE,
 };
-use singdist::system::phc;
 use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
@@ -98,12 +98,8 @@ fn main() {
             println!("{name:<12} (not found)");
             continue;
         };
-        let system = match phc::read(&text) {
-            Ok(s) => s,
-            Err(e) => {
-                println!("{name:<12} (parse error: {e})");
-                continue;
-            }
+        let Some(system) = bench_support::parse_phc(&name, &text) else {
+            continue;
         };
         let supports = match Supports::from_system(&system) {
             Ok(s) => s.with_origin(),

@@ -21,6 +21,7 @@
 //! infinity, failed), PHCpack's distinct nonsingular roots, the union of both (the
 //! true count unless both miss a root), who is right, and the phc/singdist time ratio.
 
+mod bench_support;
 use serde_json::Value;
 use singdist::C64;
 use singdist::homotopy::{group_roots, newton_refine};
@@ -397,12 +398,8 @@ fn main() {
         let Some(input) = system_text(&text) else {
             continue;
         };
-        let system = match phc::read(&input) {
-            Ok(s) => s,
-            Err(e) => {
-                println!("{name:<12} skipped: {e}");
-                continue;
-            }
+        let Some(system) = bench_support::parse_phc(&name, &input) else {
+            continue;
         };
         if system.num_equations() != system.variables().len() {
             continue;

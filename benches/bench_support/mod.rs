@@ -17,3 +17,15 @@ pub fn timed<T>(run: impl FnOnce() -> T) -> (T, f64) {
     let result = run();
     (result, started.elapsed().as_secs_f64())
 }
+
+/// A PHCpack input text parsed into a system, or `None` after printing why system
+/// `name` is skipped (one row of a benchmark table).
+pub fn parse_phc(name: &str, text: &str) -> Option<singdist::system::System> {
+    match singdist::system::phc::read(text) {
+        Ok(system) => Some(system),
+        Err(e) => {
+            println!("{name:<12} skipped: {e}");
+            None
+        }
+    }
+}
