@@ -130,6 +130,8 @@
 //!   arithmetic", Acta Numerica 19 (2010).
 //! - **Rump 1999**: S. M. Rump, "Fast and parallel interval arithmetic", BIT Numerical
 //!   Mathematics 39 (1999).
+//! - **Rump 2012**: S. M. Rump, "Fast interval matrix multiplication", Numerical
+//!   Algorithms 61 (2012) 1–34.
 //! - **Breiding, Rose and Timme 2023**: P. Breiding, K. Rose, S. Timme, "Certifying zeros of
 //!   polynomial systems using interval arithmetic", ACM Transactions on Mathematical Software
 //!   (2023).
