@@ -325,7 +325,7 @@ impl Mul for ComplexInterval {
 /// goes through at most 8 roundings (products, sums), so the computed sum is at least
 /// `(1 − u)⁸` times the exact one less `η/2` per product that underflowed (at most 12;
 /// an underflowed product is never multiplied by a factor above 1 afterwards).
-/// [`upper_radius`] returns `fl(fl(s·(1 + 10⁻¹⁴)) + 2⁻¹⁰¹⁸)`, which exceeds
+/// `upper_radius` returns `fl(fl(s·(1 + 10⁻¹⁴)) + 2⁻¹⁰¹⁸)`, which exceeds
 /// `s/(1 − u)⁸ + 12·η/2 + 2η` (the midpoint's underflow) with room to spare: `1 + 10⁻¹⁴`
 /// is above `(1 − u)⁻¹⁰` (its own two roundings included), and `2⁻¹⁰¹⁸·(1 − u)` above
 /// `14η`, also where `s·(1 + 10⁻¹⁴)` is absorbed by the sum or is subnormal (error `η/2`).
