@@ -161,34 +161,8 @@ impl Feasibility {
     /// Exchanges basic variable of row `r` with nonbasic column `c`.
     fn pivot(&mut self, r: usize, c: usize, width: usize) {
         let m = self.basic.len();
-        let p = self.tableau[r * width + c];
-        {
-            let row = &mut self.tableau[r * width..(r + 1) * width];
-            for (j, v) in row.iter_mut().enumerate() {
-                if j == c {
-                    *v = 1.0 / p;
-                } else {
-                    *v /= p;
-                }
-            }
-        }
-        let (before, rest) = self.tableau.split_at_mut(r * width);
-        let (pivot_row, after) = rest.split_at_mut(width);
-        let eliminate = |row: &mut [f64]| {
-            let f = row[c];
-            if f == 0.0 {
-                return;
-            }
-            for (j, v) in row.iter_mut().enumerate() {
-                if j == c {
-                    *v = -f * pivot_row[c];
-                } else {
-                    *v -= f * pivot_row[j];
-                }
-            }
-        };
-        before.chunks_mut(width).for_each(eliminate);
-        after.chunks_mut(width).for_each(eliminate);
+        exchange(&mut self.tableau, width, r, c);
+        let pivot_row = &self.tableau[r * width..(r + 1) * width];
         // The objective row keeps its constant with the opposite sign convention:
         // objective = Σ c_j x_j + v, so the constant moves with +.
         let f = self.objective[c];
@@ -470,31 +444,39 @@ impl Incremental {
 
     /// Exchanges the basic variable of row `r` with nonbasic column `c`.
     fn pivot(&mut self, r: usize, c: usize) {
-        let width = self.columns + 1;
-        let p = self.tableau[r * width + c];
-        {
-            let row = &mut self.tableau[r * width..(r + 1) * width];
-            for v in row.iter_mut() {
-                *v /= p;
-            }
-            row[c] = 1.0 / p;
-        }
-        let (before, rest) = self.tableau.split_at_mut(r * width);
-        let (pivot_row, after) = rest.split_at_mut(width);
-        let eliminate = |row: &mut [f64]| {
-            let f = row[c];
-            if f == 0.0 {
-                return;
-            }
-            for (v, q) in row.iter_mut().zip(pivot_row.iter()) {
-                *v -= f * q;
-            }
-            row[c] = -f * pivot_row[c];
-        };
-        before.chunks_mut(width).for_each(eliminate);
-        after.chunks_mut(width).for_each(eliminate);
+        exchange(&mut self.tableau, self.columns + 1, r, c);
         std::mem::swap(&mut self.basic[r], &mut self.nonbasic[c]);
     }
+}
+
+/// The exchange step of the simplex method on the constraint rows of a row-major
+/// `tableau` of `width` columns: the basic variable of row `r` leaves and nonbasic
+/// column `c` enters. With pivot `p = T[r][c]`, row `r` becomes `T[r]/p` with
+/// `T[r][c] = 1/p`, and every other row `i` with `f = T[i][c] ≠ 0` becomes
+/// `T[i] − f·T[r]` (the new row `r`) with `T[i][c] = −f/p`.
+fn exchange(tableau: &mut [f64], width: usize, r: usize, c: usize) {
+    let p = tableau[r * width + c];
+    {
+        let row = &mut tableau[r * width..(r + 1) * width];
+        for v in row.iter_mut() {
+            *v /= p;
+        }
+        row[c] = 1.0 / p;
+    }
+    let (before, rest) = tableau.split_at_mut(r * width);
+    let (pivot_row, after) = rest.split_at_mut(width);
+    let eliminate = |row: &mut [f64]| {
+        let f = row[c];
+        if f == 0.0 {
+            return;
+        }
+        for (v, q) in row.iter_mut().zip(pivot_row.iter()) {
+            *v -= f * q;
+        }
+        row[c] = -f * pivot_row[c];
+    };
+    before.chunks_mut(width).for_each(eliminate);
+    after.chunks_mut(width).for_each(eliminate);
 }
 
 #[cfg(test)]
