@@ -162,6 +162,74 @@ fn a_slowly_diverging_multiplier_is_classified_at_infinity() {
     }
 }
 
+/// The same family homogenised, `p λ₁² − ε λ₁ λ₀ + ε c λ₀² = 0` in the chart
+/// `c₀ λ₀ + c₁ λ₁ = 1` (the Fritz John form the curve pipeline tracks, see
+/// `singdist::problem::Multipliers::Chart`): the root escaping to infinity now
+/// converges, to `λ₀ = 0`, and is classified at infinity because `λ₀` is declared the
+/// homogenising unknown; the other ends at `λ₁/λ₀ = c`. Undeclared, the same point is
+/// an ordinary finite endpoint.
+#[test]
+fn a_root_on_the_hyperplane_at_infinity_of_a_chart_is_at_infinity() {
+    use singdist::homotopy::{PathParameterHomotopy, PolylinePath, Tracker, TrackerOptions};
+    use singdist::system::{Expr, System};
+    let epsilon = 0.005;
+    let c = C64::new(-0.5, 0.1);
+    let (c0, c1) = (C64::new(0.8, 0.6), C64::new(-0.28, 0.96));
+    let (l0, l1) = (Expr::variable("lambda0"), Expr::variable("lambda1"));
+    let p = Expr::parameter("p");
+    let f = p * l1.clone() * l1.clone()
+        - Expr::constant(C64::new(epsilon, 0.0)) * l1.clone() * l0.clone()
+        + Expr::constant(c * epsilon) * l0.clone() * l0.clone();
+    let chart =
+        Expr::constant(c0) * l0 + Expr::constant(c1) * l1 - Expr::constant(C64::new(1.0, 0.0));
+    let system = System::new(["lambda0", "lambda1"], ["p"], vec![f, chart]).unwrap();
+    let discriminant = (C64::new(epsilon * epsilon, 0.0) - 4.0 * epsilon * c).sqrt();
+    // Affine roots λ of λ² − ελ + εc at p = 1, in the chart: λ₀ = 1/(c₀ + c₁λ).
+    let starts: Vec<Vec<C64>> = [1.0, -1.0]
+        .iter()
+        .map(|&sign| {
+            let lambda = (C64::new(epsilon, 0.0) + sign * discriminant) / 2.0;
+            let lambda0 = (c0 + c1 * lambda).inv();
+            vec![lambda0, lambda * lambda0]
+        })
+        .collect();
+    for declared in [true, false] {
+        let compiled = if declared {
+            system
+                .clone()
+                .with_homogenizing_variable("lambda0")
+                .unwrap()
+                .compile()
+        } else {
+            system.compile()
+        };
+        let homotopy = PathParameterHomotopy::new(
+            &compiled,
+            PolylinePath::new(vec![vec![C64::new(1.0, 0.0)], vec![C64::new(0.0, 0.0)]]),
+        );
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        let results: Vec<_> = (0..starts.len())
+            .map(|i| tracker.track(&starts[i], i))
+            .collect();
+        let (finite, at_infinity): (Vec<_>, Vec<_>) = results
+            .iter()
+            .filter(|r| r.status.is_finite() || r.status == PathStatus::AtInfinity)
+            .partition(|r| r.status.is_finite());
+        let at_infinity = at_infinity.len();
+        if declared {
+            assert_eq!((finite.len(), at_infinity), (1, 1), "{results:?}");
+            let x = &finite[0].solution;
+            assert!((x[1] / x[0] - c).norm() < 1e-8, "{results:?}");
+        } else {
+            assert_eq!((finite.len(), at_infinity), (2, 0), "{results:?}");
+            assert!(
+                finite.iter().any(|r| r.solution[0].norm() < 1e-12),
+                "{results:?}"
+            );
+        }
+    }
+}
+
 /// `λ² − p` (roots `±√p`), one unknown, one parameter.
 fn square_root_family() -> singdist::system::CompiledSystem {
     use singdist::system::{Expr, System};

@@ -284,3 +284,86 @@ fn conjugate_solutions_solve_the_conjugate_system() {
         }
     }
 }
+
+/// The Fritz John form in a chart ([`Multipliers::Chart`]): every stored start
+/// solution, converted (`λ₀ = 1/(c₀ + c·λ)`, multipliers scaled by `λ₀`), solves the
+/// chart system with the same configuration K′, converts back to itself, and its
+/// conjugate ([`LagrangeProblem::conjugate`], through the affine multipliers) solves
+/// the conjugate system; the chart system is the affine one's gradient rows scaled by
+/// `λ₀` (so a multiplier vector at infinity, `λ₀ = 0`, is a solution only where
+/// `∇C`, `∇g` are dependent: a singular point of the constraint set).
+#[test]
+fn chart_multipliers_describe_the_same_critical_points() {
+    use singdist::pipeline::ab_initio::embedded_start_solutions;
+    use singdist::problem::{CHART_VARIABLE, Coordinates, Multipliers};
+    let mut checked = 0;
+    for id in ProblemId::all() {
+        let Some(file) = embedded_start_solutions(id) else {
+            continue;
+        };
+        let file = file.unwrap();
+        let affine = LagrangeProblem::new_in(id, Coordinates::Isotropic).unwrap();
+        let chart =
+            LagrangeProblem::new_with(id, Coordinates::Isotropic, Multipliers::Chart).unwrap();
+        let n = affine.variable_names().len();
+        assert_eq!(chart.variable_names().len(), n + 1, "{id}");
+        assert_eq!(chart.stored_solution_len(), n, "{id}");
+        assert_eq!(chart.variable_names()[n], CHART_VARIABLE, "{id}");
+        assert_eq!(chart.multipliers(), Multipliers::Chart);
+        assert_eq!(chart.evaluator().homogenizing_variable(), Some(n), "{id}");
+        assert_eq!(affine.evaluator().homogenizing_variable(), None, "{id}");
+        let p = file.parameter_vector(chart.parameter_names()).unwrap();
+        let conjugate_p: Vec<C64> = p.iter().map(|v| v.conj()).collect();
+        let mut work = vec![C64::new(0.0, 0.0); chart.workspace_len().max(affine.workspace_len())];
+        let mut f = vec![C64::new(0.0, 0.0); n + 1];
+        for solution in &file.solutions {
+            let x = chart.from_cartesian(solution);
+            assert_eq!(x.len(), n + 1);
+            let size = 1.0 + x.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            chart.evaluator().evaluate(&x, &p, &mut work, &mut f);
+            let residual = f.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            assert!(residual < 1e-9 * size, "{id}: chart residual {residual:e}");
+            let back = chart.to_cartesian(&x);
+            let scale = 1.0 + solution.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            assert!(
+                back.iter()
+                    .zip(solution)
+                    .all(|(a, b)| (a - b).norm() < 1e-12 * scale),
+                "{id}: round trip"
+            );
+            let y = affine.from_cartesian(solution);
+            let (ka, kc) = (
+                affine.configuration(&y, &p, &mut work),
+                chart.configuration(&x, &p, &mut work),
+            );
+            assert!(
+                ka.iter()
+                    .zip(&kc)
+                    .all(|(a, b)| (a - b).norm() < 1e-12 * scale),
+                "{id}: configuration"
+            );
+            // The conjugate point solves the conjugate system (parameters conjugated).
+            chart
+                .evaluator()
+                .evaluate(&chart.conjugate(&x), &conjugate_p, &mut work, &mut f);
+            let residual = f.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            assert!(
+                residual < 1e-9 * size,
+                "{id}: conjugate residual {residual:e}"
+            );
+            checked += 1;
+        }
+        // λ₀ = 0 with K′ a generic point is not a solution: the chart row alone
+        // would be satisfiable, the gradient rows are not.
+        let mut at_infinity = chart.from_cartesian(&file.solutions[0]);
+        at_infinity[n] = C64::new(0.0, 0.0);
+        chart
+            .evaluator()
+            .evaluate(&at_infinity, &p, &mut work, &mut f);
+        assert!(
+            f.iter().map(|v| v.norm()).fold(0.0, f64::max) > 1e-6,
+            "{id}: λ₀ = 0 solved the chart system at a generic K′"
+        );
+    }
+    assert!(checked > 600, "only {checked} start solutions checked");
+}

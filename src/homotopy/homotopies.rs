@@ -26,6 +26,12 @@ pub trait Homotopy: Send + Sync {
     fn dimension(&self) -> usize;
     /// Scratch length the evaluation calls need.
     fn workspace_len(&self) -> usize;
+    /// The unknown whose zero means a point at infinity of the affine system the
+    /// homotopy's systems are charts of ([`Evaluator::homogenizing_variable`]); the
+    /// tracker classifies a finite endpoint with that coordinate zero at infinity.
+    fn homogenizing_variable(&self) -> Option<usize> {
+        None
+    }
     /// `h ← H(x, t)`.
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]);
     /// `h ← H(x, t)` with the system evaluated in double-double arithmetic where the
@@ -383,6 +389,10 @@ impl<F: Evaluator + ?Sized, P: ParameterPath> Homotopy for PathParameterHomotopy
 
     fn workspace_len(&self) -> usize {
         2 * self.path.len() + self.system.workspace_len()
+    }
+
+    fn homogenizing_variable(&self) -> Option<usize> {
+        self.system.homogenizing_variable()
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {

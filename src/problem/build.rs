@@ -80,12 +80,53 @@ impl Coordinates {
     }
 }
 
+/// How the Lagrange multipliers are represented among the unknowns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Multipliers {
+    /// `(λ, μ, …)` themselves: `∇D² − λ ∇C − Σ μ ∇g = 0` (the stored start solutions
+    /// use these).
+    #[default]
+    Affine,
+    /// Homogeneous multipliers `[λ₀ : λ : μ : …]` in a random affine chart
+    /// `c₀ λ₀ + c·(λ, μ, …) = 1` (the Fritz John form of the Lagrange conditions,
+    /// `λ₀ ∇D² − λ ∇C − Σ μ ∇g = 0`; one more unknown `lambda0` and the chart
+    /// equation): a critical point whose multipliers are huge — `K′` close to a
+    /// singular point of the constraint set, where `∇C` nearly vanishes — has
+    /// `λ₀ = 1/(c₀ + c·(λ, μ))` small instead of multipliers near a pole, so its path
+    /// stays bounded and the endgame does not mistake it for a path to infinity.
+    /// Points with `λ₀ = 0` are not critical points of the Lagrangian but singular
+    /// points of the constraint set (covered by the other sub-problems).
+    Chart,
+}
+
+/// Coefficients `(c₀, c₁, c₂, …)` of the chart of [`Multipliers::Chart`]: fixed
+/// complex numbers of modulus 1 at unrelated angles. Complex, so that the real
+/// multiplier vectors the chart misses (`c₀ + c·λ = 0`: two real equations) form a set
+/// of codimension 2 — none at all for the one multiplier of most sub-problems —
+/// instead of a real hyperplane that real critical points could lie near.
+const CHART_COEFFICIENTS: [(f64, f64); 4] = [
+    (0.8090169943749475, 0.5877852522924731),
+    (-0.4539904997395468, 0.8910065241883679),
+    (0.2079116908177593, -0.9781476007338057),
+    (-0.9135454576426009, -0.4067366430758002),
+];
+
+fn chart_coefficient(i: usize) -> C64 {
+    let (re, im) = CHART_COEFFICIENTS[i % CHART_COEFFICIENTS.len()];
+    C64::new(re, im)
+}
+
 /// A sub-problem's compiled Lagrange system `∇Λ = 0` together with the map from a
 /// solution back to the configuration `K′` it describes.
 #[derive(Clone)]
 pub struct LagrangeProblem {
     id: ProblemId,
     coordinates: Coordinates,
+    multipliers: Multipliers,
+    /// Index of the first multiplier among the unknowns (the multipliers, and
+    /// `lambda0` last for [`Multipliers::Chart`], end the list).
+    first_multiplier: usize,
     /// Index of the first coordinate of every point among the variables.
     point_variables: Vec<usize>,
     /// `∇Λ = 0`, symbolic and compiled.
@@ -111,6 +152,9 @@ impl std::fmt::Debug for LagrangeProblem {
             .finish()
     }
 }
+
+/// The name of `λ₀`, the multiplier of `D²` in the Fritz John form ([`Multipliers::Chart`]).
+pub const CHART_VARIABLE: &str = "lambda0";
 
 fn var(name: &str) -> Expr {
     Expr::variable(name)
@@ -332,15 +376,38 @@ impl LagrangeProblem {
     /// parameters, the multipliers and [`LagrangeProblem::configuration`] stay
     /// Cartesian; [`LagrangeProblem::from_cartesian`] converts solutions).
     pub fn new_in(id: ProblemId, coordinates: Coordinates) -> Result<Self, ProblemError> {
+        Self::new_with(id, coordinates, Multipliers::Affine)
+    }
+
+    /// [`LagrangeProblem::new_in`] with the multipliers represented as `multipliers`
+    /// ([`LagrangeProblem::from_cartesian`] and [`LagrangeProblem::to_cartesian`]
+    /// convert solutions from and to affine multipliers).
+    pub fn new_with(
+        id: ProblemId,
+        coordinates: Coordinates,
+        multipliers: Multipliers,
+    ) -> Result<Self, ProblemError> {
         match coordinates {
-            Coordinates::Cartesian => Self::build::<Cartesian>(id, coordinates),
-            Coordinates::Isotropic => Self::build::<Isotropic>(id, coordinates),
+            Coordinates::Cartesian => Self::build::<Cartesian>(id, coordinates, multipliers),
+            Coordinates::Isotropic => Self::build::<Isotropic>(id, coordinates, multipliers),
         }
+    }
+
+    /// [`LagrangeProblem::new_with`] for a sub-problem that applies to `design`.
+    pub fn for_design_with(
+        id: ProblemId,
+        design: &Design,
+        coordinates: Coordinates,
+        multipliers: Multipliers,
+    ) -> Result<Self, ProblemError> {
+        Self::check_applicable(id, design)?;
+        Self::new_with(id, coordinates, multipliers)
     }
 
     fn build<P: Plane<Expr>>(
         id: ProblemId,
         coordinates: Coordinates,
+        multipliers: Multipliers,
     ) -> Result<Self, ProblemError> {
         let metric = id.metric;
         let suffixes = coordinates.suffixes();
@@ -433,6 +500,10 @@ impl LagrangeProblem {
         };
 
         let mut lagrangian = metric.distance_sq_in::<P, Expr>(&given, &configuration);
+        if multipliers == Multipliers::Chart {
+            lagrangian = var(CHART_VARIABLE) * lagrangian;
+        }
+        let first_multiplier = variables.len();
         for (constraint, multiplier) in constraints {
             lagrangian -= var(&multiplier) * constraint;
             variables.push(multiplier);
@@ -441,8 +512,32 @@ impl LagrangeProblem {
             problem: id.name(),
             message: e.to_string(),
         };
-        let system = System::lagrange(&lagrangian, variables.clone(), parameters.clone())
+        // ∂Λ/∂(x, λ, μ); for the chart λ₀ is not differentiated by (declared as a
+        // parameter here, an unknown below).
+        let mut symbols = parameters.clone();
+        if multipliers == Multipliers::Chart {
+            symbols.push(CHART_VARIABLE.to_string());
+        }
+        let mut system = System::lagrange(&lagrangian, variables.clone(), symbols)
             .map_err(|e| build_error(&e))?;
+        if multipliers == Multipliers::Chart {
+            // Λ = λ₀ D² − λ C − Σ μ g, and the chart c₀ λ₀ + Σ c_i λ_i − 1 = 0
+            // (not ∂Λ/∂λ₀ = D²).
+            variables.push(CHART_VARIABLE.to_string());
+            let mut chart =
+                Expr::constant(chart_coefficient(0)) * var(CHART_VARIABLE) - Expr::from(1.0);
+            for (i, name) in variables[first_multiplier..variables.len() - 1]
+                .iter()
+                .enumerate()
+            {
+                chart += Expr::constant(chart_coefficient(i + 1)) * var(name);
+            }
+            let mut equations = system.equations().to_vec();
+            equations.push(chart);
+            system = System::new(variables.clone(), parameters.clone(), equations)
+                .and_then(|s| s.with_homogenizing_variable(CHART_VARIABLE))
+                .map_err(|e| build_error(&e))?;
+        }
         let point_variables = (0..variables.len().saturating_sub(1))
             .filter(|&i| {
                 let (first, second) = (&variables[i], &variables[i + 1]);
@@ -457,6 +552,8 @@ impl LagrangeProblem {
         Ok(LagrangeProblem {
             id,
             coordinates,
+            multipliers,
+            first_multiplier,
             point_variables,
             equations: ParametricSystem::new(system),
             configuration_map: configuration_map.compile(),
@@ -473,17 +570,76 @@ impl LagrangeProblem {
         self.coordinates
     }
 
-    /// The solution `x` (Cartesian variables `a1x a1y …`, as in the stored start
-    /// solutions) in this problem's coordinates: `(u, v) = ((x + i y)/√2, (x − i y)/√2)` per point
-    /// for [`Coordinates::Isotropic`], unchanged otherwise.
+    /// How the multipliers are represented.
+    pub fn multipliers(&self) -> Multipliers {
+        self.multipliers
+    }
+
+    /// Index of the first Lagrange multiplier among the unknowns: the unknowns before
+    /// it describe `K′` (points, line offsets, orientation).
+    pub fn first_multiplier(&self) -> usize {
+        self.first_multiplier
+    }
+
+    /// The solution `x` (Cartesian variables `a1x a1y …` and affine multipliers, as in
+    /// the stored start solutions) in this problem's unknowns: `(u, v) = ((x + i y)/√2,
+    /// (x − i y)/√2)` per point for [`Coordinates::Isotropic`]; for
+    /// [`Multipliers::Chart`] `λ₀ = 1/(c₀ + c·λ)` appended and every multiplier `λ_i`
+    /// replaced by `λ₀ λ_i`.
     pub fn from_cartesian(&self, x: &[C64]) -> Vec<C64> {
-        self.convert_points(x, crate::algebra::to_isotropic)
+        let mut out = self.convert_points(x, crate::algebra::to_isotropic);
+        if self.multipliers == Multipliers::Chart {
+            let multipliers = &mut out[self.first_multiplier.min(x.len())..];
+            let denominator = multipliers
+                .iter()
+                .enumerate()
+                .fold(chart_coefficient(0), |sum, (i, m)| {
+                    sum + chart_coefficient(i + 1) * m
+                });
+            let lambda0 = denominator.inv();
+            for m in multipliers.iter_mut() {
+                *m *= lambda0;
+            }
+            out.push(lambda0);
+        }
+        out
     }
 
     /// The inverse of [`LagrangeProblem::from_cartesian`]: `x = (u + v)/√2`,
-    /// `y = −i (u − v)/√2` per point.
+    /// `y = −i (u − v)/√2` per point, and for [`Multipliers::Chart`] the multipliers
+    /// `λ_i / λ₀` (`lambda0` dropped; not finite where `λ₀ = 0`,
+    /// [`LagrangeProblem::chart_lambda0`]).
     pub fn to_cartesian(&self, x: &[C64]) -> Vec<C64> {
-        self.convert_points(x, crate::algebra::to_cartesian)
+        let mut out = self.convert_points(x, crate::algebra::to_cartesian);
+        if self.multipliers == Multipliers::Chart
+            && let Some(lambda0) = out.pop()
+        {
+            let scale = lambda0.inv();
+            for m in out[self.first_multiplier.min(x.len())..].iter_mut() {
+                *m *= scale;
+            }
+        }
+        out
+    }
+
+    /// The number of entries of a solution with Cartesian points and affine multipliers
+    /// (as stored in start files): one fewer than the unknowns for
+    /// [`Multipliers::Chart`].
+    pub fn stored_solution_len(&self) -> usize {
+        let len = self.variable_names().len();
+        match self.multipliers {
+            Multipliers::Chart => len - 1,
+            Multipliers::Affine => len,
+        }
+    }
+
+    /// `λ₀` of a solution in this problem's unknowns ([`Multipliers::Chart`]; `None`
+    /// for affine multipliers).
+    pub fn chart_lambda0(&self, x: &[C64]) -> Option<C64> {
+        match self.multipliers {
+            Multipliers::Chart => x.last().copied(),
+            Multipliers::Affine => None,
+        }
     }
 
     /// First index of every point's coordinate pair `(u, v)` among the unknowns when
@@ -502,6 +658,12 @@ impl LagrangeProblem {
     /// [`Coordinates::Isotropic`] the two coordinates of each point swapped
     /// (`(u, v) ↦ (v̄, ū)`, since `ū = (x̄ − iȳ)/√2`).
     pub fn conjugate(&self, x: &[C64]) -> Vec<C64> {
+        if self.multipliers == Multipliers::Chart {
+            // The chart's coefficients are complex: conjugate the Cartesian point and
+            // its affine multipliers, whose system has real coefficients.
+            let cartesian: Vec<C64> = self.to_cartesian(x).iter().map(|v| v.conj()).collect();
+            return self.from_cartesian(&cartesian);
+        }
         let mut out: Vec<C64> = x.iter().map(|v| v.conj()).collect();
         if self.coordinates == Coordinates::Isotropic {
             for &i in &self.point_variables {

@@ -26,8 +26,8 @@ pub mod pedal;
 pub mod rrr;
 
 pub use build::{
-    COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES, Coordinates,
-    LagrangeProblem, ProblemError, anchors_collinear,
+    CHART_VARIABLE, COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES,
+    Coordinates, LagrangeProblem, Multipliers, ProblemError, anchors_collinear,
 };
 
 use crate::metric::{Metric, Part};

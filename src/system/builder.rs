@@ -47,6 +47,8 @@ pub struct System {
     variables: Vec<String>,
     parameters: Vec<String>,
     equations: Vec<Expr>,
+    /// The unknown that homogenises some of the others ([`System::homogenizing`]).
+    homogenizing: Option<usize>,
 }
 
 fn names(list: impl IntoIterator<Item = impl AsRef<str>>) -> Vec<String> {
@@ -92,7 +94,31 @@ impl System {
             variables,
             parameters,
             equations,
+            homogenizing: None,
         })
+    }
+
+    /// Declares unknown `variable` the homogenising coordinate of the system's affine
+    /// chart: a solution with `variable = 0` lies at infinity of the affine system it
+    /// was homogenised from (e.g. `λ₀` of the Fritz John form of Lagrange conditions),
+    /// so the tracker classifies such an endpoint at infinity
+    /// ([`crate::homotopy::Homotopy::homogenizing_variable`]). Error: no such unknown.
+    pub fn with_homogenizing_variable(mut self, variable: &str) -> Result<System, SystemError> {
+        let index = self
+            .variables
+            .iter()
+            .position(|v| v == variable)
+            .ok_or_else(|| SystemError::UnknownSymbol {
+                symbol: variable.to_string(),
+                equation: 0,
+            })?;
+        self.homogenizing = Some(index);
+        Ok(self)
+    }
+
+    /// The homogenising unknown, if any ([`System::with_homogenizing_variable`]).
+    pub fn homogenizing(&self) -> Option<usize> {
+        self.homogenizing
     }
 
     /// The Lagrange system `∇_variables Λ = 0` of a Lagrangian `Λ` (the variable list
@@ -229,6 +255,7 @@ impl System {
                 variables: self.variables.clone(),
                 parameters: self.parameters.clone(),
                 equations: self.equations.iter().map(|f| f.differentiate(s)).collect(),
+                homogenizing: self.homogenizing,
             })
             .collect();
         let values: Vec<Vec<C64>> = columns.iter().map(|c| c.evaluate_naive(x, p)).collect();
@@ -264,6 +291,7 @@ impl System {
                 .iter()
                 .map(|f| f.substitute(&substitute))
                 .collect(),
+            homogenizing: self.homogenizing,
         })
     }
 

@@ -616,6 +616,7 @@ fn symbolic_jacobian(equations: &[Expr], symbols: &[String]) -> Vec<Expr> {
 #[derive(Debug)]
 struct CompiledParts {
     variables: Vec<String>,
+    homogenizing: Option<usize>,
     parameters: Vec<String>,
     num_equations: usize,
     values: Tape,
@@ -703,6 +704,7 @@ impl CompiledSystem {
         CompiledSystem {
             parts: Arc::new(CompiledParts {
                 variables,
+                homogenizing: system.homogenizing(),
                 parameters,
                 num_equations: equations.len(),
                 values,
@@ -927,6 +929,10 @@ fn run_interval<'a>(
 impl Evaluator for CompiledSystem {
     fn num_variables(&self) -> usize {
         self.parts.variables.len()
+    }
+
+    fn homogenizing_variable(&self) -> Option<usize> {
+        self.parts.homogenizing
     }
 
     fn num_equations(&self) -> usize {

@@ -115,6 +115,11 @@ pub trait Evaluator: Send + Sync {
     }
     /// Length of the scratch buffer the evaluation calls need.
     fn workspace_len(&self) -> usize;
+    /// The unknown whose zero means "at infinity" of an affine system this one is a
+    /// chart of ([`System::with_homogenizing_variable`]); `None` by default.
+    fn homogenizing_variable(&self) -> Option<usize> {
+        None
+    }
 
     /// `f ← F(x; p)`.
     fn evaluate(&self, x: &[C64], p: &[C64], work: &mut [C64], f: &mut [C64]);

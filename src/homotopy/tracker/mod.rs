@@ -170,6 +170,24 @@ impl PathResult {
 /// Newton updates of [`Tracker::correct_at`].
 pub const CORRECT_AT_ITERATIONS: usize = 8;
 
+/// A finite endpoint is at infinity ([`Homotopy::homogenizing_variable`]) when its
+/// homogenising coordinate is at most this, relative to `1 + ‖x‖∞`, and the endpoint
+/// is singular (condition above `singular_condition`, or reached with winding); a
+/// nonsingular endpoint only when that coordinate is at most [`HOMOGENEOUS_ZERO_REGULAR`].
+///
+/// For the Fritz John form of the Lagrange conditions (`λ₀` the multiplier of the
+/// objective) the paths that end on the Fritz John points (`λ₀ = 0`: singular points
+/// of the constraint set, a positive-dimensional set of the chart system) converge
+/// slowly and stop with `|λ₀|` of `10⁻¹¹ … 10⁻⁹` and condition numbers of `10¹²` and
+/// more; a singular endpoint that close is a point within about `|λ₀|` (relative) of
+/// a singular point of the constraint set either way, whose distance the
+/// singular-point sub-problems bound.
+pub const HOMOGENEOUS_ZERO: f64 = 1e-8;
+
+/// See [`HOMOGENEOUS_ZERO`]: the bound for a nonsingular endpoint (a regular solution
+/// of the chart system on the hyperplane at infinity).
+pub const HOMOGENEOUS_ZERO_REGULAR: f64 = 1e-12;
+
 /// Double-double Newton updates [`Tracker::correct_at`] may add once double precision
 /// stagnates above its tolerance.
 pub const CORRECT_AT_EXTENDED_ITERATIONS: usize = 4;
@@ -394,7 +412,28 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         } else {
             (f64::INFINITY, f64::INFINITY)
         };
+        let status = if self.homogenizing_coordinate_vanishes(status) {
+            PathStatus::AtInfinity
+        } else {
+            status
+        };
         self.result(path_index, status, residual, condition)
+    }
+
+    /// Whether a finite endpoint with `status` lies at infinity of the affine system:
+    /// its homogenising coordinate ([`Homotopy::homogenizing_variable`]) is zero to
+    /// within [`HOMOGENEOUS_ZERO`] (singular endpoints) or
+    /// [`HOMOGENEOUS_ZERO_REGULAR`] (nonsingular ones) times `1 + ‖x‖∞`.
+    fn homogenizing_coordinate_vanishes(&self, status: PathStatus) -> bool {
+        let tolerance = match status {
+            PathStatus::Nonsingular => HOMOGENEOUS_ZERO_REGULAR,
+            _ if status.is_finite() => HOMOGENEOUS_ZERO,
+            _ => return false,
+        };
+        self.homotopy
+            .homogenizing_variable()
+            .and_then(|i| self.x.get(i))
+            .is_some_and(|h| h.norm() <= tolerance * (1.0 + max_norm(&self.x)))
     }
 
     /// The [`PathResult`] at the current point.

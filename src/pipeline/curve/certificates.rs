@@ -36,12 +36,13 @@ impl PendingCertificate {
     pub fn get(&self, stage: &SeedStage, seeded: &SeededProblem) -> SubproblemCertificate {
         let mut state = self.0.lock().unwrap_or_else(|e| e.into_inner());
         if let Pending::Endpoints(endpoints, k) = &*state {
+            let endpoints: Vec<Vec<C64>> = endpoints.iter().map(|x| seeded.to_affine(x)).collect();
             let certificate = certification::certify_subproblem(
-                &seeded.problem,
+                seeded.affine_problem(),
                 seeded.id.metric,
                 (&seeded.design, k),
                 stage.normalization.frame(),
-                endpoints,
+                &endpoints,
                 seeded.generic_count,
             );
             *state = Pending::Done(certificate);

@@ -47,6 +47,14 @@
 //!    lost even then) and well-conditioned up to scaling in isotropic ones. Start
 //!    solutions are converted on entry, endpoints back to Cartesian for
 //!    post-processing.
+//!
+//!    The multipliers are tracked in a projective chart
+//!    ([`crate::problem::Multipliers::Chart`], the Fritz John form `λ₀ ∇D² − λ ∇C −
+//!    Σ μ ∇g = 0` with a random affine chart on `[λ₀ : λ : μ …]`): a critical point
+//!    near a singular point of the constraint set has huge multipliers, and its path
+//!    no longer passes near a pole of λ that the endgame mistakes for a path to
+//!    infinity; endpoints with `λ₀ = 0` are classified at infinity
+//!    ([`crate::homotopy::Homotopy::homogenizing_variable`]).
 //! 3. **No silent losses**: a (pose, sub-problem) with failed paths re-tracks them with
 //!    [`TrackerOptions::conservative`], then tracks every path along a detour through a
 //!    random complex motion point near the pose (seeded per pose, sub-problem and
@@ -85,7 +93,8 @@ use crate::homotopy::{
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
 use crate::problem::{
-    Coordinates, LagrangeProblem, ProblemError, ProblemId, equilateral, pedal, subproblems_of,
+    Coordinates, LagrangeProblem, Multipliers, ProblemError, ProblemId, equilateral, pedal,
+    subproblems_of,
 };
 use crate::random;
 use crate::system::Evaluator;
@@ -476,7 +485,14 @@ fn candidates(
     let mut work = vec![C64::new(0.0, 0.0); problem.workspace_len()];
     endpoints
         .iter()
-        .filter(|x| postprocess::is_real(&problem.to_cartesian(x), real_tolerance))
+        .filter(|x| {
+            // Realness of K′ (and of the other unknowns before the multipliers): the
+            // multipliers of a real point then solve real linear equations and are real
+            // themselves; they are the least accurate entries of a chart endpoint
+            // (`λ = λ′/λ₀` with a small `λ₀`: 10⁻⁸ relative where K′ has 10⁻¹²).
+            let cartesian = problem.to_cartesian(x);
+            postprocess::is_real(&cartesian[..problem.first_multiplier()], real_tolerance)
+        })
         .map(|x| {
             let k_prime = normalization
                 .restore(&problem.configuration(x, parameters, &mut work))

@@ -19,7 +19,8 @@ pub struct CurveOptions {
     pub neighbour_tracker: TrackerOptions,
     /// Tracker settings of the re-runs (safer).
     pub retry_tracker: TrackerOptions,
-    /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
+    /// Number of detour re-runs of a (pose, sub-problem) that lost paths; with 0 the
+    /// long last re-run of the lost paths is skipped too.
     pub retry_attempts: usize,
     /// Number of detour re-runs of the user homotopy (source → seed) of a sub-problem
     /// that lost paths: it runs once per curve and every pose inherits what it misses.
@@ -49,6 +50,12 @@ pub struct CurveOptions {
     /// see [`crate::algebra::Isotropic`]); results are reported in Cartesian ones.
     #[serde(default = "default_coordinates")]
     pub coordinates: Coordinates,
+    /// How the tracked systems represent their Lagrange multipliers
+    /// ([`Multipliers::Chart`] by default: a critical point near a singular point of
+    /// the constraint set, with huge multipliers, stays on a bounded path); results
+    /// are reported with affine ones.
+    #[serde(default = "default_multipliers")]
+    pub multipliers: Multipliers,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
@@ -106,6 +113,7 @@ impl Default for CurveOptions {
             chain_length: default_chain_length(),
             jump: default_jump(),
             coordinates: default_coordinates(),
+            multipliers: default_multipliers(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
             self_check: default_self_check(),
@@ -121,6 +129,10 @@ fn default_seed_retry_attempts() -> usize {
 
 fn default_neighbour_tracker() -> TrackerOptions {
     TrackerOptions::curve_neighbour()
+}
+
+fn default_multipliers() -> Multipliers {
+    Multipliers::Chart
 }
 
 fn default_coordinates() -> Coordinates {

@@ -41,9 +41,37 @@ pub struct SeededProblem {
     /// user homotopy): the origin of the generic route, a pose's last resort where the
     /// seed route loses paths.
     pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+    /// [`SeededProblem::problem`] with affine multipliers, built on first use where
+    /// the tracked system uses [`Multipliers::Chart`] (certification works with the
+    /// real system of affine multipliers).
+    pub affine: std::sync::OnceLock<LagrangeProblem>,
 }
 
 impl SeededProblem {
+    /// The Lagrange system with affine multipliers ([`Multipliers::Affine`]) in the
+    /// tracked system's point coordinates: [`SeededProblem::problem`] itself, or its
+    /// affine twin.
+    pub fn affine_problem(&self) -> &LagrangeProblem {
+        if self.problem.multipliers() == Multipliers::Affine {
+            return &self.problem;
+        }
+        self.affine.get_or_init(|| {
+            LagrangeProblem::new_with(self.id, self.problem.coordinates(), Multipliers::Affine)
+                .unwrap_or_else(|e| unreachable!("built once already with a chart: {e}"))
+        })
+    }
+
+    /// A solution of [`SeededProblem::problem`] as one of
+    /// [`SeededProblem::affine_problem`] (the same point, the multipliers affine).
+    pub fn to_affine(&self, x: &[C64]) -> Vec<C64> {
+        match self.problem.multipliers() {
+            Multipliers::Affine => x.to_vec(),
+            Multipliers::Chart => self
+                .affine_problem()
+                .from_cartesian(&self.problem.to_cartesian(x)),
+        }
+    }
+
     /// A configuration of this sub-problem's labelling in the user's labels.
     pub fn to_user_labels(&self, k: &[f64; 12]) -> [f64; 12] {
         let mut out = [0.0; 12];
@@ -264,7 +292,12 @@ pub fn seed_stage(
                 id.metric.platform == Part::Rigid,
             );
             let design = design.relabelled(labels);
-            let problem = match LagrangeProblem::for_design_in(id, &design, options.coordinates) {
+            let problem = match LagrangeProblem::for_design_with(
+                id,
+                &design,
+                options.coordinates,
+                options.multipliers,
+            ) {
                 Ok(p) => p,
                 Err(ProblemError::NotApplicable { .. }) => return Ok(None),
                 Err(e) => return Err(e.into()),
@@ -274,7 +307,7 @@ pub fn seed_stage(
                 message,
             })?;
             let source = start
-                .source_for(problem.parameter_names(), problem.variable_names().len())
+                .source_for(problem.parameter_names(), problem.stored_solution_len())
                 .map_err(|message| PipelineError::StartSolutions {
                     problem: id.name(),
                     message,
@@ -315,6 +348,7 @@ pub fn seed_stage(
         .zip(seeded)
         .map(
             |((id, problem, (design, labels), source, starts), at_seed)| SeededProblem {
+                affine: std::sync::OnceLock::new(),
                 id,
                 problem,
                 design,
