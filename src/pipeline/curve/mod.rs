@@ -48,8 +48,8 @@
 //!    solutions are converted on entry, endpoints back to Cartesian for
 //!    post-processing.
 //!
-//!    The multipliers are tracked in a projective chart
-//!    ([`crate::problem::Multipliers::Chart`], the Fritz John form `λ₀ ∇D² − λ ∇C −
+//!    Optionally ([`CurveOptions::multipliers`]) the multipliers are tracked in a
+//!    projective chart ([`crate::problem::Multipliers::Chart`], the Fritz John form `λ₀ ∇D² − λ ∇C −
 //!    Σ μ ∇g = 0` with a random affine chart on `[λ₀ : λ : μ …]`): a critical point
 //!    near a singular point of the constraint set has huge multipliers, and its path
 //!    no longer passes near a pole of λ that the endgame mistakes for a path to

@@ -234,16 +234,14 @@ pub(crate) const DIVERGENCE_ARC: f64 = 0.05;
 
 /// Steps shared by the last re-run of a route's paths that are still lost after the
 /// detours ([`track_with_retries`]): each gets `LAST_CHANCE_STEPS / lost` steps when
-/// that exceeds the first-run tracker's own budget. On designs with two close anchors
-/// of a rigid part (10⁻⁴ apart) the seed → pose paths are ill-conditioned all along
-/// (condition ~10⁹) and take 2,300–14,000 steps, about half of them rejected (0.07–0.4
-/// s each with the first-run tracker; the conservative re-run tracker switches to
-/// extended precision on them and needs 4,000–12,000 steps of 0.25 ms each).
-pub(super) const LAST_CHANCE_STEPS: usize = 80_000;
+/// that exceeds the retry tracker's own budget.
+pub(super) const LAST_CHANCE_STEPS: usize = 30_000;
 
-/// At most this many lost paths get the last re-run (each at least 13,000 steps, so
-/// the re-run costs at most about 4 s): a pose of such a design loses up to nine.
-pub(super) const LAST_CHANCE_PATHS: usize = 10;
+/// At most this many lost paths get the last re-run. On designs with two close
+/// anchors of a rigid part (10⁻⁴ apart) a pose loses up to eight paths near clusters
+/// of critical points; with 3,750–6,000 steps each none of them was found (49 of 49
+/// re-runs failed), with 15,000–30,000 steps 5 of 7 were.
+pub(super) const LAST_CHANCE_PATHS: usize = 2;
 
 /// The tracker settings of [`track_with_retries`].
 #[derive(Clone, Copy)]
@@ -446,11 +444,9 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         let per_path = LAST_CHANCE_STEPS / long_runs.len().max(1);
         if !long_runs.is_empty()
             && long_runs.len() <= LAST_CHANCE_PATHS
-            && per_path > tracker.step.max_steps
+            && per_path > retry_tracker.step.max_steps
         {
-            // The first-run tracker's settings with the long budget: the conservative
-            // ones switch to extended precision on ill-conditioned paths, ~4× dearer.
-            let mut long = tracker.clone();
+            let mut long = retry_tracker.clone();
             long.step.max_steps = per_path;
             long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
             let mut patient = Tracker::new(&reference, long);
