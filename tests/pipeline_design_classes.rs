@@ -290,38 +290,43 @@ fn congruent_design_loses_no_path_on_scattered_poses() {
     );
 }
 
+/// The seed count and generic count of sub-problem `name` of metric `metric` at the
+/// seed stage of the `close-base-12` class (two base anchors 1e-4 apart) with `options`.
+fn close_base_seed_counts(metric: &str, name: &str, options: &CurveOptions) -> (usize, usize) {
+    use singdist::pipeline::curve::seed_stage;
+    use singdist::reference::designs::design_case;
+    let case = design_case("close-base-12", 1).expect("a class of the matrix");
+    let design = Design::new(case.base, case.platform).unwrap();
+    let motion = Motion::Analytic(case.motion.clone());
+    let metric: Metric = metric.parse().unwrap();
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &[metric],
+        options,
+        &default_start_solutions,
+    )
+    .expect("the seed stage runs");
+    let problem = stage
+        .problems
+        .iter()
+        .find(|p| p.id.name() == name)
+        .expect("the sub-problem");
+    (problem.start_count, problem.generic_count)
+}
+
 /// A seed count must not be settled by two seed points that both lost paths and
 /// skipped the detours of every path: on two base anchors 1e-4 apart (`close-base-12`)
 /// the whole seed plan finds 79 finite `plate/rigid` critical points (of the generic
 /// 80), where two such light runs agreed on 77 and every pose then expected 77.
 #[test]
 fn close_base_anchors_seed_count_is_not_settled_too_low() {
-    use singdist::pipeline::curve::seed_stage;
-    use singdist::reference::designs::design_case;
-    let case = design_case("close-base-12", 1).expect("a class of the matrix");
-    let design = Design::new(case.base, case.platform).unwrap();
-    let motion = Motion::Analytic(case.motion.clone());
-    let metric: Metric = "plate/rigid".parse().unwrap();
-    let options = CurveOptions::default();
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &[metric],
-        &options,
-        &default_start_solutions,
-    )
-    .expect("the seed stage runs");
-    let singularity = stage
-        .problems
-        .iter()
-        .find(|p| p.id.name() == "plate/rigid:singularity")
-        .expect("the singularity sub-problem");
-    assert!(
-        singularity.start_count >= 79,
-        "seed count {} of the generic {}",
-        singularity.start_count,
-        singularity.generic_count
+    let (count, generic) = close_base_seed_counts(
+        "plate/rigid",
+        "plate/rigid:singularity",
+        &CurveOptions::default(),
     );
+    assert!(count >= 79, "seed count {count} of the generic {generic}");
 }
 
 /// The same design with the multipliers in a projective chart
@@ -330,52 +335,21 @@ fn close_base_anchors_seed_count_is_not_settled_too_low() {
 /// 80 `bars/rigid` critical points (79 with affine multipliers).
 #[test]
 fn close_base_anchors_seed_count_in_a_multiplier_chart_is_the_generic_one() {
-    use singdist::pipeline::curve::seed_stage;
     use singdist::problem::Multipliers;
-    use singdist::reference::designs::design_case;
-    let case = design_case("close-base-12", 1).expect("a class of the matrix");
-    let design = Design::new(case.base, case.platform).unwrap();
-    let motion = Motion::Analytic(case.motion.clone());
-    let metrics: Vec<Metric> = vec!["bars/rigid".parse().unwrap()];
-    let options = CurveOptions {
+    let name = "bars/rigid:singularity";
+    let chart = CurveOptions {
         multipliers: Multipliers::Chart,
         ..CurveOptions::default()
     };
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &options,
-        &default_start_solutions,
-    )
-    .expect("the seed stage runs");
-    let singularity = stage
-        .problems
-        .iter()
-        .find(|p| p.id.name() == "bars/rigid:singularity")
-        .expect("the singularity sub-problem");
+    let (count, generic) = close_base_seed_counts("bars/rigid", name, &chart);
     assert_eq!(
-        singularity.start_count, singularity.generic_count,
-        "seed count {} of the generic {}",
-        singularity.start_count, singularity.generic_count
+        count, generic,
+        "seed count {count} of the generic {generic}"
     );
     // With affine multipliers one path of them is taken for a path to infinity.
-    let affine = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-    )
-    .expect("the seed stage runs");
-    let affine_count = affine
-        .problems
-        .iter()
-        .find(|p| p.id.name() == "bars/rigid:singularity")
-        .map(|p| p.start_count);
+    let (affine, _) = close_base_seed_counts("bars/rigid", name, &CurveOptions::default());
     assert!(
-        affine_count < Some(singularity.generic_count),
-        "affine multipliers found all {} (this test no longer shows the chart's gain)",
-        singularity.generic_count
+        affine < generic,
+        "affine multipliers found all {generic} (this test no longer shows the chart's gain)"
     );
 }
