@@ -486,12 +486,18 @@ fn candidates(
     endpoints
         .iter()
         .filter(|x| {
-            // Realness of K′ (and of the other unknowns before the multipliers): the
-            // multipliers of a real point then solve real linear equations and are real
-            // themselves; they are the least accurate entries of a chart endpoint
-            // (`λ = λ′/λ₀` with a small `λ₀`: 10⁻⁸ relative where K′ has 10⁻¹²).
+            // With multipliers in a chart, realness of K′ (and of the other unknowns
+            // before the multipliers): the multipliers of a real point then solve real
+            // linear equations and are real themselves, and they are the least
+            // accurate entries of a chart endpoint (`λ = λ′/λ₀` with a small `λ₀`:
+            // 10⁻⁸ relative where K′ has 10⁻¹²). Affine multipliers are as accurate as
+            // K′ and take part in the test.
             let cartesian = problem.to_cartesian(x);
-            postprocess::is_real(&cartesian[..problem.first_multiplier()], real_tolerance)
+            let tested = match problem.multipliers() {
+                Multipliers::Chart => &cartesian[..problem.first_multiplier()],
+                Multipliers::Affine => &cartesian[..],
+            };
+            postprocess::is_real(tested, real_tolerance)
         })
         .map(|x| {
             let k_prime = normalization
