@@ -607,8 +607,7 @@ impl LagrangeProblem {
 
     /// The inverse of [`LagrangeProblem::from_cartesian`]: `x = (u + v)/√2`,
     /// `y = −i (u − v)/√2` per point, and for [`Multipliers::Chart`] the multipliers
-    /// `λ_i / λ₀` (`lambda0` dropped; not finite where `λ₀ = 0`,
-    /// [`LagrangeProblem::chart_lambda0`]).
+    /// `λ_i / λ₀` (`lambda0`, the last unknown, dropped; not finite where `λ₀ = 0`).
     pub fn to_cartesian(&self, x: &[C64]) -> Vec<C64> {
         let mut out = self.convert_points(x, crate::algebra::to_cartesian);
         if self.multipliers == Multipliers::Chart
@@ -630,15 +629,6 @@ impl LagrangeProblem {
         match self.multipliers {
             Multipliers::Chart => len - 1,
             Multipliers::Affine => len,
-        }
-    }
-
-    /// `λ₀` of a solution in this problem's unknowns ([`Multipliers::Chart`]; `None`
-    /// for affine multipliers).
-    pub fn chart_lambda0(&self, x: &[C64]) -> Option<C64> {
-        match self.multipliers {
-            Multipliers::Chart => x.last().copied(),
-            Multipliers::Affine => None,
         }
     }
 

@@ -19,8 +19,7 @@ pub struct CurveOptions {
     pub neighbour_tracker: TrackerOptions,
     /// Tracker settings of the re-runs (safer).
     pub retry_tracker: TrackerOptions,
-    /// Number of detour re-runs of a (pose, sub-problem) that lost paths; with 0 the
-    /// long last re-run of the lost paths is skipped too.
+    /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
     pub retry_attempts: usize,
     /// Number of detour re-runs of the user homotopy (source → seed) of a sub-problem
     /// that lost paths: it runs once per curve and every pose inherits what it misses.

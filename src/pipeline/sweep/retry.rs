@@ -428,7 +428,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
     }
-    if best < expected && attempts > 0 {
+    if best < expected {
         // Last chance: the reference route's paths that ran out of steps or failed
         // otherwise (not those that passed close to infinity: that is the route's
         // property), once more with a long step budget shared among them. Paths near
