@@ -12,6 +12,7 @@
 //! manipulators using extrinsic metrics*, Eqs. 65–66).
 
 use crate::C64;
+use crate::pipeline::sweep::ProjectiveTwin;
 use crate::system::CompiledSystem;
 
 /// A family of parametrised systems, one per problem, sharing one motion: what the
@@ -47,6 +48,12 @@ pub trait Family: Sync {
     /// `stream`.
     fn detour_stream(&self, stream: u64, attempt: usize) -> u64 {
         stream + attempt as u64
+    }
+
+    /// Problem `problem` in a second formulation, where the paths a route sends to
+    /// infinity or loses are checked once more (`None`: no twin).
+    fn twin(&self, _problem: usize) -> Option<&dyn ProjectiveTwin> {
+        None
     }
 }
 

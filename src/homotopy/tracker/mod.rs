@@ -184,6 +184,21 @@ pub const CORRECT_AT_ITERATIONS: usize = 8;
 /// singular-point sub-problems bound.
 pub const HOMOGENEOUS_ZERO: f64 = 1e-8;
 
+/// Extended-precision Newton iterations of the test that a finite endpoint with a
+/// small homogenising coordinate is off the hyperplane at infinity
+/// (`Tracker::converges_off_the_hyperplane`). On the `bars/rigid` critical points of a
+/// design with two base anchors 10⁻⁴ apart (`λ₀` down to 2·10⁻⁹, condition up to
+/// 6·10¹²) the corrections fell below 10⁻¹⁶ within two iterations; at the Fritz John
+/// endpoints of the built-in example's `rigid/rigid` seed they halve at each step.
+pub const OFF_HYPERPLANE_ITERATIONS: usize = 6;
+
+/// Relative size of a correction at which that test has converged.
+pub const OFF_HYPERPLANE_CONVERGED: f64 = 1e-14;
+
+/// Largest relative change of the homogenising coordinate during that test for it to
+/// count as stable.
+pub const OFF_HYPERPLANE_STABLE: f64 = 1e-3;
+
 /// See [`HOMOGENEOUS_ZERO`]: the bound for a nonsingular endpoint (a regular solution
 /// of the chart system on the hyperplane at infinity).
 pub const HOMOGENEOUS_ZERO_REGULAR: f64 = 1e-12;
@@ -412,7 +427,9 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         } else {
             (f64::INFINITY, f64::INFINITY)
         };
-        let status = if self.homogenizing_coordinate_vanishes(status) {
+        let status = if self.homogenizing_coordinate_vanishes(status)
+            && !self.converges_off_the_hyperplane(t)
+        {
             PathStatus::AtInfinity
         } else {
             status
@@ -434,6 +451,43 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             .homogenizing_variable()
             .and_then(|i| self.x.get(i))
             .is_some_and(|h| h.norm() <= tolerance * (1.0 + max_norm(&self.x)))
+    }
+
+    /// Whether Newton's method in extended precision at `t` converges quadratically to
+    /// a point whose homogenising coordinate is stable and not zero: a finite
+    /// endpoint with a small homogenising coordinate that is a true (ill-conditioned)
+    /// solution of the affine system, not a point at infinity. At a point at infinity
+    /// reached in the chart (in the Fritz John form of the Lagrange conditions, a
+    /// singular point of the constraint set) the iteration converges only linearly,
+    /// each correction about half the previous one, and the homogenising coordinate
+    /// shrinks with it towards 0 (Griewank and Osborne, *Analysis of Newton's method at
+    /// irregular singularities*, SIAM J. Numer. Anal. 20, 1983); where the other
+    /// coordinates diverge the corrections stagnate. The current point is left
+    /// unchanged.
+    fn converges_off_the_hyperplane(&mut self, t: C64) -> bool {
+        let Some(h) = self.homotopy.homogenizing_variable() else {
+            return false;
+        };
+        let before = self.x[h];
+        self.x_saved.copy_from_slice(&self.x);
+        let mut converged = false;
+        for _ in 0..OFF_HYPERPLANE_ITERATIONS {
+            match self.eval.newton(self.homotopy, &mut self.x, t, true) {
+                NewtonUpdate::Singular => break,
+                NewtonUpdate::Step(norm) => {
+                    if norm <= OFF_HYPERPLANE_CONVERGED * (1.0 + max_norm(&self.x)) {
+                        converged = true;
+                        break;
+                    }
+                }
+            }
+        }
+        let after = self.x[h];
+        let scale = 1.0 + max_norm(&self.x);
+        self.x.copy_from_slice(&self.x_saved);
+        converged
+            && after.norm() > HOMOGENEOUS_ZERO_REGULAR * scale
+            && (after - before).norm() <= OFF_HYPERPLANE_STABLE * after.norm()
     }
 
     /// The [`PathResult`] at the current point.
@@ -684,6 +738,51 @@ pub(crate) mod tests {
         options.step.max_step = 0.01;
         options.endgame.at_infinity_norm = 10.0;
         options
+    }
+
+    /// `(λ₀ − q)·(λ₀ − q − δ) = 0` and the chart `λ₀ + λ₁ = 1`, `λ₀` declared the
+    /// homogenising unknown: at `q = 10⁻⁹`, `δ = 10⁻¹¹` two roots with `λ₀ ≈ 10⁻⁹`,
+    /// simple but 10⁻¹¹ apart (condition ~10¹¹, below the singular bound's `λ₀`), off
+    /// the hyperplane at infinity: extended-precision Newton converges quadratically
+    /// and leaves `λ₀` where it is. `λ₀² − q·λ₀ = 0` at `q = 0` instead has the double
+    /// root `λ₀ = 0` on the hyperplane: from `λ₀ = 10⁻⁹` Newton converges linearly,
+    /// halving `λ₀` at each step.
+    #[test]
+    fn a_small_homogenising_coordinate_is_at_infinity_only_when_newton_sends_it_to_zero() {
+        let (l0, l1, q) = (
+            Expr::variable("lambda0"),
+            Expr::variable("lambda1"),
+            Expr::parameter("q"),
+        );
+        let delta = 1e-11;
+        let separated = (l0.clone() - q.clone())
+            * (l0.clone() - q.clone() - Expr::constant(C64::new(delta, 0.0)));
+        let double = l0.clone() * l0.clone() - q * l0.clone();
+        let chart = l0 + l1 - Expr::one();
+        for (equation, q, off_the_hyperplane) in [(separated, 1e-9, true), (double, 0.0, false)] {
+            let system = System::new(["lambda0", "lambda1"], ["q"], vec![equation, chart.clone()])
+                .and_then(|s| s.with_homogenizing_variable("lambda0"))
+                .unwrap()
+                .compile();
+            let homotopy = real_segment(&system, q, q);
+            let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+            let start = [C64::new(1e-9, 0.0), C64::new(1.0 - 1e-9, 0.0)];
+            tracker.reset(&start, 1.0);
+            assert!(tracker.homogenizing_coordinate_vanishes(PathStatus::Singular));
+            let t = C64::new(1.0, 0.0);
+            assert_eq!(tracker.converges_off_the_hyperplane(t), off_the_hyperplane);
+            assert_eq!(
+                tracker.x[0], start[0],
+                "the current point is left unchanged"
+            );
+            let status = tracker.finish_at(0, PathStatus::Singular, t).status;
+            let expected = if off_the_hyperplane {
+                PathStatus::Singular
+            } else {
+                PathStatus::AtInfinity
+            };
+            assert_eq!(status, expected);
+        }
     }
 
     /// A pole at `t = ½` is a divergence on the route, a failure whether the route

@@ -111,8 +111,8 @@ mod self_check;
 mod window;
 pub use crate::pipeline::sweep::PathFailure;
 use crate::pipeline::sweep::{
-    Retried, TrackingPlan, crossings, detour_point, distinct_solutions, same_endpoint,
-    simple_endpoint, track_with_retries,
+    ProjectiveTwin, Retried, TrackingPlan, crossings, detour_point, distinct_solutions,
+    same_endpoint, simple_endpoint, track_with_retries,
 };
 use certificates::*;
 pub use chain::solve_pose;
@@ -675,6 +675,7 @@ fn track_problem(
             retry: &options.retry_tracker,
             endgame: false,
             whole_detours: true,
+            twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
         },
     );
     let (endpoints, best, tracked, reasons) =
@@ -751,7 +752,9 @@ fn generic_route(
             PolylinePath::new(points)
         },
         options.seed_retry_attempts,
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker).lost_paths_only(),
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
+            .lost_paths_only()
+            .with_twin(seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin)),
     );
     Retried {
         endpoints: distinct_solutions(retried.endpoints, seeded.generic_count),

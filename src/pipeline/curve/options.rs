@@ -60,6 +60,13 @@ pub struct CurveOptions {
     /// self-check catches it — so it is opt-in until that is explained.
     #[serde(default = "default_multipliers")]
     pub multipliers: Multipliers,
+    /// Re-track the paths that end at infinity or are lost, with affine multipliers,
+    /// once more with multipliers in a random chart (the projective twin,
+    /// [`crate::pipeline::sweep::ProjectiveTwin`]): a finite endpoint there is a
+    /// critical point the affine route missed, one at infinity there too confirms it.
+    /// On by default.
+    #[serde(default = "default_twin_check")]
+    pub twin_check: bool,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
@@ -118,6 +125,7 @@ impl Default for CurveOptions {
             jump: default_jump(),
             coordinates: default_coordinates(),
             multipliers: default_multipliers(),
+            twin_check: default_twin_check(),
             real_tolerance: 1e-8,
             cut_locus_tolerance: 1e-9,
             self_check: default_self_check(),
@@ -137,6 +145,10 @@ fn default_neighbour_tracker() -> TrackerOptions {
 
 fn default_multipliers() -> Multipliers {
     Multipliers::Affine
+}
+
+fn default_twin_check() -> bool {
+    true
 }
 
 fn default_coordinates() -> Coordinates {

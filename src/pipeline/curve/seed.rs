@@ -3,7 +3,7 @@
 use super::*;
 use crate::metric::Part;
 use crate::pipeline::family::Family;
-use crate::pipeline::sweep::{SeedPolicy, seed_family, split_seeded};
+use crate::pipeline::sweep::{ProjectiveTwin, SeedPolicy, seed_family, split_seeded};
 use crate::problem::{equilateral, pedal};
 use crate::system::CompiledSystem;
 
@@ -41,6 +41,9 @@ pub struct SeededProblem {
     /// user homotopy): the origin of the generic route, a pose's last resort where the
     /// seed route loses paths.
     pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+    /// The same sub-problem with multipliers in a random chart, where paths that end
+    /// at infinity or are lost are checked once more ([`CurveOptions::twin_check`]).
+    pub twin: Option<ChartTwin>,
     /// [`SeededProblem::problem`] with affine multipliers, built on first use where
     /// the tracked system uses [`Multipliers::Chart`] (certification works with the
     /// real system of affine multipliers).
@@ -85,16 +88,55 @@ impl SeededProblem {
     }
 }
 
-/// A sub-problem ready for the user homotopy: id, compiled system, its relabelled
-/// design and labels, source parameters, start solutions (in the system's
-/// coordinates).
+/// A sub-problem ready for the user homotopy: id, compiled system (and its twin),
+/// its relabelled design and labels, source parameters, start solutions (in the
+/// system's coordinates).
 type PreparedProblem = (
     ProblemId,
-    LagrangeProblem,
+    (LagrangeProblem, Option<ChartTwin>),
     (Design, [usize; 3]),
     Vec<C64>,
     Vec<Vec<C64>>,
 );
+
+/// A sub-problem's Lagrange system with affine multipliers and the same system with
+/// homogeneous multipliers `[λ₀ : λ : μ]` in a random chart ([`Multipliers::Chart`],
+/// the Fritz John form `λ₀ ∇D² − λ ∇C − Σ μ ∇g = 0`) as its projective twin: a
+/// critical point with huge multipliers has a small `λ₀` there and a bounded path.
+pub struct ChartTwin {
+    affine: LagrangeProblem,
+    chart: LagrangeProblem,
+}
+
+impl ChartTwin {
+    /// The twin of `affine` (a system with [`Multipliers::Affine`]) for `design`.
+    pub fn of(affine: &LagrangeProblem, design: &Design) -> Result<Self, ProblemError> {
+        let chart = LagrangeProblem::for_design_with(
+            affine.id(),
+            design,
+            affine.coordinates(),
+            Multipliers::Chart,
+        )?;
+        Ok(ChartTwin {
+            affine: affine.clone(),
+            chart,
+        })
+    }
+}
+
+impl ProjectiveTwin for ChartTwin {
+    fn system(&self) -> &CompiledSystem {
+        self.chart.evaluator()
+    }
+
+    fn lift(&self, x: &[C64]) -> Vec<C64> {
+        self.chart.from_cartesian(&self.affine.to_cartesian(x))
+    }
+
+    fn lower(&self, y: &[C64]) -> Vec<C64> {
+        self.affine.from_cartesian(&self.chart.to_cartesian(y))
+    }
+}
 
 /// The output of the user homotopy: every sub-problem at the common seed.
 pub struct SeedStage {
@@ -229,7 +271,12 @@ impl Family for SeedFamily<'_> {
     }
 
     fn system(&self, problem: usize) -> &CompiledSystem {
-        self.prepared[problem].1.evaluator()
+        self.prepared[problem].1.0.evaluator()
+    }
+
+    fn twin(&self, problem: usize) -> Option<&dyn ProjectiveTwin> {
+        let twin = self.prepared[problem].1.1.as_ref()?;
+        Some(twin)
     }
 
     fn generic_start(&self, problem: usize) -> (&[C64], &[Vec<C64>]) {
@@ -238,7 +285,7 @@ impl Family for SeedFamily<'_> {
     }
 
     fn seed(&self, problem: usize, point: usize) -> (SeedPoint, Vec<C64>) {
-        let (_, lagrange, (design, _), _, _) = &self.prepared[problem];
+        let (_, (lagrange, _), (design, _), _, _) = &self.prepared[problem];
         let seed = if point == 0 {
             self.common.clone()
         } else {
@@ -317,7 +364,18 @@ pub fn seed_stage(
                 .iter()
                 .map(|x| problem.from_cartesian(x))
                 .collect();
-            Ok(Some((id, problem, (design, labels), source, starts)))
+            let twin = if options.twin_check && options.multipliers == Multipliers::Affine {
+                Some(ChartTwin::of(&problem, &design)?)
+            } else {
+                None
+            };
+            Ok(Some((
+                id,
+                (problem, twin),
+                (design, labels),
+                source,
+                starts,
+            )))
         })
         .collect();
     let mut prepared = Vec::new();
@@ -347,10 +405,11 @@ pub fn seed_stage(
         .into_iter()
         .zip(seeded)
         .map(
-            |((id, problem, (design, labels), source, starts), at_seed)| SeededProblem {
+            |((id, (problem, twin), (design, labels), source, starts), at_seed)| SeededProblem {
                 affine: std::sync::OnceLock::new(),
                 id,
                 problem,
+                twin,
                 design,
                 labels,
                 seed: at_seed.seed,

@@ -11,9 +11,11 @@ use std::collections::BTreeMap;
 
 mod retry;
 mod seed;
+mod twin;
 pub(crate) use retry::*;
 pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
+pub use twin::ProjectiveTwin;
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,6 +1,7 @@
 //! Robust tracking of a group of paths and its bookkeeping: re-runs, arcs around
 //! divergences, detours, crossings, and which paths are accounted for.
 
+use super::twin::{ProjectiveTwin, recheck_in_twin};
 use crate::C64;
 use crate::homotopy::{
     FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, Tracker,
@@ -258,6 +259,9 @@ pub(crate) struct TrackingPlan<'a> {
     /// Whether a detour re-tracks every path when the lost ones alone do not complete
     /// the set (`false`: only the lost ones, along each detour in turn).
     pub whole_detours: bool,
+    /// The family in a second formulation ([`ProjectiveTwin`]): the reference route's
+    /// paths that end at infinity or stay lost are tracked once more there.
+    pub twin: Option<&'a dyn ProjectiveTwin>,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -268,6 +272,7 @@ impl<'a> TrackingPlan<'a> {
             retry,
             endgame: true,
             whole_detours: true,
+            twin: None,
         }
     }
 
@@ -277,6 +282,11 @@ impl<'a> TrackingPlan<'a> {
             whole_detours: false,
             ..self
         }
+    }
+
+    /// The same plan with a projective twin (`None`: without).
+    pub fn with_twin(self, twin: Option<&'a dyn ProjectiveTwin>) -> Self {
+        TrackingPlan { twin, ..self }
     }
 }
 
@@ -309,6 +319,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         retry: retry_tracker,
         endgame,
         whole_detours,
+        twin,
     } = plan;
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
@@ -463,6 +474,40 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 }
             }
             best = best.max(endpoints.len() + reference_at_infinity);
+        }
+    }
+    if let Some(twin) = twin {
+        // The reference route's paths at infinity, and those still lost, once more in
+        // the projective twin: a finite endpoint there is a critical point this
+        // formulation missed (a path classified at infinity that is not, or a lost
+        // one); one at infinity there too confirms the classification.
+        let crossed = crossings(&paths);
+        let unsettled: Vec<usize> = paths
+            .iter()
+            .zip(&crossed)
+            .filter(|&(p, &c)| {
+                p.status == PathStatus::AtInfinity
+                    || (best < expected && (matches!(p.status, PathStatus::Failed(_)) || c))
+            })
+            .map(|(p, _)| p.path_index)
+            .collect();
+        if !unsettled.is_empty() {
+            let check = recheck_in_twin(twin, starts, &unsettled, path(0), tracker);
+            tracked += check.tracked;
+            let mut recovered_from_infinity = 0;
+            for (i, x) in check.finite {
+                if !endpoints.iter().any(|y| same_endpoint(y, &x)) {
+                    endpoints.push(x);
+                    if paths[i].status == PathStatus::AtInfinity {
+                        recovered_from_infinity += 1;
+                    }
+                }
+            }
+            let reference_at_infinity = count_at_infinity(&paths);
+            let at_infinity = at_infinity
+                .max(reference_at_infinity)
+                .saturating_sub(recovered_from_infinity);
+            best = best.max(endpoints.len() + at_infinity);
         }
     }
     Retried {

@@ -115,9 +115,12 @@ pub(crate) fn seed_problem<F: Family>(
 ) -> Seeded<F::Seed> {
     let (source, starts) = family.generic_start(problem);
     let generic = starts.len();
+    let twin = family.twin(problem);
     let plans = [
-        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).lost_paths_only(),
-        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker),
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
+            .lost_paths_only()
+            .with_twin(twin),
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).with_twin(twin),
     ];
     let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
     let mut tracked = 0;
