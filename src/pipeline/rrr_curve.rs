@@ -225,6 +225,7 @@ pub(crate) fn solve_subproblem(
         accounted,
         tracked,
         reasons,
+        ..
     } = track_with_retries(
         seeded.problem.evaluator(),
         &seeded.seed_solutions,

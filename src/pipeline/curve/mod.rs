@@ -641,6 +641,7 @@ fn track_problem(
         accounted: best,
         tracked,
         reasons,
+        ..
     } = track_with_retries(
         seeded.problem.evaluator(),
         starts,

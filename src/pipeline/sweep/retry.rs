@@ -75,6 +75,12 @@ pub(crate) struct Retried {
     /// Why paths were unaccounted for on the reference route after the careful
     /// re-runs ([`unaccounted_reasons`]; empty if none were).
     pub reasons: BTreeMap<String, usize>,
+    /// Where the projective twin checked every path of the reference route that did
+    /// not end at a finite point: whether it confirmed each of them at infinity or
+    /// found it finite, so that the distinct finite endpoints and the confirmed
+    /// points at infinity account for every path (`false` without a twin, or where a
+    /// twin run failed).
+    pub confirmed_by_twin: bool,
 }
 
 /// Relative distance under which two endpoints are the same point.
@@ -476,6 +482,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             best = best.max(endpoints.len() + reference_at_infinity);
         }
     }
+    let mut confirmed_by_twin = false;
     if let Some(twin) = twin {
         // The reference route's paths at infinity, and those still lost, once more in
         // the projective twin: a finite endpoint there is a critical point this
@@ -495,6 +502,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             let check = recheck_in_twin(twin, starts, &unsettled, path(0), tracker);
             tracked += check.tracked;
             let mut recovered_from_infinity = 0;
+            let classified = check.finite_or_at_infinity();
             for (i, x) in check.finite {
                 if !endpoints.iter().any(|y| same_endpoint(y, &x)) {
                     endpoints.push(x);
@@ -503,11 +511,26 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                     }
                 }
             }
+            // A lost path that the twin sends to infinity is accounted for: the twin is
+            // a route independent of the one that lost it (e.g. a critical point whose
+            // multipliers grow without bound while K′ stays finite, which affine
+            // multipliers cannot follow to the end).
+            let lost_at_infinity = check
+                .at_infinity
+                .iter()
+                .filter(|&&i| paths[i].status != PathStatus::AtInfinity)
+                .count()
+                // Never more than the reference route left unaccounted (of two paths
+                // crossing on one endpoint, one reached it).
+                .min(expected - accounted(&paths));
             let reference_at_infinity = count_at_infinity(&paths);
             let at_infinity = at_infinity
                 .max(reference_at_infinity)
-                .saturating_sub(recovered_from_infinity);
+                .saturating_sub(recovered_from_infinity)
+                + lost_at_infinity;
             best = best.max(endpoints.len() + at_infinity);
+            confirmed_by_twin = endpoints.len() + check.at_infinity.len() >= expected
+                && classified == unsettled.len();
         }
     }
     Retried {
@@ -516,5 +539,6 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         accounted: best.min(expected),
         tracked,
         reasons,
+        confirmed_by_twin,
     }
 }

@@ -10,8 +10,10 @@
 //! data (e.g. a rigid part's shape) can send solutions to infinity at every seed, but
 //! a path lost or wrongly classified at infinity at one seed is not lost at another:
 //! a count below `G` counts only when two seed points (different parameters, reached
-//! along different routes) agree on it, otherwise the shortfall is a seed-stage
-//! [`PathFailure`].
+//! along different routes) agree on it, or when the family's projective twin
+//! ([`super::ProjectiveTwin`]) accounts for every path of one seed point (each path
+//! not finite there is at infinity in both formulations); otherwise the shortfall is
+//! a seed-stage [`PathFailure`].
 
 use super::{PathFailure, Retried, TrackingPlan, detour_point, same_endpoint, track_with_retries};
 use crate::C64;
@@ -124,6 +126,7 @@ pub(crate) fn seed_problem<F: Family>(
     ];
     let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
     let mut tracked = 0;
+    let mut twin_settled = false;
     for point in 0..policy.points {
         let (seed, parameters) = family.seed(problem, point);
         let stream = ((problem as u64) << 32) + ((point as u64) << 24);
@@ -161,6 +164,10 @@ pub(crate) fn seed_problem<F: Family>(
             tracked += retried.tracked;
             solutions = distinct_solutions(retried.endpoints, generic);
         }
+        // Every path of this point accounted for by the twin (finite, or at infinity in
+        // both formulations): the count needs no second seed point.
+        let settled_by_twin = retried.confirmed_by_twin && retried.accounted == generic;
+        let count = solutions.len();
         runs.push(SeedRun {
             seed,
             parameters,
@@ -168,13 +175,18 @@ pub(crate) fn seed_problem<F: Family>(
             reasons: retried.reasons,
         });
         let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
+        let most = counts.iter().copied().max().unwrap_or(0);
+        if settled_by_twin && count == most {
+            twin_settled = true;
+            break;
+        }
         if seed_count_confirmed(&counts, generic) {
             break;
         }
     }
     let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
     let most = counts.iter().copied().max().unwrap_or(0);
-    let confirmed = seed_count_confirmed(&counts, generic);
+    let confirmed = twin_settled || seed_count_confirmed(&counts, generic);
     let chosen = runs
         .into_iter()
         .find(|r| r.solutions.len() == most)

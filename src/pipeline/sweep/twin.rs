@@ -49,6 +49,13 @@ pub(crate) struct TwinCheck {
     pub tracked: usize,
 }
 
+impl TwinCheck {
+    /// Paths the twin classified: a simple finite endpoint or one at infinity.
+    pub fn finite_or_at_infinity(&self) -> usize {
+        self.finite.len() + self.at_infinity.len()
+    }
+}
+
 /// Re-tracks the paths `indices` of `starts` (first formulation) in `twin` along
 /// `path`, with the endgame and a step budget of [`TWIN_MAX_STEPS`].
 pub(crate) fn recheck_in_twin<P: ParameterPath>(
