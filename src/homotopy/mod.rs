@@ -50,6 +50,6 @@ pub use solve::{
 };
 pub use start::TotalDegreeStartSystem;
 pub use tracker::{
-    EndgameOptions, FailureReason, PathResult, PathStatus, PrecisionOptions, StepOptions, Tracker,
-    TrackerOptions,
+    EndgameOptions, FailureReason, HOMOGENEOUS_ZERO, PathResult, PathStatus, PrecisionOptions,
+    StepOptions, Tracker, TrackerOptions,
 };

@@ -16,9 +16,9 @@
 use super::{simple_endpoint, track_all};
 use crate::C64;
 use crate::homotopy::{
-    ParameterPath, PathParameterHomotopy, PathResult, PathStatus, TrackerOptions,
+    HOMOGENEOUS_ZERO, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, TrackerOptions,
 };
-use crate::system::CompiledSystem;
+use crate::system::{CompiledSystem, Evaluator};
 
 /// The same family in other coordinates: a system with the same parameters and the
 /// bijection between the two formulations' solutions where both are finite.
@@ -43,8 +43,14 @@ pub(crate) struct TwinCheck {
     /// Finite endpoints (first formulation's coordinates), one per path that reached a
     /// simple one, in the order of the paths.
     pub finite: Vec<(usize, Vec<C64>)>,
-    /// Paths whose twin endpoint is at infinity too.
+    /// Paths whose twin endpoint is at infinity too, on the twin's hyperplane at
+    /// infinity (its homogenising coordinate zero, the other coordinates finite): a
+    /// classification the first formulation could not make, so an independent one.
     pub at_infinity: Vec<usize>,
+    /// Paths that diverge in the twin too (coordinates the twin shares with the first
+    /// formulation grow without bound): at infinity, but by the same evidence as in the
+    /// first formulation, so not an independent confirmation.
+    pub diverged: Vec<usize>,
     /// Paths tracked.
     pub tracked: usize,
 }
@@ -75,14 +81,29 @@ pub(crate) fn recheck_in_twin<P: ParameterPath>(
     let mut check = TwinCheck {
         finite: Vec::new(),
         at_infinity: Vec::new(),
+        diverged: Vec::new(),
         tracked: indices.len(),
     };
     for (&i, result) in indices.iter().zip(&results) {
         if simple_endpoint(result) {
             check.finite.push((i, twin.lower(&result.solution)));
         } else if result.status == PathStatus::AtInfinity {
-            check.at_infinity.push(i);
+            if on_the_hyperplane_at_infinity(twin, &result.solution) {
+                check.at_infinity.push(i);
+            } else {
+                check.diverged.push(i);
+            }
         }
     }
     check
+}
+
+/// Whether `y`'s homogenising coordinate is zero to within [`HOMOGENEOUS_ZERO`] times
+/// `1 + ‖y‖∞` (the tracker's own bound, [`crate::homotopy::Tracker`]).
+fn on_the_hyperplane_at_infinity(twin: &dyn ProjectiveTwin, y: &[C64]) -> bool {
+    let norm = y.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+    twin.system()
+        .homogenizing_variable()
+        .and_then(|h| y.get(h))
+        .is_some_and(|h| h.norm() <= HOMOGENEOUS_ZERO * (1.0 + norm))
 }
