@@ -307,7 +307,10 @@ fn max_relative_difference(design: &Design, a: &CurveResult, b: &CurveResult) ->
     for (p, q) in a.poses.iter().zip(&b.poses) {
         let floor = ZERO * configuration_size(&design.configuration(p.pose.into()).to_array());
         for (name, m) in &p.metrics {
+            // Two zero distances (both below the floor, e.g. 1e-16 for a base whose
+            // coincident anchors make it collinear) agree, as in the `distance` check.
             let d = match q.metrics.get(name) {
+                Some(n) if n.distance.max(m.distance) <= floor => 0.0,
                 Some(n) => (m.distance - n.distance).abs() / m.distance.max(floor),
                 None => f64::INFINITY,
             };

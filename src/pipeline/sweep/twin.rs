@@ -6,9 +6,9 @@
 //! and its path in affine multipliers runs far out like a path to infinity: the
 //! endgame may classify it at infinity, or the path fails. In homogeneous multipliers
 //! `[λ₀ : λ : μ]` on a random affine chart (the Fritz John form) the same point has a
-//! small `λ₀` and bounded coordinates (Bates, Hauenstein, Sommese and Wampler,
-//! *Numerically Solving Polynomial Systems with Bertini*, SIAM 2013, §3.3 on
-//! projective coordinates and random charts). Tracking such a path once more in the
+//! small `λ₀` and bounded coordinates (the random affine charts of projective space
+//! that Bertini tracks in: Bates, Hauenstein, Sommese and Wampler, *Numerically
+//! Solving Polynomial Systems with Bertini*, SIAM 2013). Tracking such a path once more in the
 //! twin is an independent route to its endpoint: a finite endpoint there is a critical
 //! point the first formulation missed; an endpoint at infinity there too confirms the
 //! first one's classification.
