@@ -308,7 +308,10 @@ impl<'a> TrackingPlan<'a> {
 ///    distinct from every endpoint found (an endpoint of any route is a solution at
 ///    the target, but which one a path reaches may depend on the route);
 /// 3. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
-///    distinct finite endpoints.
+///    distinct finite endpoints;
+/// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
+///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
+/// 5. gives the lost paths the twin did not classify a last, long re-run.
 ///
 /// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
 /// of the best attempt, or the distinct finite endpoints of all attempts plus the
@@ -445,44 +448,10 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
     }
-    if best < expected {
-        // Last chance: the reference route's paths that ran out of steps or failed
-        // otherwise (not those that passed close to infinity: that is the route's
-        // property), once more with a long step budget shared among them. Paths near
-        // a cluster of critical points (e.g. a base congruent with the platform, where
-        // a critical point tends to the singular configuration with the platform on
-        // the base) need thousands of steps; the shared budget bounds the cost of a
-        // pose that loses many (only a few lost paths get it: [`LAST_CHANCE_PATHS`]).
-        let long_runs: Vec<usize> = paths
-            .iter()
-            .filter(|p| matches!(p.status, PathStatus::Failed(_)) && !diverged_mid_path(p))
-            .map(|p| p.path_index)
-            .collect();
-        let per_path = LAST_CHANCE_STEPS / long_runs.len().max(1);
-        if !long_runs.is_empty()
-            && long_runs.len() <= LAST_CHANCE_PATHS
-            && per_path > retry_tracker.step.max_steps
-        {
-            let mut long = retry_tracker.clone();
-            long.step.max_steps = per_path;
-            long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
-            let mut patient = Tracker::new(&reference, long);
-            let mut reference_at_infinity = count_at_infinity(&paths);
-            for i in long_runs {
-                let again = patient.track(&starts[i], i);
-                tracked += 1;
-                if again.status == PathStatus::AtInfinity {
-                    reference_at_infinity += 1;
-                } else if simple_endpoint(&again)
-                    && !endpoints.iter().any(|y| same_endpoint(y, &again.solution))
-                {
-                    endpoints.push(again.solution);
-                }
-            }
-            best = best.max(endpoints.len() + reference_at_infinity);
-        }
-    }
     let mut confirmed_by_twin = false;
+    // Paths the twin classified (finite, or on its hyperplane at infinity): the last
+    // chance below is for the others.
+    let mut resolved_by_twin: Vec<usize> = Vec::new();
     if let Some(twin) = twin {
         // The reference route's paths at infinity, and those still lost, once more in
         // the projective twin: a finite endpoint there is a critical point this
@@ -503,6 +472,8 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             tracked += check.tracked;
             let mut recovered_from_infinity = 0;
             let classified = check.finite_or_at_infinity();
+            resolved_by_twin.extend(check.finite.iter().map(|(i, _)| *i));
+            resolved_by_twin.extend(&check.at_infinity);
             for (i, x) in check.finite {
                 if !endpoints.iter().any(|y| same_endpoint(y, &x)) {
                     endpoints.push(x);
@@ -531,6 +502,44 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             best = best.max(endpoints.len() + at_infinity);
             confirmed_by_twin = endpoints.len() + check.at_infinity.len() >= expected
                 && classified == unsettled.len();
+        }
+    }
+    if best < expected {
+        // Last chance: the reference route's paths that ran out of steps or failed
+        // otherwise (not those that passed close to infinity: that is the route's
+        // property), once more with a long step budget shared among them. Paths near
+        // a cluster of critical points (e.g. a base congruent with the platform, where
+        // a critical point tends to the singular configuration with the platform on
+        // the base) need thousands of steps; the shared budget bounds the cost of a
+        // pose that loses many (only a few lost paths get it: [`LAST_CHANCE_PATHS`]).
+        let long_runs: Vec<usize> = paths
+            .iter()
+            .filter(|p| matches!(p.status, PathStatus::Failed(_)) && !diverged_mid_path(p))
+            .map(|p| p.path_index)
+            .filter(|i| !resolved_by_twin.contains(i))
+            .collect();
+        let per_path = LAST_CHANCE_STEPS / long_runs.len().max(1);
+        if !long_runs.is_empty()
+            && long_runs.len() <= LAST_CHANCE_PATHS
+            && per_path > retry_tracker.step.max_steps
+        {
+            let mut long = retry_tracker.clone();
+            long.step.max_steps = per_path;
+            long.precision.max_extended_steps = per_path.max(long.precision.max_extended_steps);
+            let mut patient = Tracker::new(&reference, long);
+            let mut reference_at_infinity = count_at_infinity(&paths);
+            for i in long_runs {
+                let again = patient.track(&starts[i], i);
+                tracked += 1;
+                if again.status == PathStatus::AtInfinity {
+                    reference_at_infinity += 1;
+                } else if simple_endpoint(&again)
+                    && !endpoints.iter().any(|y| same_endpoint(y, &again.solution))
+                {
+                    endpoints.push(again.solution);
+                }
+            }
+            best = best.max(endpoints.len() + reference_at_infinity);
         }
     }
     Retried {
