@@ -32,7 +32,8 @@ pub struct SeededProblem {
     pub generic_count: usize,
     /// Number of paths tracked from the seed to every pose: the seed's finite
     /// solutions. Fewer than [`SeededProblem::generic_count`] only where an
-    /// independent seed point confirmed the same count (the others are at infinity
+    /// independent seed point confirmed the same count, or the projective twin
+    /// ([`ChartTwin`]) put every missing path on its hyperplane at infinity (the others are at infinity
     /// for this design's fixed rigid shapes, e.g. the leg-collapse points of Kapilavai
     /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding
     /// angle), or where the shortfall is reported as a seed-stage [`PathFailure`].

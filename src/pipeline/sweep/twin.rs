@@ -47,10 +47,6 @@ pub(crate) struct TwinCheck {
     /// infinity (its homogenising coordinate zero, the other coordinates finite): a
     /// classification the first formulation could not make, so an independent one.
     pub at_infinity: Vec<usize>,
-    /// Paths that diverge in the twin too (coordinates the twin shares with the first
-    /// formulation grow without bound): at infinity, but by the same evidence as in the
-    /// first formulation, so not an independent confirmation.
-    pub diverged: Vec<usize>,
     /// Paths tracked.
     pub tracked: usize,
 }
@@ -74,26 +70,24 @@ pub(crate) fn recheck_in_twin<P: ParameterPath>(
     let mut options = tracker.clone();
     options.step.max_steps = options.step.max_steps.max(TWIN_MAX_STEPS);
     let lifted: Vec<Vec<C64>> = indices.iter().map(|&i| twin.lift(&starts[i])).collect();
-    let mut target = vec![C64::new(0.0, 0.0); path.len()];
-    path.point(C64::new(1.0, 0.0), &mut target);
     let homotopy = PathParameterHomotopy::new(twin.system(), path);
     let results: Vec<PathResult> = track_all(&homotopy, &lifted, &options, true);
     let mut check = TwinCheck {
         finite: Vec::new(),
         at_infinity: Vec::new(),
-        diverged: Vec::new(),
         tracked: indices.len(),
     };
     for (&i, result) in indices.iter().zip(&results) {
         if simple_endpoint(result) {
             check.finite.push((i, twin.lower(&result.solution)));
-        } else if result.status == PathStatus::AtInfinity {
-            if on_the_hyperplane_at_infinity(twin, &result.solution) {
-                check.at_infinity.push(i);
-            } else {
-                check.diverged.push(i);
-            }
+        } else if result.status == PathStatus::AtInfinity
+            && on_the_hyperplane_at_infinity(twin, &result.solution)
+        {
+            check.at_infinity.push(i);
         }
+        // A path that diverges in the twin too (coordinates the twin shares with the
+        // first formulation grow without bound) is at infinity by the same evidence as
+        // in the first formulation: no independent confirmation, left unclassified.
     }
     check
 }
