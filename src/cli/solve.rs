@@ -222,6 +222,7 @@ fn reason_name(reason: FailureReason) -> &'static str {
         FailureReason::NonFiniteValue => "NonFiniteValue",
         FailureReason::PathJumped => "PathJumped",
         FailureReason::CorrectorDidNotConverge => "CorrectorDidNotConverge",
+        FailureReason::HyperplaneUndecided => "HyperplaneUndecided",
     }
 }
 

@@ -106,6 +106,11 @@ pub enum FailureReason {
     /// Newton's method from a predicted point ([`Tracker::correct_at`]) stopped
     /// contracting, or its limit is singular.
     CorrectorDidNotConverge,
+    /// A finite endpoint's homogenising coordinate is nearly zero, but Newton's method
+    /// in extended precision neither converges to a point off the hyperplane at
+    /// infinity nor approaches the hyperplane linearly: the endpoint is neither shown
+    /// finite nor shown at infinity.
+    HyperplaneUndecided,
 }
 
 /// Classification of a path's endpoint at `t = 1`.
@@ -186,7 +191,7 @@ pub const HOMOGENEOUS_ZERO: f64 = 1e-8;
 
 /// Extended-precision Newton iterations of the test that a finite endpoint with a
 /// small homogenising coordinate is off the hyperplane at infinity
-/// (`Tracker::converges_off_the_hyperplane`). On the `bars/rigid` critical points of a
+/// (`Tracker::hyperplane_test`). On the `bars/rigid` critical points of a
 /// design with two base anchors 10⁻⁴ apart (`λ₀` down to 2·10⁻⁹, condition up to
 /// 6·10¹²) the corrections fell below 10⁻¹⁶ within two iterations; at the Fritz John
 /// endpoints of the built-in example's `rigid/rigid` seed they halve at each step.
@@ -198,6 +203,25 @@ pub const OFF_HYPERPLANE_CONVERGED: f64 = 1e-14;
 /// Largest relative change of the homogenising coordinate during that test for it to
 /// count as stable.
 pub const OFF_HYPERPLANE_STABLE: f64 = 1e-3;
+
+/// Ratios of successive Newton corrections that count as linear convergence to the
+/// hyperplane at infinity in that test: at a double point on it each correction is
+/// about half the previous one (`1 − 1/m` at multiplicity `m`: ½, ⅔, ¾ …).
+pub const TO_HYPERPLANE_RATIOS: std::ops::RangeInclusive<f64> = 0.3..=0.9;
+
+/// Where extended-precision Newton's method takes a finite endpoint with a small
+/// homogenising coordinate (`Tracker::hyperplane_test`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum HyperplaneTest {
+    /// Quadratic convergence to a point whose homogenising coordinate is stable and
+    /// not zero: a finite (ill-conditioned) solution.
+    Off,
+    /// Linear convergence, the homogenising coordinate shrinking with the
+    /// corrections (or quadratic convergence to a zero one): a point at infinity.
+    On,
+    /// Neither: the corrections stagnate or jump.
+    Undecided,
+}
 
 /// See [`HOMOGENEOUS_ZERO`]: the bound for a nonsingular endpoint (a regular solution
 /// of the chart system on the hyperplane at infinity).
@@ -427,10 +451,12 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         } else {
             (f64::INFINITY, f64::INFINITY)
         };
-        let status = if self.homogenizing_coordinate_vanishes(status)
-            && !self.converges_off_the_hyperplane(t)
-        {
-            PathStatus::AtInfinity
+        let status = if self.homogenizing_coordinate_vanishes(status) {
+            match self.hyperplane_test(t) {
+                HyperplaneTest::Off => status,
+                HyperplaneTest::On => PathStatus::AtInfinity,
+                HyperplaneTest::Undecided => PathStatus::Failed(FailureReason::HyperplaneUndecided),
+            }
         } else {
             status
         };
@@ -453,28 +479,34 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             .is_some_and(|h| h.norm() <= tolerance * (1.0 + max_norm(&self.x)))
     }
 
-    /// Whether Newton's method in extended precision at `t` converges quadratically to
-    /// a point whose homogenising coordinate is stable and not zero: a finite
-    /// endpoint with a small homogenising coordinate that is a true (ill-conditioned)
-    /// solution of the affine system, not a point at infinity. At a point at infinity
-    /// reached in the chart (in the Fritz John form of the Lagrange conditions, a
-    /// singular point of the constraint set) the iteration converges only linearly,
-    /// each correction about half the previous one, and the homogenising coordinate
-    /// shrinks with it towards 0 (Griewank and Osborne, *Analysis of Newton's method at
-    /// irregular singularities*, SIAM J. Numer. Anal. 20, 1983); where the other
-    /// coordinates diverge the corrections stagnate. The current point is left
-    /// unchanged.
-    fn converges_off_the_hyperplane(&mut self, t: C64) -> bool {
+    /// Where Newton's method in extended precision at `t` takes a finite endpoint with
+    /// a small homogenising coordinate ([`HyperplaneTest`]). A true (ill-conditioned)
+    /// solution of the affine system converges quadratically and keeps its
+    /// homogenising coordinate: [`HyperplaneTest::Off`]. At a point at infinity reached
+    /// in the chart (in the Fritz John form of the Lagrange conditions, a singular
+    /// point of the constraint set) the iteration converges only linearly, each
+    /// correction a fixed fraction (about half) of the previous one, and the
+    /// homogenising coordinate shrinks with it towards 0 (Griewank and Osborne,
+    /// *Analysis of Newton's method at irregular singularities*, SIAM J. Numer. Anal.
+    /// 20, 1983): [`HyperplaneTest::On`]. Anything else — corrections that stagnate
+    /// or jump, a limit that moves the coordinate — decides nothing:
+    /// [`HyperplaneTest::Undecided`], so that the path is reported rather than
+    /// dropped at infinity. The current point is left unchanged.
+    fn hyperplane_test(&mut self, t: C64) -> HyperplaneTest {
         let Some(h) = self.homotopy.homogenizing_variable() else {
-            return false;
+            return HyperplaneTest::Undecided;
         };
         let before = self.x[h];
         self.x_saved.copy_from_slice(&self.x);
         let mut converged = false;
-        for _ in 0..OFF_HYPERPLANE_ITERATIONS {
+        let mut corrections = [0.0f64; OFF_HYPERPLANE_ITERATIONS];
+        let mut taken = 0;
+        for correction in corrections.iter_mut() {
             match self.eval.newton(self.homotopy, &mut self.x, t, true) {
                 NewtonUpdate::Singular => break,
                 NewtonUpdate::Step(norm) => {
+                    *correction = norm;
+                    taken += 1;
                     if norm <= OFF_HYPERPLANE_CONVERGED * (1.0 + max_norm(&self.x)) {
                         converged = true;
                         break;
@@ -485,9 +517,26 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         let after = self.x[h];
         let scale = 1.0 + max_norm(&self.x);
         self.x.copy_from_slice(&self.x_saved);
-        converged
-            && after.norm() > HOMOGENEOUS_ZERO_REGULAR * scale
-            && (after - before).norm() <= OFF_HYPERPLANE_STABLE * after.norm()
+        if converged {
+            return if after.norm() <= HOMOGENEOUS_ZERO_REGULAR * scale {
+                HyperplaneTest::On
+            } else if (after - before).norm() <= OFF_HYPERPLANE_STABLE * after.norm() {
+                HyperplaneTest::Off
+            } else {
+                HyperplaneTest::Undecided
+            };
+        }
+        // Linear: the last three ratios of successive corrections in
+        // `TO_HYPERPLANE_RATIOS`, and the coordinate at most half what it was.
+        let linear = taken >= 4
+            && corrections[taken - 4..taken]
+                .windows(2)
+                .all(|w| w[0] > 0.0 && TO_HYPERPLANE_RATIOS.contains(&(w[1] / w[0])));
+        if linear && after.norm() <= 0.5 * before.norm() {
+            HyperplaneTest::On
+        } else {
+            HyperplaneTest::Undecided
+        }
     }
 
     /// The [`PathResult`] at the current point.
@@ -746,7 +795,10 @@ pub(crate) mod tests {
     /// the hyperplane at infinity: extended-precision Newton converges quadratically
     /// and leaves `λ₀` where it is. `λ₀² − q·λ₀ = 0` at `q = 0` instead has the double
     /// root `λ₀ = 0` on the hyperplane: from `λ₀ = 10⁻⁹` Newton converges linearly,
-    /// halving `λ₀` at each step.
+    /// halving `λ₀` at each step. `w³ − 2w + 2 = 0` in `w = λ₀/s`, `s = 10⁻⁹`, has a
+    /// finite real root (`w ≈ −1.77`) but Newton's method from `w = 1` cycles between
+    /// `w = 1` and `w = 0`: neither shown finite nor at infinity, the path fails (the
+    /// rule before called every non-converging endpoint at infinity).
     #[test]
     fn a_small_homogenising_coordinate_is_at_infinity_only_when_newton_sends_it_to_zero() {
         let (l0, l1, q) = (
@@ -758,8 +810,17 @@ pub(crate) mod tests {
         let separated = (l0.clone() - q.clone())
             * (l0.clone() - q.clone() - Expr::constant(C64::new(delta, 0.0)));
         let double = l0.clone() * l0.clone() - q * l0.clone();
+        let s: f64 = 1e-9;
+        let cycling =
+            Expr::constant(C64::new(s.powi(-3), 0.0)) * l0.clone() * l0.clone() * l0.clone()
+                - Expr::constant(C64::new(2.0 / s, 0.0)) * l0.clone()
+                + Expr::constant(C64::new(2.0, 0.0));
         let chart = l0 + l1 - Expr::one();
-        for (equation, q, off_the_hyperplane) in [(separated, 1e-9, true), (double, 0.0, false)] {
+        for (equation, q, expected) in [
+            (separated, 1e-9, HyperplaneTest::Off),
+            (double, 0.0, HyperplaneTest::On),
+            (cycling, 0.0, HyperplaneTest::Undecided),
+        ] {
             let system = System::new(["lambda0", "lambda1"], ["q"], vec![equation, chart.clone()])
                 .and_then(|s| s.with_homogenizing_variable("lambda0"))
                 .unwrap()
@@ -770,16 +831,16 @@ pub(crate) mod tests {
             tracker.reset(&start, 1.0);
             assert!(tracker.homogenizing_coordinate_vanishes(PathStatus::Singular));
             let t = C64::new(1.0, 0.0);
-            assert_eq!(tracker.converges_off_the_hyperplane(t), off_the_hyperplane);
+            assert_eq!(tracker.hyperplane_test(t), expected);
             assert_eq!(
                 tracker.x[0], start[0],
                 "the current point is left unchanged"
             );
             let status = tracker.finish_at(0, PathStatus::Singular, t).status;
-            let expected = if off_the_hyperplane {
-                PathStatus::Singular
-            } else {
-                PathStatus::AtInfinity
+            let expected = match expected {
+                HyperplaneTest::Off => PathStatus::Singular,
+                HyperplaneTest::On => PathStatus::AtInfinity,
+                HyperplaneTest::Undecided => PathStatus::Failed(FailureReason::HyperplaneUndecided),
             };
             assert_eq!(status, expected);
         }
