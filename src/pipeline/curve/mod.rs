@@ -636,73 +636,105 @@ fn track_problem(
         Route::Neighbour { from, solutions } => (solutions, from, 8),
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
+    let seed_route = matches!(route, Route::Seed);
+    let track_route = |hand_over_when_steps_run_out: bool| {
+        track_with_retries(
+            seeded.problem.evaluator(),
+            starts,
+            |attempt| {
+                let rng = random::stream(
+                    options.seed,
+                    stream.wrapping_mul(16) + salt + attempt as u64,
+                );
+                let leg = match route {
+                    Route::Seed => RouteLeg::FromSeed { attempt },
+                    Route::Neighbour { .. } => RouteLeg::BetweenNeighbours,
+                };
+                let shape = parameters[12..].to_vec();
+                route_path(
+                    (stage, seeded),
+                    (design, motion),
+                    (origin, target),
+                    leg,
+                    rng,
+                    shape,
+                )
+            },
+            options.retry_attempts,
+            // At a generic real pose every critical point is finite and nonsingular (the
+            // seed's points at infinity are gone already): no endgame needed; a path that
+            // diverges, fails or ends singular is re-run with it.
+            TrackingPlan {
+                first: match route {
+                    Route::Seed => &options.tracker,
+                    Route::Neighbour { .. } => &options.neighbour_tracker,
+                },
+                retry: &options.retry_tracker,
+                endgame: false,
+                whole_detours: true,
+                twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
+                hand_over_when_steps_run_out,
+            },
+        )
+    };
+    // Complete on its own terms: every path of the generic route accounted for (a
+    // finite endpoint or one at infinity) and exactly the seed's count of distinct
+    // finite ones. (Not the union with the seed route's endpoints: where the points are
+    // ill-conditioned, one point reached by both routes can differ by more than the
+    // same-point tolerance and would hide a missed one.)
+    let generic_complete = |generic: &Retried| {
+        generic.accounted == seeded.generic_count && generic.endpoints.len() == seeded.start_count
+    };
+    // The seed route first; where its paths run out of steps (a route that is hard
+    // all along), the generic route before the seed route's re-runs and detours.
+    let mut retried = track_route(seed_route);
+    let mut generic = None;
+    if retried.handed_over {
+        let from_generic = generic_route(seeded, &parameters, stream, options);
+        let tracked = retried.tracked + from_generic.tracked;
+        if generic_complete(&from_generic) {
+            retried = Retried {
+                accounted: seeded.start_count,
+                tracked,
+                reasons: BTreeMap::new(),
+                ..from_generic
+            };
+        } else {
+            retried = track_route(false);
+            retried.tracked += tracked;
+            generic = Some(from_generic);
+        }
+    }
     let Retried {
         endpoints,
         accounted: best,
         tracked,
         reasons,
         ..
-    } = track_with_retries(
-        seeded.problem.evaluator(),
-        starts,
-        |attempt| {
-            let rng = random::stream(
-                options.seed,
-                stream.wrapping_mul(16) + salt + attempt as u64,
-            );
-            let leg = match route {
-                Route::Seed => RouteLeg::FromSeed { attempt },
-                Route::Neighbour { .. } => RouteLeg::BetweenNeighbours,
-            };
-            let shape = parameters[12..].to_vec();
-            route_path(
-                (stage, seeded),
-                (design, motion),
-                (origin, target),
-                leg,
-                rng,
-                shape,
-            )
-        },
-        options.retry_attempts,
-        // At a generic real pose every critical point is finite and nonsingular (the
-        // seed's points at infinity are gone already): no endgame needed; a path that
-        // diverges, fails or ends singular is re-run with it.
-        TrackingPlan {
-            first: match route {
-                Route::Seed => &options.tracker,
-                Route::Neighbour { .. } => &options.neighbour_tracker,
-            },
-            retry: &options.retry_tracker,
-            endgame: false,
-            whole_detours: true,
-            twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
-        },
-    );
-    let (endpoints, best, tracked, reasons) =
-        if best < seeded.start_count && matches!(route, Route::Seed) {
-            let generic = generic_route(seeded, &parameters, stream, options);
-            let tracked = tracked + generic.tracked;
-            // Complete on its own terms: every path of the generic route accounted for (a
-            // finite endpoint or one at infinity) and exactly the seed's count of distinct
-            // finite ones. (Not the union with the seed route's endpoints: where the
-            // points are ill-conditioned, one point reached by both routes can differ by
-            // more than the same-point tolerance and would hide a missed one.)
-            if generic.accounted == seeded.generic_count
-                && generic.endpoints.len() == seeded.start_count
-            {
-                (
-                    generic.endpoints,
-                    seeded.start_count,
-                    tracked,
-                    BTreeMap::new(),
-                )
-            } else {
-                (endpoints, best, tracked, reasons)
+    } = retried;
+    let (endpoints, best, tracked, reasons) = if best < seeded.start_count && seed_route {
+        let (generic, tracked) = match generic {
+            // Already tracked (and counted) when the seed route handed over.
+            Some(generic) => (generic, tracked),
+            None => {
+                let generic = generic_route(seeded, &parameters, stream, options);
+                let tracked = tracked + generic.tracked;
+                (generic, tracked)
             }
+        };
+        if generic_complete(&generic) {
+            (
+                generic.endpoints,
+                seeded.start_count,
+                tracked,
+                BTreeMap::new(),
+            )
         } else {
             (endpoints, best, tracked, reasons)
-        };
+        }
+    } else {
+        (endpoints, best, tracked, reasons)
+    };
     let failure = (best < seeded.start_count).then(|| PathFailure {
         pose_index: Some(index),
         tau: Some(sample.tau),

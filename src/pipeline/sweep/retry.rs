@@ -81,6 +81,10 @@ pub(crate) struct Retried {
     /// points at infinity account for every path (`false` without a twin, or where a
     /// twin run failed).
     pub confirmed_by_twin: bool,
+    /// Whether the plan handed the group over after the first run
+    /// ([`TrackingPlan::hand_over_when_steps_run_out`]): its paths ran out of steps,
+    /// and nothing after the first run was tried.
+    pub handed_over: bool,
 }
 
 /// Relative distance under which two endpoints are the same point.
@@ -268,6 +272,15 @@ pub(crate) struct TrackingPlan<'a> {
     /// The family in a second formulation ([`ProjectiveTwin`]): the reference route's
     /// paths that end at infinity or stay lost are tracked once more there.
     pub twin: Option<&'a dyn ProjectiveTwin>,
+    /// Whether to stop right after the first run when a path of it ran out of steps
+    /// ([`FailureReason::TooManySteps`]), with [`Retried::handed_over`] set: the
+    /// caller has another route to try first. A route along which paths need more
+    /// than the tracker's whole step budget is hard everywhere along it (e.g. a design
+    /// with two anchors of a rigid part 10⁻⁴ apart, whose critical points have
+    /// multipliers of 10⁷ at every parameter of the seed route), and its re-runs,
+    /// detours and long last re-runs cost 10–40 times a route that meets that
+    /// trouble only at its end.
+    pub hand_over_when_steps_run_out: bool,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -279,6 +292,7 @@ impl<'a> TrackingPlan<'a> {
             endgame: true,
             whole_detours: true,
             twin: None,
+            hand_over_when_steps_run_out: false,
         }
     }
 
@@ -329,11 +343,26 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         endgame,
         whole_detours,
         twin,
+        hand_over_when_steps_run_out,
     } = plan;
     let expected = starts.len();
     let reference = PathParameterHomotopy::new(system, path(0));
     let mut paths = track_all(&reference, starts, tracker, endgame);
     let mut tracked = starts.len();
+    if hand_over_when_steps_run_out
+        && paths
+            .iter()
+            .any(|p| p.status == PathStatus::Failed(FailureReason::TooManySteps))
+    {
+        return Retried {
+            endpoints: finite_solutions(&paths),
+            accounted: accounted(&paths),
+            tracked,
+            reasons: unaccounted_reasons(&paths),
+            confirmed_by_twin: false,
+            handed_over: true,
+        };
+    }
     let crossed = crossings(&paths);
     let diverged_mid_path =
         |p: &PathResult| p.status == PathStatus::Failed(FailureReason::DivergedBeforeEndgame);
@@ -549,5 +578,6 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         tracked,
         reasons,
         confirmed_by_twin,
+        handed_over: false,
     }
 }
