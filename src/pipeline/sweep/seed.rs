@@ -13,7 +13,10 @@
 //! along different routes) agree on it, or when the family's projective twin
 //! ([`super::ProjectiveTwin`]) accounts for every path of one seed point (each path
 //! not finite there is at infinity in both formulations); otherwise the shortfall is
-//! a seed-stage [`PathFailure`].
+//! a seed-stage [`PathFailure`]. A seed point whose first run has paths that run out
+//! of steps is left at that (its count a lower bound that confirms nothing) for the
+//! next seed point, except the last one, which re-runs, detours and re-tracks in the
+//! twin as every point did before.
 
 use super::{PathFailure, Retried, TrackingPlan, detour_point, same_endpoint, track_with_retries};
 use crate::C64;
@@ -104,6 +107,23 @@ struct SeedRun<S> {
     parameters: Vec<C64>,
     solutions: Vec<Vec<C64>>,
     reasons: BTreeMap<String, usize>,
+    /// Whether the run stopped after its first run because paths ran out of steps
+    /// ([`Retried::handed_over`]): its count is only a lower bound, and confirms no
+    /// other point's count.
+    handed_over: bool,
+}
+
+/// Whether `runs` settle the count: the generic count reached, or the largest count
+/// found by any run confirmed by two runs that were not handed over
+/// ([`seed_count_confirmed`] over those).
+fn runs_confirm<S>(runs: &[SeedRun<S>], generic: usize) -> bool {
+    let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+    let counted: Vec<usize> = runs
+        .iter()
+        .filter(|r| !r.handed_over)
+        .map(|r| r.solutions.len())
+        .collect();
+    most == generic || (counted.contains(&most) && seed_count_confirmed(&counted, generic))
 }
 
 /// Problem `problem` of `family` at its seed points, the common one first, the others
@@ -123,6 +143,16 @@ pub(crate) fn seed_problem<F: Family>(
             .lost_paths_only()
             .with_twin(twin),
         TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).with_twin(twin),
+        // Every point before the last one: where its paths run out of steps, the next
+        // seed point (a few hundred milliseconds on the rigid metrics of a base
+        // similar to the platform) rather than this one's re-runs and last chance
+        // (seconds, and in vain there); the last point gets them all.
+        TrackingPlan {
+            hand_over_when_steps_run_out: true,
+            ..TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
+                .lost_paths_only()
+                .with_twin(twin)
+        },
     ];
     let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
     let mut tracked = 0;
@@ -150,15 +180,35 @@ pub(crate) fn seed_problem<F: Family>(
             )
         };
         // Whether `count` would end the search: the generic count, or the largest
-        // count so far, found by an earlier point too.
+        // count so far, found by an earlier point too (one not handed over).
         let confirms = |count: usize| {
             let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
-            count == generic || (count >= most && runs.iter().any(|r| r.solutions.len() == count))
+            count == generic
+                || (count >= most
+                    && runs
+                        .iter()
+                        .any(|r| !r.handed_over && r.solutions.len() == count))
         };
         let lost_first = point > 0 && policy.confirm_lost_paths_first;
-        let mut retried: Retried = track(&plans[if lost_first { 0 } else { 1 }]);
+        let hand_over = policy.confirm_lost_paths_first && point + 1 < policy.points;
+        let plan = match (lost_first, hand_over) {
+            (_, true) => &plans[2],
+            (true, false) => &plans[0],
+            (false, false) => &plans[1],
+        };
+        let mut retried: Retried = track(plan);
         tracked += retried.tracked;
         let mut solutions = distinct_solutions(retried.endpoints, generic);
+        if retried.handed_over {
+            runs.push(SeedRun {
+                seed,
+                parameters,
+                solutions,
+                reasons: retried.reasons,
+                handed_over: true,
+            });
+            continue;
+        }
         if lost_first && retried.accounted < generic && !confirms(solutions.len()) {
             retried = track(&plans[1]);
             tracked += retried.tracked;
@@ -173,20 +223,20 @@ pub(crate) fn seed_problem<F: Family>(
             parameters,
             solutions,
             reasons: retried.reasons,
+            handed_over: false,
         });
-        let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
-        let most = counts.iter().copied().max().unwrap_or(0);
+        let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
         if settled_by_twin && count == most {
             twin_settled = true;
             break;
         }
-        if seed_count_confirmed(&counts, generic) {
+        if runs_confirm(&runs, generic) {
             break;
         }
     }
     let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
     let most = counts.iter().copied().max().unwrap_or(0);
-    let confirmed = twin_settled || seed_count_confirmed(&counts, generic);
+    let confirmed = twin_settled || runs_confirm(&runs, generic);
     let chosen = runs
         .into_iter()
         .find(|r| r.solutions.len() == most)
