@@ -15,8 +15,8 @@
 //! not finite there is at infinity in both formulations); otherwise the shortfall is
 //! a seed-stage [`PathFailure`]. A seed point whose first run has paths that run out
 //! of steps is left at that (its count a lower bound that confirms nothing) for the
-//! next seed point, except the last one, which re-runs, detours and re-tracks in the
-//! twin as every point did before.
+//! next seed point, except the first and the last one, which re-run, detour and
+//! re-track in the twin.
 
 use super::{PathFailure, Retried, TrackingPlan, detour_point, same_endpoint, track_with_retries};
 use crate::C64;
@@ -143,10 +143,12 @@ pub(crate) fn seed_problem<F: Family>(
             .lost_paths_only()
             .with_twin(twin),
         TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).with_twin(twin),
-        // Every point before the last one: where its paths run out of steps, the next
-        // seed point (a few hundred milliseconds on the rigid metrics of a base
-        // similar to the platform) rather than this one's re-runs and last chance
-        // (seconds, and in vain there); the last point gets them all.
+        // A confirming point before the last one: where its paths run out of steps,
+        // the next seed point (a few hundred milliseconds on the rigid metrics of a
+        // base similar to the platform) rather than this one's re-runs and last
+        // chance (seconds, and in vain there). The first point and the last one get
+        // them all (handing over at the first point too left close-anchor designs
+        // with five disagreeing counts).
         TrackingPlan {
             hand_over_when_steps_run_out: true,
             ..TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
@@ -190,11 +192,11 @@ pub(crate) fn seed_problem<F: Family>(
                         .any(|r| !r.handed_over && r.solutions.len() == count))
         };
         let lost_first = point > 0 && policy.confirm_lost_paths_first;
-        let hand_over = policy.confirm_lost_paths_first && point + 1 < policy.points;
+        let hand_over = lost_first && point + 1 < policy.points;
         let plan = match (lost_first, hand_over) {
-            (_, true) => &plans[2],
+            (true, true) => &plans[2],
             (true, false) => &plans[0],
-            (false, false) => &plans[1],
+            (false, _) => &plans[1],
         };
         let mut retried: Retried = track(plan);
         tracked += retried.tracked;

@@ -86,3 +86,43 @@ fn paths_diverging_together_are_a_crossing() {
     assert_eq!(crossings(&paths), vec![true, true, false, false, false]);
     assert_eq!(accounted(&paths), 4);
 }
+
+/// `x² = p` from `p = 1` to `p = 4` with a step budget of two steps: both paths run
+/// out of steps. A plan that hands over stops after the first run (both paths
+/// tracked once, nothing found); one that does not re-runs them with the retry
+/// tracker and finds both roots `±2`.
+#[test]
+fn a_plan_hands_over_after_a_first_run_whose_paths_run_out_of_steps() {
+    use crate::homotopy::{PolylinePath, TrackerOptions};
+    use crate::system::{Expr, System};
+    let (x, p) = (Expr::variable("x"), Expr::parameter("p"));
+    let system = System::new(["x"], ["p"], vec![x.clone() * x - p])
+        .unwrap()
+        .compile();
+    let starts = vec![vec![C64::new(1.0, 0.0)], vec![C64::new(-1.0, 0.0)]];
+    let route = |_| PolylinePath::new(vec![vec![C64::new(1.0, 0.0)], vec![C64::new(4.0, 0.0)]]);
+    let mut starved = TrackerOptions::default();
+    starved.step.max_steps = 2;
+    let retry = TrackerOptions::default();
+    for hand_over in [true, false] {
+        let plan = TrackingPlan {
+            hand_over_when_steps_run_out: hand_over,
+            ..TrackingPlan::with_endgame(&starved, &retry)
+        };
+        let retried = track_with_retries(&system, &starts, route, 1, plan);
+        assert_eq!(retried.handed_over, hand_over);
+        if hand_over {
+            assert_eq!((retried.tracked, retried.accounted), (2, 0));
+            assert!(retried.endpoints.is_empty());
+            assert_eq!(retried.reasons.get("TooManySteps"), Some(&2));
+        } else {
+            assert_eq!(retried.accounted, 2);
+            let mut roots: Vec<f64> = retried.endpoints.iter().map(|e| e[0].re).collect();
+            roots.sort_by(f64::total_cmp);
+            assert!(
+                (roots[0] + 2.0).abs() < 1e-12 && (roots[1] - 2.0).abs() < 1e-12,
+                "{roots:?}"
+            );
+        }
+    }
+}
