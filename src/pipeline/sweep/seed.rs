@@ -302,3 +302,36 @@ pub(crate) fn split_seeded<S>(seeded: Vec<Seeded<S>>) -> (Vec<Seeded<S>>, Vec<Pa
         .collect();
     (problems, failures, paths_tracked)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(count: usize, handed_over: bool) -> SeedRun<()> {
+        SeedRun {
+            seed: (),
+            parameters: Vec::new(),
+            solutions: vec![Vec::new(); count],
+            reasons: BTreeMap::new(),
+            handed_over,
+        }
+    }
+
+    /// A handed-over run's count is a lower bound: it confirms no other run's count,
+    /// and a larger one leaves a smaller count agreed on by two full runs unconfirmed;
+    /// the generic count settles the count whoever found it.
+    #[test]
+    fn a_handed_over_seed_count_confirms_nothing() {
+        let confirm = |runs: &[(usize, bool)]| {
+            let runs: Vec<SeedRun<()>> = runs.iter().map(|&(c, h)| run(c, h)).collect();
+            runs_confirm(&runs, 88)
+        };
+        assert!(!confirm(&[(28, false), (28, true)]));
+        assert!(confirm(&[(28, false), (28, true), (28, false)]));
+        assert!(!confirm(&[(28, false), (28, false), (29, true)]));
+        assert!(confirm(&[(28, false), (88, true)]));
+        // The rule without hand-overs is `seed_count_confirmed`'s.
+        assert!(confirm(&[(28, false), (28, false)]));
+        assert!(!confirm(&[(27, false), (28, false)]));
+    }
+}
