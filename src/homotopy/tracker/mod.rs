@@ -66,7 +66,7 @@ use super::homotopies::Homotopy;
 use crate::C64;
 use precision::{Evaluation, NewtonUpdate, Precision, RETURN_TO_DOUBLE_CONDITION};
 use serde::{Deserialize, Serialize};
-use step::{step_factor, step_floor, step_fraction};
+use step::{MIN_ABSOLUTE_STEP, step_factor, step_floor, step_fraction};
 
 mod endgame;
 mod endpoint;
@@ -284,6 +284,10 @@ enum RouteStop {
     Diverged,
 }
 
+/// Accepted steps in a row shorter than [`MIN_ABSOLUTE_STEP`] after which a path is
+/// failed with [`FailureReason::StepSizeTooSmall`] (it no longer advances in `t`).
+const CRAWL_STEPS: usize = 200;
+
 /// A path tracker bound to one homotopy, owning all per-thread buffers (allocated once
 /// in [`Tracker::new`]; tracking allocates only the returned [`PathResult`]).
 pub struct Tracker<'h, H: Homotopy + ?Sized> {
@@ -304,6 +308,12 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     state: endgame::EndgameState,
     step: f64,
     steps: usize,
+    /// Steps after which [`Tracker::track_segment`] stops with
+    /// [`FailureReason::TooManySteps`]: `max_steps`, lowered for the duration of one
+    /// Cauchy loop to its own budget.
+    step_limit: usize,
+    /// Accepted steps in a row shorter than [`MIN_ABSOLUTE_STEP`] (see [`CRAWL_STEPS`]).
+    crawled: usize,
     rejected: usize,
     /// Double or double-double arithmetic, and the counters that switch between them.
     precision: Precision,
@@ -326,7 +336,6 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                 homotopy.workspace_len(),
                 options.precision.extended_residual,
             ),
-            options,
             n,
             x: vec![z; n],
             x_predicted: vec![z; n],
@@ -340,11 +349,14 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             state: endgame::EndgameState::new(n),
             step: 0.0,
             steps: 0,
+            step_limit: options.step.max_steps,
+            crawled: 0,
             rejected: 0,
             precision: Precision::default(),
             winding: 1,
             factorization_current: false,
             t: C64::new(0.0, 0.0),
+            options,
         }
     }
 
@@ -358,6 +370,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.t = C64::new(t0, 0.0);
         self.step = self.options.step.initial_step;
         self.steps = 0;
+        self.step_limit = self.options.step.max_steps;
+        self.crawled = 0;
         self.rejected = 0;
         self.precision = Precision::default();
         self.eval.extended = false;
@@ -611,9 +625,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.factorization_current = false;
         let floor = step_floor(&self.options, length);
         while u < 1.0 {
-            if self.steps >= self.options.step.max_steps
-                || self.precision.budget_spent(&self.options)
-            {
+            if self.steps >= self.step_limit || self.precision.budget_spent(&self.options) {
                 return Err(RouteStop::Failed(FailureReason::TooManySteps));
             }
             let mut h = step_fraction(self.step, self.options.step.max_step, length, u);
@@ -640,6 +652,19 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     let factor =
                         step_factor(first_update / scale, self.options.step.prediction_tolerance);
                     self.step = (h * length * factor).min(self.options.step.max_step);
+                    // Below [`MIN_ABSOLUTE_STEP`] `t` hardly moves near 1 (its spacing
+                    // there is 1.1e-16): accepted steps of 1e-17 at t = 1 − 5e-8 once
+                    // crawled on for 5,000 steps towards a singular endpoint far out. A
+                    // few such steps are a passing near-singularity; CRAWL_STEPS in a
+                    // row are a path that no longer advances.
+                    self.crawled = if self.step < MIN_ABSOLUTE_STEP {
+                        self.crawled + 1
+                    } else {
+                        0
+                    };
+                    if u < 1.0 && self.crawled >= CRAWL_STEPS {
+                        return Err(RouteStop::Failed(FailureReason::StepSizeTooSmall));
+                    }
                     if self.options.endgame.growth_before_divergence
                         && u < 1.0
                         && self.step < floor * length
@@ -726,6 +751,18 @@ pub(crate) mod tests {
         System::new(["x"], ["q"], vec![x.clone() * x - q])
             .unwrap()
             .compile()
+    }
+
+    /// `q·x³ − x − 1 = 0`, one unknown `x` and one parameter `q`.
+    fn cubic_family() -> CompiledSystem {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        System::new(
+            ["x"],
+            ["q"],
+            vec![q * x.clone() * x.clone() * x.clone() - x - Expr::one()],
+        )
+        .unwrap()
+        .compile()
     }
 
     fn real_segment(
@@ -869,14 +906,7 @@ pub(crate) mod tests {
     /// `1/c` by 10⁻³, or a non-negative one, it rejects.
     #[test]
     fn a_puiseux_cycle_to_infinity_is_recognised_from_two_cauchy_loops() {
-        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
-        let cubic = System::new(
-            ["x"],
-            ["q"],
-            vec![q * x.clone() * x.clone() * x.clone() - x - Expr::one()],
-        )
-        .unwrap()
-        .compile();
+        let cubic = cubic_family();
         let homotopy = real_segment(&cubic, 1.0, 0.0);
         let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
         tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
@@ -897,6 +927,90 @@ pub(crate) mod tests {
         assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
         tracker.state.loop_valuations[0] = 0.5;
         assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
+    }
+
+    /// The direct finish's step budget: on [`square`] from `t = 0.9` to 1 with steps
+    /// of at most `10⁻³` (100 steps) it arrives; with at most `2·10⁻⁴` (500 steps)
+    /// it stops after [`endgame::DIRECT_FINISH_STEPS`] more steps, short of `t = 1`.
+    #[test]
+    fn a_segment_within_a_step_budget_stops_at_the_budget() {
+        for (max_step, arrives) in [(1e-3, true), (2e-4, false)] {
+            let system = square_root_family();
+            let homotopy = square(&system);
+            let mut options = TrackerOptions::default();
+            options.step.max_step = max_step;
+            let mut tracker = Tracker::new(&homotopy, options);
+            let t0 = C64::new(0.9, 0.0);
+            tracker.reset(&[C64::new(1.9f64.sqrt(), 0.0)], 0.9);
+            let reached =
+                tracker.segment_within(t0, C64::new(1.0, 0.0), endgame::DIRECT_FINISH_STEPS);
+            assert_eq!(reached, arrives, "{} steps", tracker.steps);
+            if !arrives {
+                assert_eq!(tracker.steps, endgame::DIRECT_FINISH_STEPS);
+                assert!(tracker.t.re < 1.0);
+            }
+            // The path's own limit is back.
+            assert_eq!(tracker.step_limit, tracker.options.step.max_steps);
+        }
+    }
+
+    /// Steps capped at 10⁻¹⁶ (below [`MIN_ABSOLUTE_STEP`]) no longer advance `t`:
+    /// after [`CRAWL_STEPS`] of them the path fails with
+    /// [`FailureReason::StepSizeTooSmall`] instead of spending its whole budget.
+    #[test]
+    fn a_path_whose_accepted_steps_no_longer_advance_t_fails_early() {
+        let mut options = TrackerOptions::default();
+        options.step.max_step = 1e-16;
+        let system = square_root_family();
+        let homotopy = square(&system);
+        let mut tracker = Tracker::new(&homotopy, options);
+        tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
+        let stop = tracker.track_segment(C64::new(0.0, 0.0), C64::new(0.5, 0.0));
+        assert_eq!(
+            stop,
+            Err(RouteStop::Failed(FailureReason::StepSizeTooSmall))
+        );
+        assert_eq!(tracker.steps, CRAWL_STEPS);
+    }
+
+    /// A Cauchy loop that needs more than its step budget (here: steps of at most
+    /// 10⁻⁴ around a circle of length 0.16 at `s = 0.025`) is abandoned: the path is
+    /// back where the loop started, at `t = 1 − s`, and the endgame may go on to a
+    /// smaller radius. The same loop with its usual steps closes after two turns.
+    #[test]
+    fn a_cauchy_loop_over_its_step_budget_returns_to_where_it_started() {
+        let cubic = cubic_family();
+        let homotopy = real_segment(&cubic, 1.0, 0.0);
+        let s = 0.025;
+        let end = C64::new(1.0 - s, 0.0);
+        for (max_step, closes) in [
+            (TrackerOptions::default().step.max_step, true),
+            (1e-4, false),
+        ] {
+            let mut options = TrackerOptions::default();
+            options.step.max_step = max_step;
+            let mut tracker = Tracker::new(&homotopy, options);
+            tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
+            assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
+            let (before, steps_before) = (tracker.x.clone(), tracker.steps);
+            let looped = tracker.cauchy_loop(s);
+            if closes {
+                assert_eq!(looped.ok(), Some(2));
+            } else {
+                assert_eq!(
+                    looped,
+                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
+                );
+                assert_eq!(tracker.x, before);
+                assert_eq!(tracker.t, end);
+                // The loop's budget was spent, not the rest of the path's.
+                let options = &tracker.options.endgame;
+                let budget = endgame::LOOP_STEPS_PER_SAMPLE
+                    * options.cauchy_samples_per_loop
+                    * options.max_winding_number;
+                assert_eq!(tracker.steps - steps_before, budget);
+            }
+        }
     }
 
     #[test]
