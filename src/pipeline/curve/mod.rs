@@ -685,10 +685,25 @@ fn track_problem(
     let generic_complete = |generic: &Retried| {
         generic.accounted == seeded.generic_count && generic.endpoints.len() == seeded.start_count
     };
+    // Where the seed has fewer solutions than the expected count (a seed count refuted
+    // at a real pose, see `probe_seed_counts`), the seed route cannot complete a pose:
+    // the generic route first.
+    let mut generic = None;
+    let mut generic_tracked = 0;
+    if seed_route && seeded.seed_solutions.len() < seeded.start_count {
+        let from_generic = generic_route(seeded, &parameters, stream, options);
+        if generic_complete(&from_generic) {
+            let at = (&parameters[..], &k);
+            let counts = (seeded.start_count, None, from_generic.tracked);
+            return problem_at_pose(stage, seeded, from_generic.endpoints, at, counts, options);
+        }
+        generic_tracked = from_generic.tracked;
+        generic = Some(from_generic);
+    }
     // The seed route first; where its paths run out of steps (a route that is hard
     // all along), the generic route before the seed route's re-runs and detours.
-    let mut retried = track_route(seed_route);
-    let mut generic = None;
+    let mut retried = track_route(seed_route && generic.is_none());
+    retried.tracked += generic_tracked;
     if retried.handed_over {
         let from_generic = generic_route(seeded, &parameters, stream, options);
         let tracked = retried.tracked + from_generic.tracked;

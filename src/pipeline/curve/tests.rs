@@ -91,3 +91,43 @@ fn motion_path_velocity_matches_finite_differences() {
         }
     }
 }
+
+/// A seed count below the generic one is tested at the motion's first pose: the
+/// example's `plate/plate` seed has all 50 critical points; with one dropped (a count
+/// two seed points could have agreed on wrongly) the generic route to the first pose
+/// refutes the 49, the expected count is 50 again, and a pose solved from the seed
+/// is complete with 50 points (from the generic route), not with 49.
+#[test]
+fn a_seed_count_that_the_generic_route_refutes_is_raised() {
+    let (design, motion) = (example_design(), example_motion());
+    let metrics = Metric::parse_list("plate/plate").expect("metric");
+    let options = CurveOptions {
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let provider = &default_start_solutions;
+    let mut stage = seed_stage(&design, &motion, &metrics, &options, provider).expect("stage");
+    let index = stage
+        .problems
+        .iter()
+        .position(|p| p.id.name() == "plate/plate:singularity")
+        .expect("plate/plate");
+    let generic = stage.problems[index].generic_count;
+    assert_eq!(stage.problems[index].start_count, generic);
+    stage.problems[index].seed_solutions.pop();
+    stage.problems[index].start_count = generic - 1;
+    let first = motion.pose(motion.tau_range()[0]).expect("pose");
+    let normalization = stage.normalization;
+    let tracked = probe_seed_counts(&mut stage.problems, (first, normalization), &options);
+    assert!(tracked >= generic, "{tracked}");
+    assert_eq!(stage.problems[index].start_count, generic);
+    let samples = sample_motion(&motion, 5).expect("samples");
+    let context = SolveContext {
+        stage: &stage,
+        motion: &motion,
+        options: &options,
+    };
+    let at_pose = track_problem(context, (2, samples[2]), index, Route::Seed);
+    assert_eq!(at_pose.complete.map(|set| set.len()), Some(generic));
+    assert!(at_pose.entry.2.is_none());
+}
