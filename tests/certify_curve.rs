@@ -82,8 +82,20 @@ fn certified_run(design: &Design, motion: &Motion, poses: usize) -> (usize, usiz
                     // the metric cannot be a certified global minimum.
                     None => assert_ne!(certificate.status, CertifiedStatus::GlobalMinimum),
                     Some(c) => {
-                        // Certified real points are real points the pipeline kept.
-                        assert!(c.real <= distance.real_critical_points, "{name} {sub}");
+                        // Certified real points are real points the pipeline kept, but
+                        // for ill-conditioned ones whose multipliers it computed too
+                        // inexactly to call them real (one on the example, |λ| ≈ 53,
+                        // Im λ ≈ 1.4·10⁻⁶, proved real in double-double): those must
+                        // not undercut the reported minimum, which the enclosure of
+                        // the minimum over every certified real point then contains.
+                        if c.real > distance.real_critical_points {
+                            let [lo, hi] = c.distance.expect("an enclosure");
+                            let reported = distance.distance.expect("a real point");
+                            assert!(
+                                lo <= reported * (1.0 + 1e-9) && reported <= hi * (1.0 + 1e-9),
+                                "{name} {sub}: {c:?}"
+                            );
+                        }
                         assert!(c.certified <= c.expected, "{name} {sub}");
                         if certificate.status == CertifiedStatus::GlobalMinimum {
                             assert!(c.complete, "{name} {sub}");
@@ -101,14 +113,27 @@ fn certified_run(design: &Design, motion: &Motion, poses: usize) -> (usize, usiz
 
 #[test]
 fn example_curve_distances_are_certified() {
-    let (global, total, lines) = certified_run(&example_design(), &example_motion(), 6);
+    let (global, total, lines) = certified_run(&example_design(), &example_motion(), 90);
     println!(
         "{}\n{global} of {total} certified global minima",
         lines.join("\n")
     );
     // Every metric but rigid/rigid (whose fixed shapes send 8 of the 88 generic
-    // critical points to infinity) is certified at most poses.
-    assert!(global * 10 >= total * 8, "{global} of {total}");
+    // critical points to infinity, so that completeness cannot be proved) is a
+    // certified global minimum at every pose: the sub-problems' counts are generic
+    // there. (In double precision alone 12 of these 720 fail: each has one real
+    // critical point with a multiplier of 53 to 2.3·10⁴, which takes the
+    // double-double test.)
+    let others: Vec<&String> = lines
+        .iter()
+        .filter(|l| !l.contains(" rigid/rigid:"))
+        .collect();
+    let uncertified: Vec<&&String> = others
+        .iter()
+        .filter(|l| !l.contains("GlobalMinimum"))
+        .collect();
+    assert!(uncertified.is_empty(), "{uncertified:#?}");
+    assert_eq!((global, total), (720, 810));
 }
 
 #[test]

@@ -37,6 +37,7 @@ use crate::mechanism::rpr::Design;
 use crate::metric::Metric;
 use crate::problem::LagrangeProblem;
 use crate::system::interval::{ComplexInterval, Interval};
+use crate::system::interval_dd::{MidRadDd, RealDd};
 use serde::{Deserialize, Serialize};
 
 /// The similarity `K ↦ (K − c)/s` in which a sub-problem's system is solved.
@@ -78,9 +79,43 @@ fn is_zero(v: &usize) -> bool {
     *v == 0
 }
 
-/// Interval shape constants `(u, v, r²)` of a rigid part from its anchors.
-fn shape_enclosure(p: &[[f64; 2]; 3]) -> Option<(Interval, Interval, Interval)> {
-    let point = |q: [f64; 2]| [Interval::point(q[0]), Interval::point(q[1])];
+/// The real arithmetic the parameters are enclosed in: double intervals
+/// ([`Interval`]), or double-double midpoints with radii ([`RealDd`]).
+trait Enclosure:
+    Copy + std::ops::Add<Output = Self> + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
+{
+    fn exact(v: f64) -> Self;
+    fn recip(self) -> Option<Self>;
+    fn sqrt(self) -> Option<Self>;
+}
+
+impl Enclosure for Interval {
+    fn exact(v: f64) -> Self {
+        Interval::point(v)
+    }
+    fn recip(self) -> Option<Self> {
+        Interval::recip(&self)
+    }
+    fn sqrt(self) -> Option<Self> {
+        Interval::sqrt(&self)
+    }
+}
+
+impl Enclosure for RealDd {
+    fn exact(v: f64) -> Self {
+        RealDd::exact(v)
+    }
+    fn recip(self) -> Option<Self> {
+        RealDd::recip(self)
+    }
+    fn sqrt(self) -> Option<Self> {
+        RealDd::sqrt(self)
+    }
+}
+
+/// Shape constants `(u, v, r²)` of a rigid part from its anchors, enclosed.
+fn shape_enclosure<T: Enclosure>(p: &[[f64; 2]; 3]) -> Option<(T, T, T)> {
+    let point = |q: [f64; 2]| [T::exact(q[0]), T::exact(q[1])];
     let [p1, p2, p3] = [point(p[0]), point(p[1]), point(p[2])];
     let e = [p2[0] - p1[0], p2[1] - p1[1]];
     let w = [p3[0] - p1[0], p3[1] - p1[1]];
@@ -92,27 +127,21 @@ fn shape_enclosure(p: &[[f64; 2]; 3]) -> Option<(Interval, Interval, Interval)> 
     Some((u, v, r2))
 }
 
-/// The parameter boxes of `problem` at configuration `k` of `design` in `frame`:
+/// The parameters of `problem` at configuration `k` of `design` in `frame`, enclosed:
 /// `(K − c)/s`, then the shape constants in the frame's units (see
 /// [`LagrangeProblem::parameters_in_units`]). `None` if a shape is degenerate.
-pub fn parameter_enclosure(
+fn parameter_values<T: Enclosure>(
     problem: &LagrangeProblem,
     design: &Design,
     k: &[f64; 12],
     frame: Frame,
-) -> Option<Vec<ComplexInterval>> {
-    let inverse_scale = Interval::point(frame.scale).recip()?;
-    let real = |v: Interval| ComplexInterval {
-        re: v,
-        im: Interval::point(0.0),
-    };
-    let mut out: Vec<ComplexInterval> = (0..12)
-        .map(|i| {
-            real((Interval::point(k[i]) - Interval::point(frame.center[i % 2])) * inverse_scale)
-        })
+) -> Option<Vec<T>> {
+    let inverse_scale = T::exact(frame.scale).recip()?;
+    let mut out: Vec<T> = (0..12)
+        .map(|i| (T::exact(k[i]) - T::exact(frame.center[i % 2])) * inverse_scale)
         .collect();
-    let base = shape_enclosure(design.base())?;
-    let platform = shape_enclosure(design.platform())?;
+    let base = shape_enclosure::<T>(design.base())?;
+    let platform = shape_enclosure::<T>(design.platform())?;
     for name in &problem.parameter_names()[12..] {
         let (u, v, r2) = if name.ends_with("_base") {
             base
@@ -131,9 +160,38 @@ pub fn parameter_enclosure(
         } else {
             r2 * inverse_scale * inverse_scale
         };
-        out.push(real(value));
+        out.push(value);
     }
     Some(out)
+}
+
+/// The parameter boxes of `problem` at configuration `k` of `design` in `frame`
+/// ([`parameter_values`] in double interval arithmetic). `None` if a shape is
+/// degenerate.
+pub fn parameter_enclosure(
+    problem: &LagrangeProblem,
+    design: &Design,
+    k: &[f64; 12],
+    frame: Frame,
+) -> Option<Vec<ComplexInterval>> {
+    let real = |v: Interval| ComplexInterval {
+        re: v,
+        im: Interval::point(0.0),
+    };
+    let values = parameter_values::<Interval>(problem, design, k, frame)?;
+    Some(values.into_iter().map(real).collect())
+}
+
+/// The same parameters with double-double midpoints ([`parameter_values`] in
+/// [`RealDd`] arithmetic), for the double-double test of ill-conditioned points.
+pub fn parameter_enclosure_dd(
+    problem: &LagrangeProblem,
+    design: &Design,
+    k: &[f64; 12],
+    frame: Frame,
+) -> Option<Vec<MidRadDd>> {
+    let values = parameter_values::<RealDd>(problem, design, k, frame)?;
+    Some(values.into_iter().map(MidRadDd::real).collect())
 }
 
 /// The enclosure of `D(K, K′)` of the real solution in `root`.
@@ -188,6 +246,9 @@ pub fn certify_subproblem(
     // The parameter boxes are real: the Cartesian system is real, and so is the
     // isotropic one under (u, v) ↦ (v̄, ū).
     let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
+    if let Some(extended) = parameter_enclosure_dd(problem, design, k, frame) {
+        test = test.with_extended_parameters(extended);
+    }
     // Fewer points than the generic count: no certificate can be complete, and only
     // the minimiser matters. The real points are tested in the order of their `D`
     // (computed in double at the parameters' midpoints) until one is certified.

@@ -40,7 +40,9 @@ use crate::homotopy::linalg::LuWorkspace;
 use crate::homotopy::newton::max_norm;
 use crate::system::Evaluator;
 use crate::system::compile::CompiledSystem;
+use crate::system::double_double::ComplexDd;
 use crate::system::interval::{ComplexInterval, Interval};
+use crate::system::interval_dd::MidRadDd;
 use serde::{Deserialize, Serialize};
 
 /// What a certificate says about a solution's realness.
@@ -94,12 +96,23 @@ const POLISH_STEPS: usize = 3;
 /// Relative Newton update below which polishing stops (the next update would be of
 /// the order of its square times the condition: below the rounding error).
 const POLISHED: f64 = 1e-10;
+/// Newton steps of the double-double polish ([`Krawczyk::certify_extended`]) at most:
+/// each gains about `−log₁₀(κ·u)` digits (at least 5 on the points it serves).
+const EXTENDED_POLISH_STEPS: usize = 8;
+/// Relative Newton update below which the double-double polish stops.
+const EXTENDED_POLISHED: f64 = 1e-28;
+/// Relative Newton update the double-double polish must reach, or stagnate below
+/// (at condition κ its updates level off near `κ·u²`: about 10⁻²³ at κ ≈ 10¹⁰).
+const EXTENDED_ACCURATE: f64 = 1e-18;
 
 /// A reusable Krawczyk test for one square system at one parameter point.
 pub struct Krawczyk<'a> {
     system: &'a CompiledSystem,
     parameters: Vec<C64>,
     parameter_boxes: Vec<ComplexInterval>,
+    /// The parameter boxes with double-double midpoints, where known
+    /// ([`Krawczyk::with_extended_parameters`]).
+    extended_parameters: Option<Vec<MidRadDd>>,
     real_system: bool,
     /// First index of every isotropic pair `(u, v)` of unknowns (see
     /// [`Krawczyk::with_isotropic_pairs`]); empty for Cartesian unknowns.
@@ -179,6 +192,7 @@ impl<'a> Krawczyk<'a> {
             system,
             parameters: parameters.to_vec(),
             parameter_boxes: parameter_boxes.to_vec(),
+            extended_parameters: None,
             real_system: system.has_real_coefficients() && real_parameters,
             pairs: Vec::new(),
             n,
@@ -197,6 +211,17 @@ impl<'a> Krawczyk<'a> {
     pub fn with_isotropic_pairs(mut self, pairs: &[usize], real: bool) -> Self {
         self.pairs = pairs.iter().copied().filter(|&i| i + 1 < self.n).collect();
         self.real_system = real;
+        self
+    }
+
+    /// Gives the test the parameter boxes with double-double midpoints (enclosing the
+    /// same parameters as the double boxes, far more tightly): a point that fails in
+    /// double precision is then tested once more around a centre polished in
+    /// double-double arithmetic ([`Krawczyk::certify_extended`]).
+    pub fn with_extended_parameters(mut self, parameters: Vec<MidRadDd>) -> Self {
+        if parameters.len() == self.parameters.len() {
+            self.extended_parameters = Some(parameters);
+        }
         self
     }
 
@@ -242,7 +267,118 @@ impl<'a> Krawczyk<'a> {
                 return Some(found);
             }
         }
-        self.certify_at(&center, false)
+        if let Some(found) = self.certify_at(&center, false) {
+            return Some(found);
+        }
+        self.certify_extended(&center)
+    }
+
+    /// The test around a centre polished in double-double arithmetic, for a point that
+    /// failed in double precision: where the condition number κ of the Jacobian is
+    /// near `1/u`, a centre rounded to doubles is off by about `κ·u` and so is the
+    /// enclosure of `F` at it, and no box the test can contract contains the solution.
+    /// Here the centre `c = hi + lo` is a vector of double-doubles refined by Newton's
+    /// method with residuals evaluated in double-double (the Jacobian in double);
+    /// `F(c)` is enclosed over the parameters' double-double boxes
+    /// ([`CompiledSystem::evaluate_interval_dd`]), and the boxes `c + E` are handled as
+    /// their double hulls. The conclusion is the same as in double precision: `c + E`
+    /// contains exactly one solution (the test holds for any centre and any `Y`).
+    /// `None` without double-double parameter boxes, where a coefficient of the system
+    /// is not recognised, or where the polish does not converge.
+    fn certify_extended(&mut self, x: &[C64]) -> Option<RootBox> {
+        let parameters = self.extended_parameters.clone()?;
+        let n = self.n;
+        let mut c: Vec<ComplexDd> = x.iter().map(|&v| ComplexDd::from_c64(v)).collect();
+        let mut f = vec![MidRadDd::default(); n];
+        let mut converged = false;
+        let mut previous = f64::INFINITY;
+        for _ in 0..EXTENDED_POLISH_STEPS {
+            let rounded: Vec<C64> = c.iter().map(|v| v.to_c64()).collect();
+            let Buffers {
+                f: residual, jac, ..
+            } = &mut self.buffers;
+            self.system.evaluate_with_jacobian(
+                &rounded,
+                &self.parameters,
+                &mut self.work,
+                residual,
+                jac,
+            );
+            if !self.lu.factor(jac) {
+                return None;
+            }
+            let points: Vec<MidRadDd> = c.iter().map(|&v| MidRadDd::point(v)).collect();
+            if !self
+                .system
+                .evaluate_interval_dd(&points, &parameters, &mut f)
+            {
+                return None;
+            }
+            for (r, v) in residual.iter_mut().zip(&f) {
+                *r = v.midpoint().to_c64();
+            }
+            self.lu.solve_in_place(residual);
+            let update = max_norm(residual) / (1.0 + max_norm(&rounded));
+            if !update.is_finite() {
+                return None;
+            }
+            for (ci, di) in c.iter_mut().zip(residual.iter()) {
+                *ci = *ci - ComplexDd::from_c64(*di);
+            }
+            // Done when tiny, or when the updates stop shrinking below the accuracy
+            // the test needs (rounding noise of the double-double residual).
+            if update <= EXTENDED_POLISHED
+                || (update <= EXTENDED_ACCURATE && update > 0.5 * previous)
+            {
+                converged = true;
+                break;
+            }
+            previous = update;
+        }
+        if !converged {
+            return None;
+        }
+        let rounded: Vec<C64> = c.iter().map(|v| v.to_c64()).collect();
+        let attempts: &[bool] = if self.real_system && self.nearly_real(&rounded) {
+            &[true, false]
+        } else {
+            &[false]
+        };
+        for &symmetric in attempts {
+            let center: Vec<ComplexDd> = if symmetric {
+                // (c + σ(c))/2 in double-double: exactly a fixed point of σ.
+                let half = ComplexDd::from_c64(C64::new(0.5, 0.0));
+                (0..n)
+                    .map(|i| {
+                        let p = c[partner(&self.pairs, i)];
+                        let mirror = ComplexDd {
+                            re: p.re,
+                            im: -p.im,
+                        };
+                        (c[i] + mirror) * half
+                    })
+                    .collect()
+            } else {
+                c.clone()
+            };
+            let points: Vec<MidRadDd> = center.iter().map(|&v| MidRadDd::point(v)).collect();
+            if !self
+                .system
+                .evaluate_interval_dd(&points, &parameters, &mut f)
+            {
+                return None;
+            }
+            for (b, v) in self.buffers.f_box.iter_mut().zip(&f) {
+                *b = v.to_interval();
+            }
+            let hi: Vec<C64> = center.iter().map(|v| C64::new(v.re.hi, v.im.hi)).collect();
+            let lo: Vec<C64> = center.iter().map(|v| C64::new(v.re.lo, v.im.lo)).collect();
+            self.invert_factored();
+            if let Some(found) = self.contract(&hi, Some(&lo), symmetric) {
+                return Some(found);
+            }
+        }
+        None
     }
 
     /// The certificate of the mirror image of a certified non-real root of a real
@@ -311,9 +447,21 @@ impl<'a> Krawczyk<'a> {
     /// [`Krawczyk::polish`], at a point within one Newton update of `center`: the test
     /// is valid for any `Y`, and this one is `J(c)⁻¹` to the update's size.
     fn certify_at(&mut self, center: &[C64], symmetric: bool) -> Option<RootBox> {
+        self.invert_factored();
+        // F(c), enclosed by evaluating on the point box.
+        let b = &mut self.buffers;
+        for (x, &c) in b.bounds.iter_mut().zip(center) {
+            *x = ComplexInterval::point(c);
+        }
+        self.system
+            .evaluate_interval(&b.bounds, &self.parameter_boxes, &mut b.f_box);
+        self.contract(center, None, symmetric)
+    }
+
+    /// `Y ≈ J⁻¹` from the factorisation in `self.lu`, column by column (row-major).
+    fn invert_factored(&mut self) {
         let n = self.n;
         let b = &mut self.buffers;
-        // Y ≈ J(c)⁻¹, column by column (row-major storage).
         for j in 0..n {
             b.column.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
             b.column[j] = C64::new(1.0, 0.0);
@@ -322,12 +470,25 @@ impl<'a> Krawczyk<'a> {
                 b.inverse[i * n + j] = b.column[i];
             }
         }
-        // Y·F(c), with F(c) enclosed by evaluating on the point box.
-        for (x, &c) in b.bounds.iter_mut().zip(center) {
-            *x = ComplexInterval::point(c);
-        }
-        self.system
-            .evaluate_interval(&b.bounds, &self.parameter_boxes, &mut b.f_box);
+    }
+
+    /// The ε-inflation and the test itself for the centre `c = center + low` (`low`:
+    /// the trailing parts of a double-double centre, none for a double one), with `Y`
+    /// in the buffers' inverse and an enclosure of `F(c)` in their `f_box`.
+    fn contract(
+        &mut self,
+        center: &[C64],
+        low: Option<&[C64]>,
+        symmetric: bool,
+    ) -> Option<RootBox> {
+        let b = &mut self.buffers;
+        // The box around the exact centre: `hi + (lo + e)`, each sum rounded outwards.
+        let around = |c: C64, i: usize, e: &ComplexInterval| match low {
+            Some(low) => ComplexInterval::point(c) + (ComplexInterval::point(low[i]) + *e),
+            None => ComplexInterval::point(c) + *e,
+        };
+        // A double-double centre is accurate far below a double's ulp: so may the box be.
+        let floor_scale = if low.is_some() { f64::EPSILON } else { 1.0 };
         // z = −Y·F(c) encloses the Newton step; the ε-inflation iteration of Rump
         // ("Verification methods", §13.1) grows a box E around it until
         // z + (I − Y·J(c + E))·E lies inside E.
@@ -337,13 +498,13 @@ impl<'a> Krawczyk<'a> {
         b.offsets.copy_from_slice(&b.step);
         for _ in 0..INFLATION_STEPS {
             for ((t, e), c) in b.trial.iter_mut().zip(&b.offsets).zip(center) {
-                *t = inflate(e, c.norm());
+                *t = inflate(e, c.norm() * floor_scale);
             }
             if symmetric {
                 close_under_involution(&self.pairs, &mut b.trial);
             }
-            for ((x, &c), e) in b.bounds.iter_mut().zip(center).zip(&b.trial) {
-                *x = ComplexInterval::point(c) + *e;
+            for (i, ((x, &c), e)) in b.bounds.iter_mut().zip(center).zip(&b.trial).enumerate() {
+                *x = around(c, i, e);
             }
             self.system.evaluate_interval_with_jacobian(
                 &b.bounds,
@@ -377,7 +538,8 @@ impl<'a> Krawczyk<'a> {
                 let enclosure: Vec<ComplexInterval> = center
                     .iter()
                     .zip(&b.image)
-                    .map(|(&c, k)| ComplexInterval::point(c) + *k)
+                    .enumerate()
+                    .map(|(i, (&c, k))| around(c, i, k))
                     .collect();
                 let realness = if symmetric {
                     Realness::Real
@@ -544,6 +706,7 @@ pub fn certify_solutions(
 mod tests {
     use super::*;
     use crate::system::bertini;
+    use crate::system::interval_dd::RealDd;
 
     /// Compiles `f1; f2` in `x, y` (Bertini input).
     fn compile(f1: &str, f2: &str) -> CompiledSystem {
@@ -590,8 +753,14 @@ mod tests {
         // A double root (x − 1)² = 0 is singular: no box passes.
         let double = compile("x^2 - 2*x + 1", "y");
         let near = vec![C64::new(1.0 + 1e-9, 0.0), C64::new(0.0, 0.0)];
-        let result = certify_solutions(&double, &[], &[near]).unwrap();
+        let result = certify_solutions(&double, &[], std::slice::from_ref(&near)).unwrap();
         assert_eq!(result.uncertified(), 1);
+        // Nor in double-double: the polish stalls near the double root.
+        let mut test = Krawczyk::new(&double, &[])
+            .unwrap()
+            .with_extended_parameters(Vec::new());
+        assert!(test.extended_parameters.is_some());
+        assert!(test.certify(&near).is_none());
     }
 
     #[test]
@@ -627,6 +796,55 @@ mod tests {
     /// certified for a narrow box of `p`, but not for `p ∈ [0, 0.005]`, where the
     /// roots `±√p` meet at the fold `p = 0` and no box around 0.05 holds exactly one
     /// root for every `p` (this fails if `(I − Y·J(X))·(X − c)` is under-estimated).
+    /// `x + y = 1`, `x + p y − q + x(x + y − 1) = 0` with `p = 1 + δ`, `q = 1 + δ/3`,
+    /// `δ = 2⁻⁴⁰`: the root `(2/3, 1/3)` has condition number about `4/δ ≈ 4·10¹²`.
+    /// `q` is not a double: its double box is an ulp wide, which moves `y` by
+    /// `ulp/δ ≈ 2·10⁻⁴`, over which the Jacobian varies by about 10⁻³ (the quadratic
+    /// term), and no box the test can contract in double precision holds the root for
+    /// the whole parameter box.
+    /// With `q` known in double-double (`1 + fl(δ/3)`, within `10⁻³⁰`) the
+    /// double-double test proves the root, real, in a box far narrower than an ulp of
+    /// `x`, and the box holds `(2/3, 1/3)`.
+    #[test]
+    fn an_ill_conditioned_root_is_certified_in_double_double_only() {
+        let text = "INPUT\nvariable_group x, y;\nparameter p, q;\nfunction f1, f2;\n\
+                    f1 = x + y - 1;\nf2 = x + p*y - q + x*(x + y - 1);\nEND;\n";
+        let system = CompiledSystem::new(&bertini::read(text).expect("system parses"));
+        let delta = 2f64.powi(-40);
+        let third = delta / 3.0;
+        let (p, q) = (1.0 + delta, 1.0 + third);
+        let real = |v: Interval| ComplexInterval {
+            re: v,
+            im: Interval::point(0.0),
+        };
+        let boxes = [
+            real(Interval::point(p)),
+            real(Interval::point(1.0) + Interval::centered(third, 1e-30)),
+        ];
+        let parameters = [C64::new(p, 0.0), C64::new(q, 0.0)];
+        let root = [C64::new(2.0 / 3.0, 0.0), C64::new(1.0 / 3.0, 0.0)];
+        let mut double = Krawczyk::with_parameter_boxes(&system, &parameters, &boxes).unwrap();
+        assert!(double.certify(&root).is_none(), "double precision cannot");
+        let q_dd = RealDd {
+            mid: crate::system::double_double::DoubleDouble { hi: 1.0, lo: third },
+            rad: 1e-30,
+        };
+        let extended = vec![MidRadDd::real(RealDd::exact(p)), MidRadDd::real(q_dd)];
+        let mut test = Krawczyk::with_parameter_boxes(&system, &parameters, &boxes)
+            .unwrap()
+            .with_extended_parameters(extended);
+        let b = test.certify(&root).expect("double-double can");
+        assert_eq!(b.realness, Realness::Real);
+        for (e, v) in b.enclosure.iter().zip([2.0 / 3.0, 1.0 / 3.0]) {
+            assert!(e.re.lo <= v && v <= e.re.hi, "{e:?}");
+            assert!(e.re.width() < 1e-15, "{e:?}");
+        }
+        // From a start 10⁻³ off, Newton's method comes back to the same root.
+        let off = [C64::new(2.0 / 3.0 + 1e-3, 0.0), C64::new(1.0 / 3.0, 0.0)];
+        let moved = test.certify(&off).expect("Newton's method brings it back");
+        assert!(moved.meets(&b));
+    }
+
     #[test]
     fn a_parameter_box_reaching_the_fold_fails() {
         let text = "INPUT\nvariable_group x, y;\nparameter p;\nfunction f1, f2;\n\

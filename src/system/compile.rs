@@ -27,6 +27,7 @@ use crate::C64;
 use crate::system::double_double::ComplexDd;
 use crate::system::expr::{Expr, Kind};
 use crate::system::interval::{ComplexInterval, MidRad};
+use crate::system::interval_dd::{MidRadDd, coefficient, coefficient_enclosure};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -139,12 +140,25 @@ impl TapeScalar for MidRad {
     }
 }
 
+impl TapeScalar for MidRadDd {
+    #[inline(always)]
+    fn scale_by_real_part(self, b: Self) -> Self {
+        MidRadDd::scale_by_real_part(self, b)
+    }
+}
+
 /// A finished straight-line program.
 #[derive(Clone, Debug)]
 struct Tape {
     /// Number of input registers at the start of the workspace.
     num_inputs: usize,
     constants: Vec<C64>,
+    /// The constants as intervals for [`run_interval`]: each encloses the exact
+    /// coefficient its double is the rounding of ([`coefficient_enclosure`]: `1/3`,
+    /// `1/√2`, …),
+    /// so that a certificate is about the system itself, not about its rounded
+    /// coefficients (a constant not recognised stands for itself).
+    interval_constants: Vec<MidRad>,
     instructions: Vec<Instruction>,
     /// Runs `start..end` of consecutive instructions with the same operation, so the
     /// inner loops do not branch on the operation.
@@ -586,6 +600,11 @@ impl<'a> TapeBuilder<'a> {
             instructions,
             blocks,
             outputs,
+            interval_constants: self
+                .constants
+                .iter()
+                .map(|&c| coefficient_enclosure(c))
+                .collect(),
             constants: self.constants,
         }
     }
@@ -861,6 +880,47 @@ impl CompiledSystem {
         run_interval(&parts.values, (x, p), f.iter_mut());
     }
 
+    /// `F` at `x` over the parameters `p`, both with double-double midpoints
+    /// ([`crate::system::interval_dd`]): every register encloses the exact value of its
+    /// subexpression, with each constant taken as the exact coefficient it is the
+    /// rounding of ([`coefficient`]). `false` (and `f` untouched) where a constant is
+    /// not recognised. Allocates its registers: it serves the rare points that double
+    /// precision cannot certify.
+    pub fn evaluate_interval_dd(&self, x: &[MidRadDd], p: &[MidRadDd], f: &mut [MidRadDd]) -> bool {
+        let tape = &self.parts.values;
+        let (n, m) = (x.len(), p.len());
+        assert_eq!(
+            n,
+            self.parts.variables.len(),
+            "interval evaluation: variable count"
+        );
+        assert_eq!(
+            m,
+            self.parts.parameters.len(),
+            "interval evaluation: parameter count"
+        );
+        assert_eq!(
+            f.len(),
+            self.parts.num_equations,
+            "interval evaluation: equation count"
+        );
+        let mut registers = vec![MidRadDd::default(); tape.workspace_len()];
+        registers[..n].copy_from_slice(x);
+        registers[n..n + m].copy_from_slice(p);
+        for (r, c) in registers[tape.num_inputs..].iter_mut().zip(&tape.constants) {
+            match coefficient(*c) {
+                Some(v) => *r = v,
+                None => return false,
+            }
+        }
+        tape.execute_dispatched(&mut registers);
+        for (target, &(register, sign)) in f.iter_mut().zip(&tape.outputs) {
+            let value = registers[register as usize];
+            *target = if sign < 0.0 { -value } else { value };
+        }
+        true
+    }
+
     #[inline]
     fn load(&self, x: &[C64], p: &[C64], work: &mut [C64]) {
         let n = self.parts.variables.len();
@@ -915,9 +975,8 @@ fn run_interval<'a>(
         }
         let constants_start = tape.num_inputs;
         registers[n + m..constants_start].fill(zero);
-        for (r, c) in registers[constants_start..].iter_mut().zip(&tape.constants) {
-            *r = MidRad::point(*c);
-        }
+        registers[constants_start..constants_start + tape.interval_constants.len()]
+            .copy_from_slice(&tape.interval_constants);
         tape.execute_dispatched(registers);
         for (target, &(register, sign)) in outputs.zip(&tape.outputs) {
             let value = registers[register as usize];

@@ -81,6 +81,7 @@ pub mod compile;
 pub mod double_double;
 pub mod expr;
 pub mod interval;
+pub mod interval_dd;
 pub mod parametric;
 pub mod parse;
 pub mod phc;
