@@ -4,7 +4,9 @@
 //! From the finite endpoints of every sub-problem's Lagrange system `∇Λ = 0` at the
 //! real configuration `K` of a pose:
 //!
-//! 1. keep the real ones: `max_k |Im x_k| ≤ real_tolerance · (1 + ‖x‖∞)`;
+//! 1. keep the real ones: `max_k |Im x_k| ≤ real_tolerance · (1 + ‖x‖∞)` over the
+//!    unknowns before the multipliers (K′ and the like; the multipliers of a real K′
+//!    are real, and they are the least accurate entries of ill-conditioned points);
 //! 2. map each to its closest-configuration candidate `K′ = Re K′(x; p)` and recompute
 //!    `D(K, K′)` in f64 with [`Metric::distance`] (docs/theory.md §3), independently of the
 //!    homotopy's arithmetic;

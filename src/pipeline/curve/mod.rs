@@ -486,18 +486,16 @@ fn candidates(
     endpoints
         .iter()
         .filter(|x| {
-            // With multipliers in a chart, realness of K′ (and of the other unknowns
-            // before the multipliers): the multipliers of a real point then solve real
-            // linear equations and are real themselves, and they are the least
-            // accurate entries of a chart endpoint (`λ = λ′/λ₀` with a small `λ₀`:
-            // 10⁻⁸ relative where K′ has 10⁻¹²). Affine multipliers are as accurate as
-            // K′ and take part in the test.
+            // Realness of K′ (and of the other unknowns before the multipliers): the
+            // multipliers of a real point then solve real linear equations and are real
+            // themselves, and they are the least accurate entries of an endpoint — a
+            // chart's `λ = λ′/λ₀` with a small `λ₀` (10⁻⁸ relative where K′ has 10⁻¹²),
+            // and affine multipliers of ill-conditioned points: on the built-in example
+            // (pose 10, `rigid/plate`) a critical point with λ ≈ −53 has Im λ ≈ 1.4·10⁻⁶
+            // while K′ is real to 10⁻¹¹, and Krawczyk's test in double-double proves it
+            // real.
             let cartesian = problem.to_cartesian(x);
-            let tested = match problem.multipliers() {
-                Multipliers::Chart => &cartesian[..problem.first_multiplier()],
-                Multipliers::Affine => &cartesian[..],
-            };
-            postprocess::is_real(tested, real_tolerance)
+            postprocess::is_real(&cartesian[..problem.first_multiplier()], real_tolerance)
         })
         .map(|x| {
             let k_prime = normalization

@@ -67,7 +67,8 @@ pub struct CurveOptions {
     /// On by default.
     #[serde(default = "default_twin_check")]
     pub twin_check: bool,
-    /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
+    /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)` over its
+    /// unknowns before the multipliers (Cartesian).
     pub real_tolerance: f64,
     /// Two minimisers within this distance of each other make a cut locus.
     pub cut_locus_tolerance: f64,
