@@ -793,6 +793,9 @@ fn generic_route(
                     (stream.wrapping_mul(16) + 12 + attempt as u64) ^ 0x9e37_79b9,
                 );
                 points.push(detour_point(parameters, 12, &mut rng));
+            } else if options.generic_route_bend {
+                let mut rng = random::stream(options.seed, (stream.wrapping_mul(16) + 12) ^ BEND);
+                points.push(bend_point(source, parameters, &mut rng));
             }
             points.push(parameters.to_vec());
             PolylinePath::new(points)
@@ -806,6 +809,24 @@ fn generic_route(
         endpoints: distinct_solutions(retried.endpoints, seeded.generic_count),
         ..retried
     }
+}
+
+/// Random stream tag of [`bend_point`].
+const BEND: u64 = 0x5bd1_e995;
+
+/// The bend of a generic route from `source` to `target` ([`CurveOptions::generic_route_bend`]):
+/// `(source + target)/2 + ¼·|target − source|∞·ξ`, ξ standard complex normal per
+/// parameter, so that the two legs are not much longer than the segment.
+fn bend_point(source: &[C64], target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
+    let length = source
+        .iter()
+        .zip(target)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+    source
+        .iter()
+        .zip(target)
+        .map(|(a, b)| (a + b) * 0.5 + random::complex_normal(rng) * (0.25 * length))
+        .collect()
 }
 
 /// A sub-problem's result at a pose from its finite endpoints (normalised frame) at

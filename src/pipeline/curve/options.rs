@@ -89,6 +89,15 @@ pub struct CurveOptions {
     /// proved global minimum; off by default.
     #[serde(default)]
     pub certify: bool,
+    /// The generic route (start file → pose) bends through a complex point near the
+    /// middle of its segment, drawn from [`CurveOptions::seed`], instead of running
+    /// straight. Off for a run's own poses; on in the self-check's stage: the straight
+    /// segment from the start file does not depend on the seed, so where both stages
+    /// take the generic route (a seed count refuted at a real pose sends every pose
+    /// there first; a seed route that runs out of steps hands its pose over to it) the
+    /// check would retrace the run's own paths.
+    #[serde(default)]
+    pub generic_route_bend: bool,
 }
 
 /// Default [`CurveOptions::window_poses`]: 1000, the default chain length, so that a
@@ -132,6 +141,7 @@ impl Default for CurveOptions {
             self_check: default_self_check(),
             window_poses: default_window_poses(),
             certify: false,
+            generic_route_bend: false,
         }
     }
 }

@@ -67,6 +67,7 @@ pub(super) fn check_stage(
 ) -> Result<(SeedStage, CurveOptions), PipelineError> {
     let check_options = CurveOptions {
         seed: check_seed(options.seed),
+        generic_route_bend: true,
         ..options.clone()
     };
     let stage = seed_stage(design, motion, metrics, &check_options, provider)?;

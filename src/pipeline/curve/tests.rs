@@ -131,3 +131,56 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
     assert_eq!(at_pose.complete.map(|set| set.len()), Some(generic));
     assert!(at_pose.entry.2.is_none());
 }
+
+/// The self-check's generic route bends through a seed-drawn complex point
+/// ([`CurveOptions::generic_route_bend`]): at a pose of the example, `plate/plate`'s
+/// generic route with and without the bend reaches the same complete set of 50
+/// critical points (each within 1e-8 of one of the other), along different paths (the
+/// endpoints are not bit for bit the same, as they are for two straight runs).
+#[test]
+fn the_bent_generic_route_reaches_the_same_set_along_another_path() {
+    let (design, motion) = (example_design(), example_motion());
+    let metrics = Metric::parse_list("plate/plate").expect("metric");
+    let options = CurveOptions {
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &metrics,
+        &options,
+        &default_start_solutions,
+    )
+    .expect("stage");
+    let index = stage
+        .problems
+        .iter()
+        .position(|p| p.id.name() == "plate/plate:singularity")
+        .expect("plate/plate");
+    let samples = sample_motion(&motion, 5).expect("samples");
+    let context = SolveContext {
+        stage: &stage,
+        motion: &motion,
+        options: &options,
+    };
+    let (seeded, _, _, parameters) = context.problem_at(index, &samples[3]);
+    let straight = generic_route(seeded, &parameters, 7, &options);
+    let again = generic_route(seeded, &parameters, 7, &options);
+    let bent_options = CurveOptions {
+        generic_route_bend: true,
+        ..options.clone()
+    };
+    let bent = generic_route(seeded, &parameters, 7, &bent_options);
+    let generic = seeded.generic_count;
+    for run in [&straight, &bent] {
+        assert_eq!((run.accounted, run.endpoints.len()), (generic, 50));
+    }
+    assert_eq!(straight.endpoints, again.endpoints);
+    assert_ne!(straight.endpoints, bent.endpoints);
+    for x in &bent.endpoints {
+        let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        let near = |y: &Vec<C64>| x.iter().zip(y).all(|(a, b)| (a - b).norm() <= 1e-8 * scale);
+        assert!(straight.endpoints.iter().any(near));
+    }
+}
