@@ -814,9 +814,15 @@ fn generic_route(
 /// Random stream tag of [`bend_point`].
 const BEND: u64 = 0x5bd1_e995;
 
+/// Size of the bend of [`bend_point`] relative to the segment. The check stage's
+/// generic routes cost more the larger it is (design matrix, 8 analytic poses, whole
+/// run: close-base-23 9.4 s straight, 10.3 s at 1/20, 11.9 s at 1/10, 14.3 s at 1/4;
+/// close-base-12 22.1, 23.1, 24.4, 27.2 s).
+const BEND_SIZE: f64 = 0.05;
+
 /// The bend of a generic route from `source` to `target` ([`CurveOptions::generic_route_bend`]):
-/// `(source + target)/2 + ¼·|target − source|∞·ξ`, ξ standard complex normal per
-/// parameter, so that the two legs are not much longer than the segment.
+/// `(source + target)/2 + BEND_SIZE·|target − source|∞·ξ`, ξ standard complex normal
+/// per parameter, so that the two legs are hardly longer than the segment.
 fn bend_point(source: &[C64], target: &[C64], rng: &mut random::SeededRng) -> Vec<C64> {
     let length = source
         .iter()
@@ -825,7 +831,7 @@ fn bend_point(source: &[C64], target: &[C64], rng: &mut random::SeededRng) -> Ve
     source
         .iter()
         .zip(target)
-        .map(|(a, b)| (a + b) * 0.5 + random::complex_normal(rng) * (0.25 * length))
+        .map(|(a, b)| (a + b) * 0.5 + random::complex_normal(rng) * (BEND_SIZE * length))
         .collect()
 }
 
