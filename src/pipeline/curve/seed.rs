@@ -423,6 +423,8 @@ pub fn seed_stage(
         )
         .collect();
     let probed = probe_seed_counts(&mut problems, (first_pose, normalization), options);
+    let mut failures = failures;
+    settle_seed_failures(&problems, &mut failures);
     let closed_form_systems = closed_form
         .iter()
         .map(|&id| {
@@ -500,6 +502,23 @@ pub(super) fn probe_seed_counts(
         tracked += paths;
     }
     tracked
+}
+
+/// Drops the seed-stage failures (`pose_index: None`) of sub-problems whose expected
+/// count is the generic one after [`probe_seed_counts`]: a seed short of it (seed
+/// points that disagreed, e.g. `[79, 72, 78, 78, 78]` of 80 on two base anchors 10⁻⁴
+/// apart) then decides nothing at any pose. No parameter has more isolated critical
+/// points than the generic count, every pose is measured against it, and a pose whose
+/// seed route falls short goes the generic route first; what a pose cannot complete
+/// is reported at that pose. A seed failure of a sub-problem whose count stays below
+/// the generic one stays: poses are complete with that count.
+pub(super) fn settle_seed_failures(problems: &[SeededProblem], failures: &mut Vec<PathFailure>) {
+    failures.retain(|f| {
+        f.pose_index.is_some()
+            || !problems
+                .iter()
+                .any(|p| p.id.name() == f.problem && p.start_count == p.generic_count)
+    });
 }
 
 /// Random stream of [`probe_seed_counts`] (ored with the sub-problem's index): apart

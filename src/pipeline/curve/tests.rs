@@ -121,6 +121,33 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
     let tracked = probe_seed_counts(&mut stage.problems, (first, normalization), &options);
     assert!(tracked >= generic, "{tracked}");
     assert_eq!(stage.problems[index].start_count, generic);
+    // The seed's shortfall, had the seed stage reported it, decides nothing now: that
+    // failure goes; a pose's own failure and another sub-problem's seed failure stay.
+    let failure = |problem: &str, pose_index: Option<usize>| PathFailure {
+        pose_index,
+        tau: None,
+        problem: problem.to_string(),
+        expected: generic,
+        accounted: generic - 1,
+        reasons: BTreeMap::new(),
+    };
+    let mut failures = vec![
+        failure("plate/plate:singularity", None),
+        failure("plate/plate:singularity", Some(3)),
+        failure("rigid/rigid:singularity", None),
+    ];
+    settle_seed_failures(&stage.problems, &mut failures);
+    let left: Vec<(&str, Option<usize>)> = failures
+        .iter()
+        .map(|f| (f.problem.as_str(), f.pose_index))
+        .collect();
+    assert_eq!(
+        left,
+        [
+            ("plate/plate:singularity", Some(3)),
+            ("rigid/rigid:singularity", None)
+        ]
+    );
     let samples = sample_motion(&motion, 5).expect("samples");
     let context = SolveContext {
         stage: &stage,
