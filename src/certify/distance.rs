@@ -166,7 +166,7 @@ fn parameter_values<T: Enclosure>(
 }
 
 /// The parameter boxes of `problem` at configuration `k` of `design` in `frame`
-/// ([`parameter_values`] in double interval arithmetic). `None` if a shape is
+/// (computed in double interval arithmetic). `None` if a shape is
 /// degenerate.
 pub fn parameter_enclosure(
     problem: &LagrangeProblem,
@@ -182,8 +182,8 @@ pub fn parameter_enclosure(
     Some(values.into_iter().map(real).collect())
 }
 
-/// The same parameters with double-double midpoints ([`parameter_values`] in
-/// [`RealDd`] arithmetic), for the double-double test of ill-conditioned points.
+/// The same parameters with double-double midpoints (computed in [`RealDd`]
+/// arithmetic), for the double-double test of ill-conditioned points.
 pub fn parameter_enclosure_dd(
     problem: &LagrangeProblem,
     design: &Design,

@@ -217,7 +217,7 @@ impl<'a> Krawczyk<'a> {
     /// Gives the test the parameter boxes with double-double midpoints (enclosing the
     /// same parameters as the double boxes, far more tightly): a point that fails in
     /// double precision is then tested once more around a centre polished in
-    /// double-double arithmetic ([`Krawczyk::certify_extended`]).
+    /// double-double arithmetic (see [`Krawczyk::certify`]).
     pub fn with_extended_parameters(mut self, parameters: Vec<MidRadDd>) -> Self {
         if parameters.len() == self.parameters.len() {
             self.extended_parameters = Some(parameters);

@@ -13,15 +13,15 @@
 //! of double-word arithmetic", ACM Trans. Math. Softw. 44 (2017)) is within
 //! `3u²/(1 − 4u)` of the exact sum relative to it, and its product (their
 //! Algorithm 10, "DWTimesDW1", with an exact `TwoProduct`) within `7u²`; the bounds
-//! used here are `8u²` ([`ADD_ERROR`]) and `16u²` ([`MUL_ERROR`]), and a complex
+//! used here are `8u²` (`ADD_ERROR`) and `16u²` (`MUL_ERROR`), and a complex
 //! product's part `ac − bd` is within `(16 + 8·(1 + 16u²))u² ≤ 32u²` of
-//! `|a||c| + |b||d|` ([`COMPLEX_MUL_ERROR`]). Each operation adds [`TINY`] (`2⁻⁹⁹⁰`)
+//! `|a||c| + |b||d|` (`COMPLEX_MUL_ERROR`). Each operation adds `TINY` (`2⁻⁹⁹⁰`)
 //! for underflow, which exceeds the few `2⁻¹⁰⁷⁴` an underflowing error term can lose.
 //! The radius of a result is the exact set's deviation from the exact result of the
 //! midpoints (as for [`crate::system::interval::MidRad`]) plus that rounding error, a
 //! sum of non-negative terms computed in round-to-nearest, each term through fewer
-//! than 100 roundings: [`upper`] multiplies it by `1 + 10⁻¹³` (more than
-//! `(1 − u)⁻¹⁰⁰`) and adds [`TINY`]. Magnitudes `|hi + lo|` are bounded by [`magnitude`].
+//! than 100 roundings: `upper` multiplies it by `1 + 10⁻¹³` (more than
+//! `(1 − u)⁻¹⁰⁰`) and adds `TINY`. Magnitudes `|hi + lo|` are bounded by `magnitude`.
 //! A NaN or an infinity anywhere makes the enclosure the whole line
 //! ([`RealDd::to_interval`]).
 
