@@ -162,6 +162,11 @@ pub struct SeedStage {
     pub seed_configuration: [C64; 12],
     /// Paths lost in the user homotopy.
     pub failures: Vec<PathFailure>,
+    /// What the generic route to the motion's first pose found per sub-problem where
+    /// [`probe_seed_counts`] ran it (by name): `(accounted paths, distinct finite
+    /// points)`. The route does not depend on the seed, so the self-check's stage
+    /// takes these instead of tracking it again.
+    pub probes: BTreeMap<String, (usize, usize)>,
     /// Paths tracked in this stage.
     pub paths_tracked: usize,
 }
@@ -314,6 +319,19 @@ pub fn seed_stage(
     options: &CurveOptions,
     provider: StartProvider<'_>,
 ) -> Result<SeedStage, PipelineError> {
+    seed_stage_with_probes(design, motion, metrics, options, provider, &BTreeMap::new())
+}
+
+/// [`seed_stage`] with the first-pose probes another stage of the same run already
+/// ran ([`SeedStage::probes`]): the same route, so the same result.
+pub(super) fn seed_stage_with_probes(
+    design: &Design,
+    motion: &Motion,
+    metrics: &[Metric],
+    options: &CurveOptions,
+    provider: StartProvider<'_>,
+    known_probes: &BTreeMap<String, (usize, usize)>,
+) -> Result<SeedStage, PipelineError> {
     if metrics.is_empty() {
         return Err(PipelineError::NoMetrics);
     }
@@ -422,7 +440,12 @@ pub fn seed_stage(
             },
         )
         .collect();
-    let probed = probe_seed_counts(&mut problems, (first_pose, normalization), options);
+    let (probed, probes) = probe_seed_counts(
+        &mut problems,
+        (first_pose, normalization),
+        options,
+        known_probes,
+    );
     let mut failures = failures;
     settle_seed_failures(&problems, &mut failures);
     let closed_form_systems = closed_form
@@ -449,6 +472,7 @@ pub fn seed_stage(
         normalization,
         seed_configuration: normalization.restore(&k_star),
         failures,
+        probes,
         paths_tracked: paths_tracked + probed,
     })
 }
@@ -467,7 +491,8 @@ pub(super) fn probe_seed_counts(
     problems: &mut [SeededProblem],
     (pose, normalization): (Pose, Normalization),
     options: &CurveOptions,
-) -> usize {
+    known: &BTreeMap<String, (usize, usize)>,
+) -> (usize, BTreeMap<String, (usize, usize)>) {
     // Only a route that accounts for every path refutes: its detours, which only
     // matter where it loses paths, are left out. It runs straight in the self-check's
     // stage too: it can only raise a count, never lower one, and bending it there cost
@@ -478,34 +503,45 @@ pub(super) fn probe_seed_counts(
         generic_route_bend: false,
         ..options.clone()
     };
-    let probes: Vec<(usize, usize)> = problems
+    type Probe = (usize, usize, Option<(usize, usize)>);
+    let probes: Vec<Probe> = problems
         .par_iter()
         .enumerate()
         .map(|(index, seeded)| {
             if seeded.start_count >= seeded.generic_count {
-                return (seeded.start_count, 0);
+                return (seeded.start_count, 0, None);
             }
-            let design = &seeded.design;
-            let k = normalization.apply(&to_real(&design.configuration(pose).to_array()));
-            let parameters = normalized_parameters(&seeded.problem, design, &k, normalization);
-            let stream = PROBE_STREAM | index as u64;
-            let probe = generic_route(seeded, &parameters, stream, &without_detours);
-            let refuted = probe.accounted == seeded.generic_count
-                && probe.endpoints.len() > seeded.start_count;
+            let (accounted, distinct, tracked) = match known.get(&seeded.id.name()) {
+                Some(&(accounted, distinct)) => (accounted, distinct, 0),
+                None => {
+                    let design = &seeded.design;
+                    let k = normalization.apply(&to_real(&design.configuration(pose).to_array()));
+                    let parameters =
+                        normalized_parameters(&seeded.problem, design, &k, normalization);
+                    let stream = PROBE_STREAM | index as u64;
+                    let probe = generic_route(seeded, &parameters, stream, &without_detours);
+                    (probe.accounted, probe.endpoints.len(), probe.tracked)
+                }
+            };
+            let refuted = accounted == seeded.generic_count && distinct > seeded.start_count;
             let count = if refuted {
-                probe.endpoints.len()
+                distinct
             } else {
                 seeded.start_count
             };
-            (count, probe.tracked)
+            (count, tracked, Some((accounted, distinct)))
         })
         .collect();
     let mut tracked = 0;
-    for (seeded, (count, paths)) in problems.iter_mut().zip(probes) {
+    let mut found = BTreeMap::new();
+    for (seeded, (count, paths, probe)) in problems.iter_mut().zip(probes) {
         seeded.start_count = count;
         tracked += paths;
+        if let Some(probe) = probe {
+            found.insert(seeded.id.name(), probe);
+        }
     }
-    tracked
+    (tracked, found)
 }
 
 /// Drops the seed-stage failures (`pose_index: None`) of sub-problems whose expected

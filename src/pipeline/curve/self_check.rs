@@ -64,13 +64,21 @@ pub(super) fn check_stage(
     (design, motion, metrics): (&Design, &Motion, &[Metric]),
     options: &CurveOptions,
     provider: StartProvider<'_>,
+    known_probes: &BTreeMap<String, (usize, usize)>,
 ) -> Result<(SeedStage, CurveOptions), PipelineError> {
     let check_options = CurveOptions {
         seed: check_seed(options.seed),
         generic_route_bend: true,
         ..options.clone()
     };
-    let stage = seed_stage(design, motion, metrics, &check_options, provider)?;
+    let stage = seed_stage_with_probes(
+        design,
+        motion,
+        metrics,
+        &check_options,
+        provider,
+        known_probes,
+    )?;
     Ok((stage, check_options))
 }
 
@@ -85,7 +93,7 @@ pub(super) fn self_check(
     options: &CurveOptions,
     provider: StartProvider<'_>,
 ) -> Result<SelfCheck, PipelineError> {
-    let (stage, check_options) = check_stage(context, options, provider)?;
+    let (stage, check_options) = check_stage(context, options, provider, &BTreeMap::new())?;
     let (design, motion, metrics) = context;
     let checked = (&stage, &check_options);
     Ok(check_poses(

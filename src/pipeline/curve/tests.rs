@@ -118,9 +118,28 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
     stage.problems[index].start_count = generic - 1;
     let first = motion.pose(motion.tau_range()[0]).expect("pose");
     let normalization = stage.normalization;
-    let tracked = probe_seed_counts(&mut stage.problems, (first, normalization), &options);
+    let (tracked, probes) = probe_seed_counts(
+        &mut stage.problems,
+        (first, normalization),
+        &options,
+        &BTreeMap::new(),
+    );
     assert!(tracked >= generic, "{tracked}");
     assert_eq!(stage.problems[index].start_count, generic);
+    // The route's result is kept, and a stage given it (the self-check's) takes it
+    // instead of tracking the route again, to the same count.
+    assert_eq!(
+        probes.get("plate/plate:singularity").map(|p| p.1),
+        Some(generic)
+    );
+    stage.problems[index].start_count = generic - 1;
+    let (again, _) = probe_seed_counts(
+        &mut stage.problems,
+        (first, normalization),
+        &options,
+        &probes,
+    );
+    assert_eq!((again, stage.problems[index].start_count), (0, generic));
     // The seed's shortfall, had the seed stage reported it, decides nothing now: that
     // failure goes; a pose's own failure and another sub-problem's seed failure stay.
     let failure = |problem: &str, pose_index: Option<usize>| PathFailure {

@@ -81,7 +81,12 @@ impl<'a> CurveRun<'a> {
         let stage = seed_stage(design, motion, metrics, options, provider)?;
         let check = if options.self_check {
             let context = (design, motion, metrics);
-            Some(self_check::check_stage(context, options, provider)?)
+            Some(self_check::check_stage(
+                context,
+                options,
+                provider,
+                &stage.probes,
+            )?)
         } else {
             None
         };
