@@ -92,6 +92,31 @@ fn motion_path_velocity_matches_finite_differences() {
     }
 }
 
+/// The example's seed stage for `plate/plate` alone (no self-check): the motion, the
+/// options, the stage and the index of its `singularity` sub-problem.
+fn plate_plate_stage() -> (Motion, CurveOptions, SeedStage, usize) {
+    let (design, motion) = (example_design(), example_motion());
+    let metrics = Metric::parse_list("plate/plate").expect("metric");
+    let options = CurveOptions {
+        self_check: false,
+        ..CurveOptions::default()
+    };
+    let stage = seed_stage(
+        &design,
+        &motion,
+        &metrics,
+        &options,
+        &default_start_solutions,
+    )
+    .expect("stage");
+    let index = stage
+        .problems
+        .iter()
+        .position(|p| p.id.name() == "plate/plate:singularity")
+        .expect("plate/plate");
+    (motion, options, stage, index)
+}
+
 /// A seed count below the generic one is tested at the motion's first pose: the
 /// example's `plate/plate` seed has all 50 critical points; with one dropped (a count
 /// two seed points could have agreed on wrongly) the generic route to the first pose
@@ -99,19 +124,7 @@ fn motion_path_velocity_matches_finite_differences() {
 /// is complete with 50 points (from the generic route), not with 49.
 #[test]
 fn a_seed_count_that_the_generic_route_refutes_is_raised() {
-    let (design, motion) = (example_design(), example_motion());
-    let metrics = Metric::parse_list("plate/plate").expect("metric");
-    let options = CurveOptions {
-        self_check: false,
-        ..CurveOptions::default()
-    };
-    let provider = &default_start_solutions;
-    let mut stage = seed_stage(&design, &motion, &metrics, &options, provider).expect("stage");
-    let index = stage
-        .problems
-        .iter()
-        .position(|p| p.id.name() == "plate/plate:singularity")
-        .expect("plate/plate");
+    let (motion, options, mut stage, index) = plate_plate_stage();
     let generic = stage.problems[index].generic_count;
     assert_eq!(stage.problems[index].start_count, generic);
     stage.problems[index].seed_solutions.pop();
@@ -185,25 +198,7 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
 /// endpoints are not bit for bit the same, as they are for two straight runs).
 #[test]
 fn the_bent_generic_route_reaches_the_same_set_along_another_path() {
-    let (design, motion) = (example_design(), example_motion());
-    let metrics = Metric::parse_list("plate/plate").expect("metric");
-    let options = CurveOptions {
-        self_check: false,
-        ..CurveOptions::default()
-    };
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &options,
-        &default_start_solutions,
-    )
-    .expect("stage");
-    let index = stage
-        .problems
-        .iter()
-        .position(|p| p.id.name() == "plate/plate:singularity")
-        .expect("plate/plate");
+    let (motion, options, stage, index) = plate_plate_stage();
     let samples = sample_motion(&motion, 5).expect("samples");
     let context = SolveContext {
         stage: &stage,
