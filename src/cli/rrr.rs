@@ -69,6 +69,12 @@ pub struct RrrCurveArgs {
     /// configuration through leg singularities.
     #[arg(long)]
     hold_modes: bool,
+    /// Poses per chain: one pose of every block of N is solved from the seed (the one
+    /// nearest Re τ*; the first for pose lists), the others forwards and backwards from
+    /// it, each from its neighbour's complete set of critical points (the seed route
+    /// where that set or the pose-to-pose paths lose one); 1 = every pose from the seed.
+    #[arg(long, value_name = "N", default_value_t = RrrCurveOptions::default().chain_length)]
+    chain: usize,
 }
 
 /// Arguments of `singdist rrr ab-initio`.
@@ -200,8 +206,12 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     if let Some(html) = &args.report.html {
         check_output_file("--html", html, &["html"])?;
     }
+    if args.chain == 0 {
+        bail!("--chain: must be at least 1");
+    }
     let options = RrrCurveOptions {
         seed: args.motion_run.run.seed,
+        chain_length: args.chain,
         ..RrrCurveOptions::default()
     };
     let taus: Vec<f64> = samples.iter().map(|s| s.tau).collect();

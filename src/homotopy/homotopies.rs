@@ -236,6 +236,7 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
 /// `p(t)` piecewise linear through `p₀, …, p_K` at `t = 0, 1/K, …, 1` (a closed loop
 /// when `p_K = p₀`): complex detours and the monodromy loops of
 /// [`crate::homotopy::monodromy`].
+#[derive(Clone, Debug)]
 pub struct PolylinePath {
     points: Vec<Vec<C64>>,
     breakpoints: Vec<f64>,

@@ -8,6 +8,7 @@ pub mod curve;
 pub mod family;
 pub mod postprocess;
 pub mod rrr_ab_initio;
+pub(crate) mod rrr_chain;
 pub mod rrr_curve;
 pub mod rrr_seed;
 pub mod rrr_window;

@@ -95,6 +95,14 @@ pub struct RrrCurveOptions {
     pub seed_retry_attempts: usize,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
+    /// Poses per chain ([`super::rrr_chain`]): one pose of every block of
+    /// `chain_length` consecutive poses is solved from the seed, the others from their
+    /// neighbours' complete solution sets; `1` solves every pose from the seed.
+    #[serde(default = "default_chain_length")]
+    pub chain_length: usize,
+    /// Tracker settings of the pose-to-pose paths of a chain.
+    #[serde(default = "default_neighbour_tracker")]
+    pub neighbour_tracker: TrackerOptions,
 }
 
 impl Default for RrrCurveOptions {
@@ -106,8 +114,18 @@ impl Default for RrrCurveOptions {
             retry_attempts: 2,
             seed_retry_attempts: default_seed_retry_attempts(),
             real_tolerance: 1e-8,
+            chain_length: default_chain_length(),
+            neighbour_tracker: default_neighbour_tracker(),
         }
     }
+}
+
+fn default_chain_length() -> usize {
+    1
+}
+
+fn default_neighbour_tracker() -> TrackerOptions {
+    TrackerOptions::default()
 }
 
 fn default_seed_retry_attempts() -> usize {
@@ -206,33 +224,30 @@ pub struct RrrCurveResult {
 /// Per (pose, sub-problem): sub-problem result, failure, paths tracked.
 pub(crate) type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
 
-/// Stages 2–4 for one sub-problem at the real configuration `k`: tracked in `frame`
-/// (the seed's), the closest configuration mapped back and `D(K, K′)` recomputed in the
-/// caller's frame.
-pub(crate) fn solve_subproblem(
+/// The parameters of the real configuration `k` in `frame`.
+pub(crate) fn target_parameters(frame: &RrrFrame, k: &[f64; CONFIGURATION_LEN]) -> Vec<C64> {
+    frame.apply(k).iter().map(|&v| C64::new(v, 0.0)).collect()
+}
+
+/// The random stream of (pose `index`, sub-problem `problem_index`).
+pub(crate) fn path_stream(index: usize, problem_index: usize) -> u64 {
+    ((index as u64 + 1) << 32) | problem_index as u64
+}
+
+/// The seed's solutions tracked to `target` (straight, then detours; [`route`]).
+pub(crate) fn track_from_seed(
     seeded: &RrrSeededProblem,
-    frame: &RrrFrame,
-    k: &[f64; CONFIGURATION_LEN],
-    index: usize,
-    tau: f64,
-    problem_index: usize,
+    target: &[C64],
+    stream: u64,
     options: &RrrCurveOptions,
-) -> Entry {
-    let target: Vec<C64> = frame.apply(k).iter().map(|&v| C64::new(v, 0.0)).collect();
-    let stream = ((index as u64 + 1) << 32) | problem_index as u64;
-    let Retried {
-        endpoints,
-        accounted,
-        tracked,
-        reasons,
-        ..
-    } = track_with_retries(
+) -> Retried {
+    track_with_retries(
         seeded.problem.evaluator(),
         &seeded.seed_solutions,
         |attempt| {
             route(
                 &seeded.seed_parameters,
-                &target,
+                target,
                 options.seed,
                 stream,
                 attempt,
@@ -240,7 +255,28 @@ pub(crate) fn solve_subproblem(
         },
         options.retry_attempts,
         TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
-    );
+    )
+}
+
+/// The sub-problem's result at `k` from what tracking found there: real critical points
+/// (`max |Im x| ≤ tol·(1+‖x‖∞)`), `K′` mapped back to the caller's frame, the smallest
+/// `D(K, K′)`, and a failure when fewer than the seed's paths are accounted for.
+pub(crate) fn subproblem_entry(
+    seeded: &RrrSeededProblem,
+    frame: &RrrFrame,
+    k: &[f64; CONFIGURATION_LEN],
+    (index, tau): (usize, f64),
+    retried: &Retried,
+    options: &RrrCurveOptions,
+) -> Entry {
+    let Retried {
+        endpoints,
+        accounted,
+        tracked,
+        reasons,
+        ..
+    } = retried;
+    let accounted = *accounted;
     let kind = seeded.problem.kind();
     let failure = (accounted < seeded.start_count).then(|| RrrPathFailure {
         pose_index: Some(index),
@@ -248,11 +284,11 @@ pub(crate) fn solve_subproblem(
         problem: kind.name(),
         expected: seeded.start_count,
         accounted,
-        reasons,
+        reasons: reasons.clone(),
     });
     let mut best_candidate: Option<(f64, [f64; CONFIGURATION_LEN])> = None;
     let mut real = 0;
-    for x in &endpoints {
+    for x in endpoints {
         if !super::postprocess::is_real(x, options.real_tolerance) {
             continue;
         }
@@ -275,7 +311,7 @@ pub(crate) fn solve_subproblem(
             expected_endpoints: seeded.start_count,
         },
         failure,
-        tracked,
+        *tracked,
     )
 }
 

@@ -7,9 +7,10 @@
 //! of poses.
 
 use super::rrr_ab_initio::RrrAbInitioError;
+use super::rrr_chain::{ChainPose, chain_anchor, chain_blocks, solve_chain};
 use super::rrr_curve::{
     Entry, RrrCurveError, RrrCurveOptions, RrrCurveResult, RrrPathFailure, RrrPoseResult,
-    configuration_at, parallel_singular_parameters, signed, solve_subproblem,
+    configuration_at, parallel_singular_parameters, signed,
 };
 use super::rrr_seed::{RrrSeedStage, rrr_seed_stage};
 use super::start_file::StartSolutions;
@@ -68,59 +69,71 @@ impl<'a> RrrCurveRun<'a> {
         self.stage.paths_tracked
     }
 
-    /// The poses `range` (indices into the run's τ values), every (pose, sub-problem) in
-    /// parallel.
+    /// The poses `range` (indices into the run's τ values): the chains of their blocks
+    /// ([`super::rrr_chain`]) for every sub-problem in parallel.
     pub fn solve_poses(
         &self,
         range: std::ops::Range<usize>,
     ) -> Result<Vec<RrrPoseResult>, RrrCurveError> {
         let (stage, options) = (&self.stage, self.options);
-        let samples = range
-            .clone()
-            .map(|j| {
-                let tau = self.taus[j];
-                configuration_at(self.trajectory, j, tau).map(|(pose, k)| (tau, pose, k.to_array()))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let jobs: Vec<(usize, usize)> = (0..samples.len())
-            .flat_map(|j| (0..stage.problems.len()).map(move |p| (j, p)))
+        let blocks = chain_blocks(&range, options.chain_length, self.taus.len());
+        let mut chains = Vec::with_capacity(blocks.len());
+        for block in &blocks {
+            let poses = block
+                .clone()
+                .map(|index| {
+                    let tau = self.taus[index];
+                    configuration_at(self.trajectory, index, tau).map(|(pose, k)| {
+                        let at = ChainPose {
+                            index,
+                            tau,
+                            k: k.to_array(),
+                        };
+                        (pose, at)
+                    })
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let (pose_values, poses): (Vec<[f64; 3]>, Vec<ChainPose>) = poses.into_iter().unzip();
+            let anchor = chain_anchor(&poses, stage.tau_star);
+            chains.push((pose_values, poses, anchor));
+        }
+        let jobs: Vec<(usize, usize)> = (0..chains.len())
+            .flat_map(|c| (0..stage.problems.len()).map(move |p| (c, p)))
             .collect();
-        let entries: Vec<Entry> = jobs
+        let solved: Vec<Vec<Entry>> = jobs
             .par_iter()
-            .map(|&(j, p)| {
-                let (tau, _, k) = &samples[j];
-                solve_subproblem(
-                    &stage.problems[p],
-                    &stage.frame,
-                    k,
-                    range.start + j,
-                    *tau,
-                    p,
-                    options,
-                )
+            .map(|&(c, p)| {
+                let (_, poses, anchor) = &chains[c];
+                solve_chain(&stage.problems[p], &stage.frame, poses, *anchor, p, options)
             })
             .collect();
-        let mut entries = entries.into_iter();
-        let mut results = Vec::with_capacity(samples.len());
-        for (j, (tau, pose, k)) in samples.iter().enumerate() {
-            let mut subproblems = BTreeMap::new();
-            let mut failures = Vec::new();
-            let mut paths_tracked = 0;
-            for seeded in &stage.problems {
-                let Some((result, failure, tracked)) = entries.next() else {
-                    break;
-                };
-                failures.extend(failure);
-                paths_tracked += tracked;
-                subproblems.insert(seeded.problem.kind().short_name(), result);
+        let mut solved = solved.into_iter();
+        let mut results = Vec::with_capacity(range.len());
+        for (pose_values, poses, _) in &chains {
+            let per_problem: Vec<Vec<Entry>> = solved.by_ref().take(stage.problems.len()).collect();
+            for (j, (pose, at)) in pose_values.iter().zip(poses).enumerate() {
+                if !range.contains(&at.index) {
+                    continue;
+                }
+                let mut subproblems = BTreeMap::new();
+                let mut failures = Vec::new();
+                let mut paths_tracked = 0;
+                for (seeded, entries) in stage.problems.iter().zip(&per_problem) {
+                    let Some((result, failure, tracked)) = entries.get(j).cloned() else {
+                        continue;
+                    };
+                    failures.extend(failure);
+                    paths_tracked += tracked;
+                    subproblems.insert(seeded.problem.kind().short_name(), result);
+                }
+                results.push(self.assemble(
+                    at.index,
+                    (at.tau, *pose, &at.k),
+                    subproblems,
+                    failures,
+                    paths_tracked,
+                ));
             }
-            results.push(self.assemble(
-                range.start + j,
-                (*tau, *pose, k),
-                subproblems,
-                failures,
-                paths_tracked,
-            ));
         }
         Ok(results)
     }

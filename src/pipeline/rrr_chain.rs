@@ -1,0 +1,220 @@
+//! Stage 2 of the 3-RRR curve along chains of poses, as for the 3-RPR
+//! ([`super::curve::CurveOptions::chain_length`]): the poses are cut into blocks of
+//! [`RrrCurveOptions::chain_length`] consecutive poses (at fixed pose indices, so
+//! that neither the thread count nor the window a caller asks for changes a result).
+//! In each block one pose, the *anchor*, is solved from the seed (the pose nearest
+//! `Re τ*`, the shortest seed route; the block's first pose for pose lists), and the
+//! others forwards and backwards from it, each sub-problem from its predecessor's
+//! solutions:
+//!
+//! - the predecessor's distinct finite critical points are tracked along two
+//!   segments through a random complex midpoint `(p + q)/2 + ε·ξ` of the two
+//!   configurations (`ε` half their largest coordinate difference, `ξ` standard complex
+//!   normal): between two real configurations the straight segment may meet a real
+//!   branch point, where two real critical points merge into a complex pair;
+//! - such a pose-to-pose homotopy starts from a *complete* set only (as many distinct
+//!   finite critical points as the seed has, every path accounted for) and its result
+//!   is kept only when it is complete again, so a chain can never pass on a loss;
+//!   otherwise the pose is solved from the seed (with its re-runs and detours), and
+//!   of the two the result accounting for more paths is kept.
+//!
+//! Parameter homotopy from any complete solution set at a parameter point reaches
+//! every isolated solution at a generic target (Morgan and Sommese,
+//! *Coefficient-parameter polynomial continuation*, Appl. Math. Comput. 29, 1989); the
+//! seed route remains the reference where that fails.
+
+use super::rrr_curve::{
+    Entry, RrrCurveOptions, path_stream, subproblem_entry, target_parameters, track_from_seed,
+};
+use super::rrr_seed::{RrrFrame, RrrSeededProblem};
+use super::sweep::{Retried, TrackingPlan, track_with_retries};
+use crate::C64;
+use crate::homotopy::PolylinePath;
+use crate::mechanism::rrr::CONFIGURATION_LEN;
+use crate::random;
+
+/// One pose of a block: its index along the motion, τ and its configuration.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ChainPose {
+    /// Index of the pose along the motion.
+    pub index: usize,
+    /// Motion parameter.
+    pub tau: f64,
+    /// The configuration `K` (18 coordinates).
+    pub k: [f64; CONFIGURATION_LEN],
+}
+
+/// The blocks of consecutive pose indices (`chain_length` each, at multiples of it)
+/// that meet `range`, each whole (a caller keeps the poses in `range`).
+pub(crate) fn chain_blocks(
+    range: &std::ops::Range<usize>,
+    chain_length: usize,
+    poses: usize,
+) -> Vec<std::ops::Range<usize>> {
+    let length = chain_length.max(1);
+    if range.is_empty() {
+        return Vec::new();
+    }
+    let first = range.start / length;
+    let last = (range.end - 1) / length;
+    (first..=last)
+        .map(|b| b * length..((b + 1) * length).min(poses))
+        .collect()
+}
+
+/// The anchor of `block`: the pose nearest `Re τ*` (analytic motions), else the first.
+pub(crate) fn chain_anchor(block: &[ChainPose], tau_star: Option<C64>) -> usize {
+    match tau_star {
+        Some(tau) => (0..block.len())
+            .min_by(|&a, &b| {
+                (block[a].tau - tau.re)
+                    .abs()
+                    .total_cmp(&(block[b].tau - tau.re).abs())
+            })
+            .unwrap_or(0),
+        None => 0,
+    }
+}
+
+/// A complete solution set at a parameter point, from which the next pose of a chain
+/// starts.
+struct CompleteSet {
+    parameters: Vec<C64>,
+    solutions: Vec<Vec<C64>>,
+}
+
+/// One sub-problem at every pose of `block` (module documentation), in block order.
+pub(crate) fn solve_chain(
+    seeded: &RrrSeededProblem,
+    frame: &RrrFrame,
+    block: &[ChainPose],
+    anchor: usize,
+    problem_index: usize,
+    options: &RrrCurveOptions,
+) -> Vec<Entry> {
+    let mut entries: Vec<Option<Entry>> = vec![None; block.len()];
+    let mut solve = |j: usize, from: Option<&CompleteSet>| -> Option<CompleteSet> {
+        let pose = &block[j];
+        let target = target_parameters(frame, &pose.k);
+        let stream = path_stream(pose.index, problem_index);
+        let complete = |r: &Retried| {
+            r.accounted == seeded.start_count && r.endpoints.len() == seeded.start_count
+        };
+        let retried = match from {
+            Some(set) => {
+                let neighbour = track_from_neighbour(seeded, set, &target, stream, options);
+                if complete(&neighbour) {
+                    neighbour
+                } else {
+                    let mut from_seed = track_from_seed(seeded, &target, stream, options);
+                    let tracked = from_seed.tracked + neighbour.tracked;
+                    if neighbour.accounted > from_seed.accounted {
+                        from_seed = neighbour;
+                    }
+                    from_seed.tracked = tracked;
+                    from_seed
+                }
+            }
+            None => track_from_seed(seeded, &target, stream, options),
+        };
+        entries[j] = Some(subproblem_entry(
+            seeded,
+            frame,
+            &pose.k,
+            (pose.index, pose.tau),
+            &retried,
+            options,
+        ));
+        complete(&retried).then_some(CompleteSet {
+            parameters: target,
+            solutions: retried.endpoints,
+        })
+    };
+    let at_anchor = solve(anchor, None);
+    let mut previous = at_anchor.as_ref().map(|set| CompleteSet {
+        parameters: set.parameters.clone(),
+        solutions: set.solutions.clone(),
+    });
+    for j in anchor + 1..block.len() {
+        previous = solve(j, previous.as_ref());
+    }
+    previous = at_anchor;
+    for j in (0..anchor).rev() {
+        previous = solve(j, previous.as_ref());
+    }
+    entries.into_iter().flatten().collect()
+}
+
+/// Random stream offset of the pose-to-pose routes (the seed routes use the offsets
+/// `0 ..= retry_attempts`).
+const NEIGHBOUR_SALT: u64 = 8;
+
+/// `set`'s solutions tracked to `target` along two segments through a random complex
+/// midpoint (module documentation), without detours: where this route does not
+/// complete the pose, the seed route does.
+fn track_from_neighbour(
+    seeded: &RrrSeededProblem,
+    set: &CompleteSet,
+    target: &[C64],
+    stream: u64,
+    options: &RrrCurveOptions,
+) -> Retried {
+    let mut rng = random::stream(
+        options.seed,
+        stream.wrapping_mul(16).wrapping_add(NEIGHBOUR_SALT),
+    );
+    let from = &set.parameters;
+    let spread = from
+        .iter()
+        .zip(target)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+    // Coincident poses still get a (tiny) loop, so that the route is a proper path.
+    let epsilon = (0.5 * spread).max(1e-6);
+    let midpoint: Vec<C64> = from
+        .iter()
+        .zip(target)
+        .map(|(a, b)| (a + b) * 0.5 + random::complex_normal(&mut rng) * epsilon)
+        .collect();
+    let path = PolylinePath::new(vec![from.clone(), midpoint, target.to_vec()]);
+    let plan = TrackingPlan {
+        // Between two generic real poses every critical point is finite and
+        // nonsingular: no endgame; paths that fail, cross or diverge are re-run with it.
+        endgame: false,
+        ..TrackingPlan::with_endgame(&options.neighbour_tracker, &options.retry_tracker)
+    };
+    track_with_retries(
+        seeded.problem.evaluator(),
+        &set.solutions,
+        |_| path.clone(),
+        0,
+        plan,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn blocks_sit_at_multiples_of_the_chain_length() {
+        assert_eq!(chain_blocks(&(0..10), 4, 10), vec![0..4, 4..8, 8..10]);
+        // A window starting inside a block gets the whole block.
+        assert_eq!(chain_blocks(&(5..7), 4, 10), vec![4..8]);
+        assert_eq!(chain_blocks(&(3..9), 4, 10), vec![0..4, 4..8, 8..10]);
+        assert_eq!(chain_blocks(&(0..3), 1, 3), vec![0..1, 1..2, 2..3]);
+        assert!(chain_blocks(&(2..2), 4, 10).is_empty());
+    }
+
+    #[test]
+    fn the_anchor_is_the_pose_nearest_the_seed() {
+        let pose = |tau| ChainPose {
+            index: 0,
+            tau,
+            k: [0.0; CONFIGURATION_LEN],
+        };
+        let block = [pose(0.0), pose(0.1), pose(0.2), pose(0.3)];
+        assert_eq!(chain_anchor(&block, Some(C64::new(0.21, 0.5))), 2);
+        assert_eq!(chain_anchor(&block, Some(C64::new(-4.0, 0.5))), 0);
+        assert_eq!(chain_anchor(&block, None), 0);
+    }
+}
