@@ -325,6 +325,43 @@ fn bad_input_is_an_error_naming_the_field() {
 
 /// Results do not depend on the number of worker threads (every path is a pure function
 /// of its inputs and seeded streams).
+/// Chained poses (each from its neighbour's critical points) and poses solved from the
+/// seed find the same critical points, on the three design classes of
+/// `rrr_support::trajectories`: equal counts, distances equal to 1e-9 relative, and the
+/// chained run loses no path.
+#[test]
+fn chained_poses_equal_poses_from_the_seed() {
+    for trajectory in rrr_support::trajectories() {
+        let [lo, hi] = trajectory.motion().tau_range();
+        let taus: Vec<f64> = (0..24)
+            .map(|j| lo + (hi - lo) * (j as f64 + 0.5) / 24.0)
+            .collect();
+        let solve = |chain_length| {
+            let options = RrrCurveOptions {
+                chain_length,
+                ..RrrCurveOptions::default()
+            };
+            compute_rrr_curve_at(&trajectory, &taus, &options, &default_rrr_start_solutions)
+                .expect("curve")
+        };
+        let (from_seed, chained) = (solve(1), solve(8));
+        assert_no_lost_paths(&chained);
+        for (a, b) in from_seed.poses.iter().zip(&chained.poses) {
+            for (name, x) in &a.subproblems {
+                let y = &b.subproblems[name];
+                assert_eq!(x.real_critical_points, y.real_critical_points, "{name}");
+                assert_eq!(x.finite_endpoints, y.finite_endpoints, "{name}");
+                let (dx, dy) = (x.distance.expect("real"), y.distance.expect("real"));
+                assert!(
+                    (dx - dy).abs() <= 1e-9 * dx.abs().max(1e-12),
+                    "pose {} {name}: {dx} vs {dy}",
+                    a.index
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn results_are_identical_for_one_and_two_threads() {
     let trajectory = example_trajectory();

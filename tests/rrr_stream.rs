@@ -28,6 +28,32 @@ fn windows_equal_the_whole_curve() {
     assert_eq!(run.collect(poses), whole);
 }
 
+/// With chains of 3 poses the windows 0..2, 2..5, 5..7 cut blocks in two: each window
+/// still gives exactly the whole curve's poses (a block is solved from its anchor).
+#[test]
+fn windows_cutting_chains_equal_the_whole_curve() {
+    let trajectory = example_trajectory();
+    let taus = [0.2, 0.5, 0.9, 1.3, 1.7, 2.1, 2.6];
+    let options = RrrCurveOptions {
+        chain_length: 3,
+        ..RrrCurveOptions::default()
+    };
+    let whole = compute_rrr_curve_at(&trajectory, &taus, &options, &default_rrr_start_solutions)
+        .expect("curve");
+    let run =
+        RrrCurveRun::new(&trajectory, &taus, &options, &default_rrr_start_solutions).expect("run");
+    let mut poses = Vec::new();
+    for range in [0..2, 2..5, 5..7] {
+        let window = run.solve_poses(range.clone()).expect("window");
+        assert_eq!(
+            window.iter().map(|p| p.index).collect::<Vec<_>>(),
+            range.collect::<Vec<_>>()
+        );
+        poses.extend(window);
+    }
+    assert_eq!(poses, whole.poses);
+}
+
 #[test]
 fn streamed_csv_is_complete() {
     let dir = std::env::temp_dir().join(format!("singdist-rrr-stream-{}", std::process::id()));
