@@ -13,9 +13,11 @@
 //!    At most the generic count of distinct seed solutions is kept; a count below it must
 //!    be confirmed at an independent seed point or is reported.
 //! 2. **Parameter homotopy** (Kapilavai and Nawratil, §5.3): seed solutions → the real
-//!    (normalised) configuration of every pose, all (pose, sub-problem) pairs in parallel
-//!    (rayon); each path is a pure function of its inputs, so results do not depend on
-//!    the thread count.
+//!    (normalised) configuration of one pose per block of
+//!    [`RrrCurveOptions::chain_length`] poses, and from there pose to pose along the block
+//!    ([`super::rrr_chain`]); every (block, sub-problem) pair in parallel (rayon). Blocks
+//!    sit at fixed pose indices and each path is a pure function of its inputs, so
+//!    results depend neither on the thread count nor on the windows a caller asks for.
 //! 3. **No silent losses** (the 3-RPR machinery, [`super::curve`]): a (pose,
 //!    sub-problem) with failed paths re-tracks them with conservative settings, then
 //!    every path along polylines through a random complex detour point near the target
@@ -121,7 +123,7 @@ impl Default for RrrCurveOptions {
 }
 
 fn default_chain_length() -> usize {
-    1
+    20
 }
 
 fn default_neighbour_tracker() -> TrackerOptions {
