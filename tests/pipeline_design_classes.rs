@@ -22,6 +22,25 @@ fn at_poses(design: &Design, poses: &[Pose], metrics: &[Metric], seed: u64) -> C
         .expect("the curve is computed")
 }
 
+/// The curve of `design` along `motion` at `poses` poses with the default options.
+fn default_curve(
+    design: &Design,
+    motion: &Motion,
+    poses: usize,
+    metrics: &[Metric],
+) -> CurveResult {
+    compute_curve(
+        design,
+        motion,
+        poses,
+        metrics,
+        &CurveOptions::default(),
+        &default_start_solutions,
+        &|_| {},
+    )
+    .expect("the curve is computed")
+}
+
 fn relative(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
 }
@@ -148,16 +167,12 @@ fn equilateral_platform_collinear_subproblems_are_closed_form() {
 fn curve_reports_its_self_check() {
     let motion = example_motion();
     let metrics = ["plate/plate", "rigid/rigid"].map(|m| m.parse().unwrap());
-    let result = compute_curve(
+    let result = default_curve(
         &singdist::mechanism::rpr::example_design(),
         &motion,
         12,
         &metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-        &|_| {},
-    )
-    .unwrap();
+    );
     let check = result.self_check.expect("on by default");
     assert!(
         check.poses.contains(&0) && check.poses.contains(&11),
@@ -231,16 +246,7 @@ fn close_base_anchors_lose_no_path_with_the_projective_twin() {
     let design = Design::new(case.base, case.platform).unwrap();
     let motion = Motion::Analytic(case.motion.clone());
     let metrics = ["bars/rigid".parse::<Metric>().unwrap()];
-    let result = compute_curve(
-        &design,
-        &motion,
-        8,
-        &metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("the curve is computed");
+    let result = default_curve(&design, &motion, 8, &metrics);
     assert!(result.failures.is_empty(), "{:?}", result.failures);
     for pose in &result.poses {
         let singularity = &pose.metrics["bars/rigid"].subproblems["singularity"];
@@ -284,16 +290,7 @@ fn congruent_design_loses_no_path_on_scattered_poses() {
     let case = design_case("congruent", 1).expect("a class of the matrix");
     let design = case.design().unwrap();
     let metrics = ["bars/bars".parse::<Metric>().unwrap()];
-    let result = compute_curve(
-        &design,
-        &case.scattered_motion(),
-        8,
-        &metrics,
-        &CurveOptions::default(),
-        &default_start_solutions,
-        &|_| {},
-    )
-    .expect("the curve is computed");
+    let result = default_curve(&design, &case.scattered_motion(), 8, &metrics);
     assert!(result.failures.is_empty(), "{:?}", result.failures);
     assert!(
         result

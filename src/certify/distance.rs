@@ -84,14 +84,24 @@ fn is_zero(v: &usize) -> bool {
 trait Enclosure:
     Copy + std::ops::Add<Output = Self> + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
 {
+    /// The complex box of a real enclosure.
+    type Complex;
     fn exact(v: f64) -> Self;
     fn recip(self) -> Option<Self>;
     fn sqrt(self) -> Option<Self>;
+    fn complex(self) -> Self::Complex;
 }
 
 impl Enclosure for Interval {
+    type Complex = ComplexInterval;
     fn exact(v: f64) -> Self {
         Interval::point(v)
+    }
+    fn complex(self) -> ComplexInterval {
+        ComplexInterval {
+            re: self,
+            im: Interval::point(0.0),
+        }
     }
     fn recip(self) -> Option<Self> {
         Interval::recip(&self)
@@ -102,8 +112,12 @@ impl Enclosure for Interval {
 }
 
 impl Enclosure for RealDd {
+    type Complex = MidRadDd;
     fn exact(v: f64) -> Self {
         RealDd::exact(v)
+    }
+    fn complex(self) -> MidRadDd {
+        MidRadDd::real(self)
     }
     fn recip(self) -> Option<Self> {
         RealDd::recip(self)
@@ -165,33 +179,19 @@ fn parameter_values<T: Enclosure>(
     Some(out)
 }
 
-/// The parameter boxes of `problem` at configuration `k` of `design` in `frame`
-/// (computed in double interval arithmetic). `None` if a shape is
+/// The parameter boxes of `problem` at configuration `k` of `design` in `frame`:
+/// [`ComplexInterval`]s computed in double interval arithmetic (`T = Interval`), or
+/// boxes with double-double midpoints computed in [`RealDd`] arithmetic (`T = RealDd`,
+/// for the double-double test of ill-conditioned points). `None` if a shape is
 /// degenerate.
-pub fn parameter_enclosure(
+fn parameter_enclosure<T: Enclosure>(
     problem: &LagrangeProblem,
     design: &Design,
     k: &[f64; 12],
     frame: Frame,
-) -> Option<Vec<ComplexInterval>> {
-    let real = |v: Interval| ComplexInterval {
-        re: v,
-        im: Interval::point(0.0),
-    };
-    let values = parameter_values::<Interval>(problem, design, k, frame)?;
-    Some(values.into_iter().map(real).collect())
-}
-
-/// The same parameters with double-double midpoints (computed in [`RealDd`]
-/// arithmetic), for the double-double test of ill-conditioned points.
-pub fn parameter_enclosure_dd(
-    problem: &LagrangeProblem,
-    design: &Design,
-    k: &[f64; 12],
-    frame: Frame,
-) -> Option<Vec<MidRadDd>> {
-    let values = parameter_values::<RealDd>(problem, design, k, frame)?;
-    Some(values.into_iter().map(MidRadDd::real).collect())
+) -> Option<Vec<T::Complex>> {
+    let values = parameter_values::<T>(problem, design, k, frame)?;
+    Some(values.into_iter().map(T::complex).collect())
 }
 
 /// The enclosure of `D(K, K′)` of the real solution in `root`.
@@ -234,7 +234,7 @@ pub fn certify_subproblem(
         complete: false,
         distance: None,
     };
-    let Some(parameter_boxes) = parameter_enclosure(problem, design, k, frame) else {
+    let Some(parameter_boxes) = parameter_enclosure::<Interval>(problem, design, k, frame) else {
         return failed;
     };
     let midpoints: Vec<C64> = parameter_boxes.iter().map(|b| b.midpoint()).collect();
@@ -246,7 +246,7 @@ pub fn certify_subproblem(
     // The parameter boxes are real: the Cartesian system is real, and so is the
     // isotropic one under (u, v) ↦ (v̄, ū).
     let mut test = test.with_isotropic_pairs(&problem.isotropic_pairs(), true);
-    if let Some(extended) = parameter_enclosure_dd(problem, design, k, frame) {
+    if let Some(extended) = parameter_enclosure::<RealDd>(problem, design, k, frame) {
         test = test.with_extended_parameters(extended);
     }
     // Fewer points than the generic count: no certificate can be complete, and only

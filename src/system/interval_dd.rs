@@ -156,6 +156,7 @@ impl Neg for RealDd {
     }
 }
 
+/// `a − b = a + (−b)`: negation is exact, so the sum's enclosure is the difference's.
 impl Sub for RealDd {
     type Output = RealDd;
     #[inline]
@@ -234,35 +235,8 @@ impl MidRadDd {
     }
 }
 
-impl Add for MidRadDd {
-    type Output = MidRadDd;
-    #[inline]
-    fn add(self, o: MidRadDd) -> MidRadDd {
-        MidRadDd {
-            re: self.re + o.re,
-            im: self.im + o.im,
-        }
-    }
-}
-
-impl Neg for MidRadDd {
-    type Output = MidRadDd;
-    #[inline]
-    fn neg(self) -> MidRadDd {
-        MidRadDd {
-            re: -self.re,
-            im: -self.im,
-        }
-    }
-}
-
-impl Sub for MidRadDd {
-    type Output = MidRadDd;
-    #[inline]
-    fn sub(self, o: MidRadDd) -> MidRadDd {
-        self + -o
-    }
-}
+// Sums, differences and negations part by part (`RealDd`'s enclosures).
+complex_add_sub_neg!(MidRadDd);
 
 impl Mul for MidRadDd {
     type Output = MidRadDd;
@@ -276,27 +250,20 @@ impl Mul for MidRadDd {
         let (ra, rb, rc, rd) = (self.re.rad, self.im.rad, o.re.rad, o.im.rad);
         let re = self.re.mid * o.re.mid + -(self.im.mid * o.im.mid);
         let im = self.re.mid * o.im.mid + self.im.mid * o.re.mid;
+        // The part `p·q + r·t` (midpoint `mid`) of boxes `p ± r_p`, … .
+        let part = |mid, (p, rp): (f64, f64), (q, rq): (f64, f64), (r, rr), (t, rt)| RealDd {
+            mid,
+            rad: upper(
+                p * rq
+                    + rp * (q + rq)
+                    + r * rt
+                    + rr * (t + rt)
+                    + COMPLEX_MUL_ERROR * (p * q + r * t),
+            ),
+        };
         MidRadDd {
-            re: RealDd {
-                mid: re,
-                rad: upper(
-                    a * rc
-                        + ra * (c + rc)
-                        + b * rd
-                        + rb * (d + rd)
-                        + COMPLEX_MUL_ERROR * (a * c + b * d),
-                ),
-            },
-            im: RealDd {
-                mid: im,
-                rad: upper(
-                    a * rd
-                        + ra * (d + rd)
-                        + b * rc
-                        + rb * (c + rc)
-                        + COMPLEX_MUL_ERROR * (a * d + b * c),
-                ),
-            },
+            re: part(re, (a, ra), (c, rc), (b, rb), (d, rd)),
+            im: part(im, (a, ra), (d, rd), (b, rb), (c, rc)),
         }
     }
 }
