@@ -33,6 +33,7 @@
 
 use super::krawczyk::{Krawczyk, Realness, RootBox};
 use crate::C64;
+use crate::homotopy::refine::same_point;
 use crate::mechanism::rpr::Design;
 use crate::metric::Metric;
 use crate::problem::LagrangeProblem;
@@ -274,20 +275,16 @@ pub fn certify_subproblem(
     };
     // A conjugate partner of a certified non-real point is certified by the mirror
     // image of its box ([`Krawczyk::mirror`]) instead of a second test.
-    let mut mirrors: Vec<(RootBox, f64)> = Vec::new();
+    let mut mirrors: Vec<RootBox> = Vec::new();
     let mut boxes: Vec<Option<RootBox>> = Vec::with_capacity(solutions.len());
     for x in order.iter().map(|&i| &solutions[i]) {
-        if let Some(at) = mirrors
-            .iter()
-            .position(|(m, scale)| approximates(x, &m.center, *scale))
-        {
-            boxes.push(Some(mirrors.swap_remove(at).0));
+        if let Some(at) = mirrors.iter().position(|m| approximates(x, &m.center)) {
+            boxes.push(Some(mirrors.swap_remove(at)));
             continue;
         }
         let certified = test.certify(x);
         if let Some(mirror) = certified.as_ref().and_then(|b| test.mirror(b)) {
-            let scale = 1.0 + mirror.center.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-            mirrors.push((mirror, scale));
+            mirrors.push(mirror);
         }
         let found = minimiser_only
             && certified.as_ref().is_some_and(|b| {
@@ -351,14 +348,10 @@ pub fn certify_subproblem(
 }
 
 /// Whether the computed point `x` is the certified centre `center` to within
-/// `10⁻⁶·scale`, `scale = 1 + ‖center‖∞` (the same solution: the certified box around
-/// `center` stands for it; a wrong match can only leave a solution uncounted, never
-/// add one).
-fn approximates(x: &[C64], center: &[C64], scale: f64) -> bool {
-    x.len() == center.len()
-        && x.iter()
-            .zip(center)
-            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale)
+/// `10⁻⁶·(1 + ‖center‖∞)` (the same solution: the certified box around `center`
+/// stands for it; a wrong match can only leave a solution uncounted, never add one).
+fn approximates(x: &[C64], center: &[C64]) -> bool {
+    x.len() == center.len() && same_point(center, x, 1e-6)
 }
 
 /// How much of a metric's distance at a pose is proved.

@@ -38,6 +38,7 @@ use super::midrad::{MidpointRadius, negated_product};
 use crate::C64;
 use crate::homotopy::linalg::LuWorkspace;
 use crate::homotopy::newton::max_norm;
+use crate::homotopy::refine::same_point;
 use crate::system::Evaluator;
 use crate::system::compile::CompiledSystem;
 use crate::system::double_double::ComplexDd;
@@ -235,10 +236,7 @@ impl<'a> Krawczyk<'a> {
     /// Whether `x` is within `10⁻⁶·(1 + ‖x‖∞)` of its mirror image `σ(x)` (a real point
     /// to the tracker's accuracy; [`Krawczyk::certify`] then tries a σ-closed box).
     pub fn nearly_real(&self, x: &[C64]) -> bool {
-        let scale = 1.0 + max_norm(x);
-        x.iter()
-            .zip(self.involution(x))
-            .all(|(a, b)| (a - b).norm() <= 1e-6 * scale)
+        same_point(x, &self.involution(x), 1e-6)
     }
 
     /// Whether the system at these parameters has real coefficients (realness can

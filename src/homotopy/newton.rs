@@ -78,8 +78,9 @@ pub struct NewtonBuffers<'a> {
     pub lu: &'a mut LuWorkspace,
 }
 
+/// `‖x‖∞ = max |x_i|` (from the squared moduli: no square root per coordinate).
 pub(crate) fn max_norm(x: &[C64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| m.max(v.norm()))
+    x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
 }
 
 /// Newton's method on `F(·; parameters) = 0` from `point`, in place (module

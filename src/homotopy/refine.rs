@@ -111,10 +111,9 @@ pub fn same_root(a: &[C64], b: &[C64], condition: f64, tolerance: f64) -> bool {
 /// fixed relative distance test for points known far more accurately than they are
 /// apart (the Newton-limit test [`same_root`] is for points of unknown conditioning).
 pub fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
-    let scale = 1.0 + max_norm(a);
-    a.iter()
-        .zip(b)
-        .all(|(u, v)| (u - v).norm() <= tolerance * scale)
+    // Squared moduli: this runs for every pair of endpoints of every run.
+    let bound = (tolerance * (1.0 + max_norm(a))).powi(2);
+    a.iter().zip(b).all(|(u, v)| (u - v).norm_sqr() <= bound)
 }
 
 /// Whether some point of `set` is the [`same_point`] as `x` (distance relative to `x`).

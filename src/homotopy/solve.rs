@@ -17,7 +17,7 @@
 
 use super::divergence::settle_diverged_paths;
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
-use super::refine::{group_roots, newton_refine};
+use super::refine::{group_roots, newton_refine, same_point};
 use super::start::TotalDegreeStartSystem;
 use super::tracker::{
     EndgameOptions, FailureReason, PathResult, PathStatus, Tracker, TrackerOptions,
@@ -174,13 +174,6 @@ fn distinct_finite(paths: &[PathResult]) -> Vec<&PathResult> {
         }
     }
     representatives
-}
-
-fn same_point(a: &[C64], b: &[C64], tolerance: f64) -> bool {
-    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-    a.iter()
-        .zip(b)
-        .all(|(u, v)| (u - v).norm() <= tolerance * scale)
 }
 
 pub(super) fn check_finite(field: &'static str, values: &[C64]) -> Result<(), HomotopyError> {

@@ -63,6 +63,7 @@
 //! failed; only the endgame classifies a path as at infinity.
 
 use super::homotopies::Homotopy;
+use super::newton::max_norm;
 use crate::C64;
 use precision::{Evaluation, NewtonUpdate, Precision, RETURN_TO_DOUBLE_CONDITION};
 use serde::{Deserialize, Serialize};
@@ -266,10 +267,6 @@ const DEEP_RADIUS: f64 = 1e-8;
 /// (chemical equilibria with roots of modulus 10⁴ reached from 10² at `s = 0.1`) have
 /// such roots.
 const MIN_COORDINATE_GROWTH: f64 = 100.0;
-
-fn max_norm(x: &[C64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt()
-}
 
 /// Why the tracker stopped before the end of a route (one segment or a chain of them).
 /// The tracking layer reports only three outcomes: the route's end was reached (`Ok`),

@@ -91,12 +91,7 @@ pub(crate) struct Retried {
 pub(crate) const SAME_ENDPOINT: f64 = 1e-8;
 
 pub(crate) fn same_endpoint(a: &[C64], b: &[C64]) -> bool {
-    // Squared moduli: this runs for every pair of endpoints of every run.
-    let scale = 1.0 + a.iter().fold(0.0f64, |m, v| m.max(v.norm_sqr())).sqrt();
-    let tolerance = (SAME_ENDPOINT * scale).powi(2);
-    a.iter()
-        .zip(b)
-        .all(|(u, v)| (u - v).norm_sqr() <= tolerance)
+    crate::homotopy::refine::same_point(a, b, SAME_ENDPOINT)
 }
 
 /// Whether a path's endpoint is finite and was reached without winding (winding number
