@@ -15,9 +15,11 @@ fn windows_equal_the_whole_curve() {
         .expect("curve");
     let run =
         RrrCurveRun::new(&trajectory, &taus, &options, &default_rrr_start_solutions).expect("run");
-    let mut poses = run.solve_poses(0..4).expect("window 0");
-    assert_eq!(poses.len(), 4);
-    poses.extend(run.solve_poses(4..7).expect("window 1"));
+    let first = run.solve_window(0..4).expect("window 0");
+    assert_eq!(first.poses.len(), 4);
+    let second = run.solve_window(4..7).expect("window 1");
+    let mut poses = first.poses.clone();
+    poses.extend(second.poses.clone());
     assert_eq!(poses, whole.poses);
     // The maximum of |parallel determinant| is over all seven poses, not per window.
     let top = poses
@@ -25,7 +27,13 @@ fn windows_equal_the_whole_curve() {
         .map(|p| p.parallel_determinant_abs_scaled)
         .fold(0.0f64, f64::max);
     assert_eq!(top, 1.0);
-    assert_eq!(run.collect(poses), whole);
+    // The windows' self-checks re-solve other poses than the whole curve's.
+    let windowed = run.collect(vec![first, second]);
+    assert_eq!(windowed.poses, whole.poses);
+    assert_eq!(
+        windowed.self_check.as_ref().map(|c| c.disagreements),
+        Some(0)
+    );
 }
 
 /// With chains of 3 poses the windows 0..2, 2..5, 5..7 cut blocks in two: each window
@@ -44,7 +52,7 @@ fn windows_cutting_chains_equal_the_whole_curve() {
         RrrCurveRun::new(&trajectory, &taus, &options, &default_rrr_start_solutions).expect("run");
     let mut poses = Vec::new();
     for range in [0..2, 2..5, 5..7] {
-        let window = run.solve_poses(range.clone()).expect("window");
+        let window = run.solve_window(range.clone()).expect("window").poses;
         assert_eq!(
             window.iter().map(|p| p.index).collect::<Vec<_>>(),
             range.collect::<Vec<_>>()

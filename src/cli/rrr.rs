@@ -75,6 +75,11 @@ pub struct RrrCurveArgs {
     /// where that set or the pose-to-pose paths lose one); 1 = every pose from the seed.
     #[arg(long, value_name = "N", default_value_t = RrrCurveOptions::default().chain_length)]
     chain: usize,
+    /// Skip the self-check: by default the first and last pose and each sub-problem's
+    /// closest pose of every window are solved again from an independent seed stage,
+    /// and a closer singular configuration found there is reported (exit code 3).
+    #[arg(long)]
+    no_self_check: bool,
 }
 
 /// Arguments of `singdist rrr ab-initio`.
@@ -212,6 +217,7 @@ fn run_curve(args: RrrCurveArgs) -> Result<Outcome> {
     let options = RrrCurveOptions {
         seed: args.motion_run.run.seed,
         chain_length: args.chain,
+        self_check: !args.no_self_check,
         ..RrrCurveOptions::default()
     };
     let taus: Vec<f64> = samples.iter().map(|s| s.tau).collect();
@@ -314,7 +320,7 @@ fn stream_curve(
             let mut failures = run.seed_failures().to_vec();
             let mut paths_tracked = run.seed_paths_tracked();
             for range in window_ranges(taus.len(), WINDOW_POSES) {
-                let poses = run.solve_poses(range)?;
+                let poses = run.solve_window(range)?.poses;
                 let text = match &args.motion_run.output.out {
                     Some(_) => csv_rows(&poses, run.seed_failures())?,
                     None => table_rows(&poses),

@@ -11,6 +11,7 @@ pub mod rrr_ab_initio;
 pub(crate) mod rrr_chain;
 pub mod rrr_curve;
 pub mod rrr_seed;
+pub(crate) mod rrr_self_check;
 pub mod rrr_window;
 pub mod start_file;
 pub mod start_pair;

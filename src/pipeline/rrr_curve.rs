@@ -104,6 +104,11 @@ pub struct RrrCurveOptions {
     /// neighbours' complete solution sets; `1` solves every pose from the seed.
     #[serde(default = "default_chain_length")]
     pub chain_length: usize,
+    /// Re-solve the first and last pose and each sub-problem's closest pose of every
+    /// window from an independent seed stage ([`super::rrr_self_check`]); a closer
+    /// singular configuration found there replaces the run's and is reported.
+    #[serde(default = "default_self_check")]
+    pub self_check: bool,
     /// Tracker settings of the pose-to-pose paths of a chain
     /// ([`TrackerOptions::curve_neighbour`]: steps up to 0.5; on the built-in example
     /// 1.44 × faster than the default preset).
@@ -121,9 +126,14 @@ impl Default for RrrCurveOptions {
             seed_retry_attempts: default_seed_retry_attempts(),
             real_tolerance: 1e-8,
             chain_length: default_chain_length(),
+            self_check: default_self_check(),
             neighbour_tracker: default_neighbour_tracker(),
         }
     }
+}
+
+fn default_self_check() -> bool {
+    true
 }
 
 fn default_chain_length() -> usize {
@@ -219,6 +229,9 @@ pub struct RrrCurveResult {
     pub parallel_singular_parameters: Vec<f64>,
     /// Per leg, τ where it passes through a leg singularity (its working mode flips).
     pub leg_singular_parameters: [Vec<f64>; 3],
+    /// What the self-check compared (`None` without it).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub self_check: Option<super::curve::SelfCheck>,
     /// Every pose, in order.
     pub poses: Vec<RrrPoseResult>,
     /// Every path failure (seed stage and poses).
@@ -423,8 +436,8 @@ pub fn compute_rrr_curve_at(
     provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
 ) -> Result<RrrCurveResult, RrrCurveError> {
     let run = RrrCurveRun::new(trajectory, taus, options, provider)?;
-    let poses = run.solve_poses(0..taus.len())?;
-    Ok(run.collect(poses))
+    let window = run.solve_window(0..taus.len())?;
+    Ok(run.collect(vec![window]))
 }
 
 /// The default start provider: embedded `supplementary/start/rrr-*.json`, else computed.

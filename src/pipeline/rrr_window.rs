@@ -6,6 +6,7 @@
 //! can write a window and drop it: memory is bounded by one window, not by the number
 //! of poses.
 
+use super::curve::SelfCheck;
 use super::rrr_ab_initio::RrrAbInitioError;
 use super::rrr_chain::{ChainPose, chain_anchor, chain_blocks, solve_chain};
 use super::rrr_curve::{
@@ -13,6 +14,7 @@ use super::rrr_curve::{
     configuration_at, parallel_singular_parameters, signed,
 };
 use super::rrr_seed::{RrrSeedStage, rrr_seed_stage};
+use super::rrr_self_check::{check_options, check_window};
 use super::start_file::StartSolutions;
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory, parallel_polynomial};
 use crate::problem::rrr::RrrProblem;
@@ -29,12 +31,24 @@ pub struct RrrCurveRun<'a> {
     taus: &'a [f64],
     options: &'a RrrCurveOptions,
     stage: RrrSeedStage,
+    /// The self-check's independent seed stage and options.
+    check: Option<(RrrSeedStage, RrrCurveOptions)>,
     max_parallel: f64,
+}
+
+/// One window's final results.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RrrWindow {
+    /// Its poses, in order.
+    pub poses: Vec<RrrPoseResult>,
+    /// Its self-check (first, last and each sub-problem's closest pose of the window).
+    pub self_check: Option<SelfCheck>,
 }
 
 impl<'a> RrrCurveRun<'a> {
     /// Checks every pose (in order; the first without a configuration is the error),
-    /// takes the largest |parallel determinant| over them, and runs the seed stage.
+    /// takes the largest |parallel determinant| over them, and runs the seed stage (and
+    /// the self-check's).
     pub fn new(
         trajectory: &'a RrrTrajectory,
         taus: &'a [f64],
@@ -50,11 +64,20 @@ impl<'a> RrrCurveRun<'a> {
             max_parallel = max_parallel.max(parallel_polynomial(&k.to_array()).abs());
         }
         let stage = rrr_seed_stage(trajectory, options, provider)?;
+        let check = match options.self_check {
+            true => {
+                let check_options = check_options(options);
+                let check_stage = rrr_seed_stage(trajectory, &check_options, provider)?;
+                Some((check_stage, check_options))
+            }
+            false => None,
+        };
         Ok(RrrCurveRun {
             trajectory,
             taus,
             options,
             stage,
+            check,
             max_parallel,
         })
     }
@@ -70,11 +93,9 @@ impl<'a> RrrCurveRun<'a> {
     }
 
     /// The poses `range` (indices into the run's τ values): the chains of their blocks
-    /// ([`super::rrr_chain`]) for every sub-problem in parallel.
-    pub fn solve_poses(
-        &self,
-        range: std::ops::Range<usize>,
-    ) -> Result<Vec<RrrPoseResult>, RrrCurveError> {
+    /// ([`super::rrr_chain`]) for every sub-problem in parallel, then the window's
+    /// self-check ([`super::rrr_self_check`]).
+    pub fn solve_window(&self, range: std::ops::Range<usize>) -> Result<RrrWindow, RrrCurveError> {
         let (stage, options) = (&self.stage, self.options);
         let blocks = chain_blocks(&range, options.chain_length, self.taus.len());
         let mut chains = Vec::with_capacity(blocks.len());
@@ -109,6 +130,7 @@ impl<'a> RrrCurveRun<'a> {
             .collect();
         let mut solved = solved.into_iter();
         let mut results = Vec::with_capacity(range.len());
+        let mut window_poses = Vec::with_capacity(range.len());
         for (pose_values, poses, _) in &chains {
             let per_problem: Vec<Vec<Entry>> = solved.by_ref().take(stage.problems.len()).collect();
             for (j, (pose, at)) in pose_values.iter().zip(poses).enumerate() {
@@ -133,9 +155,28 @@ impl<'a> RrrCurveRun<'a> {
                     failures,
                     paths_tracked,
                 ));
+                window_poses.push((*pose, *at));
             }
         }
-        Ok(results)
+        let self_check = self.check.as_ref().map(|(check_stage, check_options)| {
+            let poses: Vec<ChainPose> = window_poses.iter().map(|(_, at)| *at).collect();
+            let checked = (check_stage, check_options);
+            let scale = self.stage.frame.scale();
+            let (summary, changed) = check_window(checked, &poses, &mut results, scale);
+            for i in changed {
+                let (pose, at) = &window_poses[i];
+                let result = &results[i];
+                let (subproblems, failures) = (result.subproblems.clone(), result.failures.clone());
+                let tracked = result.paths_tracked;
+                let at_pose = (at.tau, *pose, &at.k);
+                results[i] = self.assemble(at.index, at_pose, subproblems, failures, tracked);
+            }
+            summary
+        });
+        Ok(RrrWindow {
+            poses: results,
+            self_check,
+        })
     }
 
     fn assemble(
@@ -180,9 +221,19 @@ impl<'a> RrrCurveRun<'a> {
         }
     }
 
-    /// The whole curve from its poses in order (every pose of the run).
-    pub fn collect(&self, poses: Vec<RrrPoseResult>) -> RrrCurveResult {
+    /// The whole curve from its windows in order (every pose of the run).
+    pub fn collect(&self, windows: Vec<RrrWindow>) -> RrrCurveResult {
         let stage = &self.stage;
+        let mut self_check: Option<SelfCheck> = None;
+        let mut poses = Vec::new();
+        for window in windows {
+            match (&mut self_check, &window.self_check) {
+                (Some(merged), Some(check)) => merged.merge(check),
+                (None, check) => self_check = check.clone(),
+                _ => {}
+            }
+            poses.extend(window.poses);
+        }
         let mut failures = stage.failures.clone();
         failures.extend(poses.iter().flat_map(|r| r.failures.iter().cloned()));
         let paths_tracked =
@@ -197,6 +248,7 @@ impl<'a> RrrCurveRun<'a> {
                 .collect(),
             parallel_singular_parameters: parallel_singular_parameters(self.trajectory, self.taus),
             leg_singular_parameters: self.trajectory.leg_crossings().clone(),
+            self_check,
             poses,
             failures,
             paths_tracked,
