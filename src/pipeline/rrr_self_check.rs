@@ -10,19 +10,15 @@
 //! and a [`RrrPathFailure`] `…:self-check` (exit code 3), since the poses that were not
 //! checked may have missed it too.
 
-use super::curve::{SELF_CHECK_TOLERANCE, SelfCheck};
+use super::curve::{SELF_CHECK_TOLERANCE, SelfCheck, check_seed, checked_poses};
 use super::rrr_chain::{ChainPose, solve_chain};
 use super::rrr_curve::{RrrCurveOptions, RrrPathFailure, RrrPoseResult};
 use super::rrr_seed::RrrSeedStage;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
-/// The seed of the check's stage: the run's seed plus 24,095 (as for the 3-RPR).
-pub(crate) fn check_seed(seed: u64) -> u64 {
-    seed.wrapping_add(0x5e1f)
-}
-
-/// The check's options: its own seed, every pose from the seed.
+/// The check's options: its own seed (the 3-RPR check's, [`check_seed`]), every pose
+/// from the seed.
 pub(crate) fn check_options(options: &RrrCurveOptions) -> RrrCurveOptions {
     RrrCurveOptions {
         seed: check_seed(options.seed),
@@ -35,25 +31,14 @@ pub(crate) fn check_options(options: &RrrCurveOptions) -> RrrCurveOptions {
 /// The poses to check among `results` (one window): first, last, and per sub-problem
 /// the pose of its smallest distance.
 fn poses_to_check(results: &[RrrPoseResult]) -> Vec<usize> {
-    let mut poses: Vec<usize> = results.first().iter().map(|r| r.index).collect();
-    poses.extend(results.last().map(|r| r.index));
-    let names: Vec<&String> = results
+    let names: Vec<String> = results
         .first()
-        .map(|r| r.subproblems.keys().collect())
+        .map(|r| r.subproblems.keys().cloned().collect())
         .unwrap_or_default();
-    for name in names {
-        let smallest = results
-            .iter()
-            .filter_map(|r| {
-                let d = r.subproblems.get(name)?.distance?;
-                Some((r.index, d))
-            })
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        poses.extend(smallest.map(|(j, _)| j));
-    }
-    poses.sort_unstable();
-    poses.dedup();
-    poses
+    let indices: Vec<usize> = results.iter().map(|r| r.index).collect();
+    checked_poses(&indices, &names, |i, name| {
+        results[i].subproblems.get(name)?.distance
+    })
 }
 
 /// Re-solves [`poses_to_check`] of `results` (`poses[i]` the configuration of

@@ -121,6 +121,7 @@ use jump::*;
 pub use options::*;
 pub use seed::*;
 pub use self_check::{SELF_CHECK_TOLERANCE, SelfCheck};
+pub(crate) use self_check::{check_seed, checked_poses};
 pub use window::{CurveHeader, CurveRun, CurveWindow, collect_curve, window_ranges};
 
 /// Errors of the curve pipeline.

@@ -34,22 +34,33 @@ pub struct SelfCheck {
 pub const SELF_CHECK_TOLERANCE: f64 = 1e-8;
 
 /// The seed of the check's stage: the run's seed plus 24,095.
-fn check_seed(seed: u64) -> u64 {
+pub(crate) fn check_seed(seed: u64) -> u64 {
     seed.wrapping_add(0x5e1f)
 }
 
 /// The poses to check: first, last, and per metric the pose of its smallest distance.
 fn poses_to_check(results: &[PoseResult], metrics: &[Metric]) -> Vec<usize> {
-    let mut poses = Vec::new();
-    if let (Some(first), Some(last)) = (results.first(), results.last()) {
-        poses.push(first.index);
-        poses.push(last.index);
-    }
-    for metric in metrics {
-        let name = metric.name();
-        let smallest = results
-            .iter()
-            .filter_map(|r| r.metrics.get(&name).map(|m| (r.index, m.distance)))
+    let names: Vec<String> = metrics.iter().map(Metric::name).collect();
+    let indices: Vec<usize> = results.iter().map(|r| r.index).collect();
+    checked_poses(&indices, &names, |i, name| {
+        results[i].metrics.get(name).map(|m| m.distance)
+    })
+}
+
+/// The pose indices a self-check re-solves among a window's poses `indices` (in
+/// order): the first, the last, and per name the pose of the smallest
+/// `distance(i, name)` (`i` the position in `indices`; `None`: no distance there).
+/// Sorted, without repetitions.
+pub(crate) fn checked_poses(
+    indices: &[usize],
+    names: &[String],
+    distance: impl Fn(usize, &str) -> Option<f64>,
+) -> Vec<usize> {
+    let mut poses: Vec<usize> = indices.first().into_iter().copied().collect();
+    poses.extend(indices.last());
+    for name in names {
+        let smallest = (0..indices.len())
+            .filter_map(|i| distance(i, name).map(|d| (indices[i], d)))
             .min_by(|a, b| a.1.total_cmp(&b.1));
         poses.extend(smallest.map(|(j, _)| j));
     }
