@@ -115,8 +115,14 @@ fn start_option_reports_the_start_system_and_its_paths() {
     let r = 3f64.sqrt();
     assert!((xs[0] - (2.0 - r)).abs() < 1e-12 && (xs[1] - (2.0 + r)).abs() < 1e-12);
 
-    // The default is the total degree.
+    // The default takes the polyhedral start system: mixed volume 2, half the total
+    // degree 4.
     let out = singdist(&["solve", path, "--json"]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["start_system"]["name"], "polyhedral");
+    assert_eq!(value["summary"]["paths"], 2);
+    assert_eq!(value["summary"]["nonsingular"], 2);
+    let out = singdist(&["solve", path, "--json", "--start", "total-degree"]);
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["start_system"]["name"], "total-degree");
     assert_eq!(value["summary"]["paths"], 4);
@@ -169,6 +175,30 @@ fn automatic_start_takes_the_polyhedral_system_where_it_halves_the_paths() {
     let value = solve_json(&[&format!("{dir}/katsura6.input"), "--start", "auto"]);
     assert_eq!(value["start_system"]["name"], "total-degree");
     assert_eq!(value["summary"]["nonsingular"], 64);
+}
+
+/// PHCpack's `comb3000` (total degree 96, mixed volume 16, no nonsingular root): the
+/// default start takes the polyhedral system, whose paths run into the singular roots
+/// and 12 of them fail; the total-degree run, which accounts for all 96 paths, is
+/// reported instead, with the polyhedral run named as superseded.
+#[test]
+fn default_start_falls_back_to_the_total_degree_where_polyhedral_paths_fail() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
+    let file = format!("{dir}/comb3000.input");
+    let value = solve_json(&[&file, "--threads", "1"]);
+    let start = &value["start_system"];
+    assert_eq!(start["name"], "total-degree", "{start}");
+    assert_eq!(start["superseded"]["name"], "polyhedral", "{start}");
+    assert_eq!(start["superseded"]["paths"], 16, "{start}");
+    assert!(start["superseded"]["failed"].as_u64() > Some(0), "{start}");
+    assert_eq!(value["summary"]["paths"], 96);
+    assert_eq!(value["summary"]["failed"], 0);
+    // Asked for, the polyhedral run is reported as it is, failures included (exit 3).
+    let out = singdist(&["solve", &file, "--start", "polyhedral", "--json"]);
+    assert_eq!(out.status.code(), Some(3));
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["start_system"]["name"], "polyhedral");
+    assert!(value["start_system"].get("superseded").is_none());
 }
 
 /// `singdist solve ARGS --json`, which must succeed, as parsed JSON.

@@ -43,12 +43,13 @@ pub struct SolveArgs {
     /// Solve by monodromy + trace test instead of a start-system homotopy.
     #[arg(long, conflicts_with = "start")]
     pub monodromy: bool,
-    /// Start system (default `total-degree`): `auto` takes the multi-homogeneous one
-    /// of the variable grouping of least Bézout number when it has strictly fewer
-    /// paths than the total degree, and the polyhedral one instead when its mixed
-    /// volume is at most half of that and its mixed cells are found cheaply. Not the
-    /// default yet: on two of PHCpack's demo systems (`chemequs`, `des22_24`) the
-    /// multi-homogeneous one misses a root without a failed path.
+    /// Start system. Default: the polyhedral one when its mixed volume is at most half
+    /// the total degree and its mixed cells are found cheaply, else the total degree;
+    /// where a polyhedral path fails, the total-degree homotopy runs too and the run
+    /// with more nonsingular roots (then fewer failed paths) is reported. `auto` also
+    /// considers the multi-homogeneous start system of the variable grouping of least
+    /// Bézout number; it is not the default: on two of PHCpack's demo systems
+    /// (`chemequs`, `des22_24`) it misses a root without a failed path.
     #[arg(long, value_enum)]
     pub start: Option<StartArg>,
     /// Value of a parameter, `NAME=VALUE` (VALUE like `1.5` or `0.5+2*I`).
@@ -99,6 +100,40 @@ struct StartOutput {
     /// Number of mixed cells (polyhedral only).
     #[serde(skip_serializing_if = "Option::is_none")]
     mixed_cells: Option<usize>,
+    /// The default's polyhedral run, which lost paths and found fewer roots (or as many
+    /// with more failed paths) than this start system's run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    superseded: Option<Superseded>,
+}
+
+/// A polyhedral run the default start replaced by the total-degree one.
+#[derive(Serialize)]
+struct Superseded {
+    /// `polyhedral`.
+    name: &'static str,
+    /// Its paths (the mixed volume).
+    paths: u128,
+    /// Its nonsingular roots.
+    nonsingular: usize,
+    /// Its failed paths.
+    failed: usize,
+}
+
+impl Superseded {
+    fn of(solve: &PolyhedralSolve) -> Self {
+        Superseded {
+            name: "polyhedral",
+            paths: solve.mixed_volume,
+            nonsingular: solve.result.summary.nonsingular,
+            failed: solve.result.summary.failed,
+        }
+    }
+}
+
+/// Whether run `a` solved better than run `b` of the same system: more nonsingular
+/// roots (each found once), then fewer failed paths.
+fn solves_better(a: &SolveSummary, b: &SolveSummary) -> bool {
+    (a.nonsingular, std::cmp::Reverse(a.failed)) > (b.nonsingular, std::cmp::Reverse(b.failed))
 }
 
 impl StartOutput {
@@ -127,6 +162,7 @@ impl StartOutput {
             partition_search: search.map(|s| search_name(s.method)),
             mixed_volume: None,
             mixed_cells: None,
+            superseded: None,
         }
     }
 
@@ -144,6 +180,7 @@ impl StartOutput {
             partition_search: None,
             mixed_volume: Some(solve.mixed_volume),
             mixed_cells: Some(solve.cells),
+            superseded: None,
         }
     }
 
@@ -158,8 +195,15 @@ impl StartOutput {
             (true, Some(b)) => format!(", best multi-homogeneous {b}"),
             _ => String::new(),
         };
+        let superseded = match &self.superseded {
+            Some(run) => format!(
+                "superseded    {} ({} paths, {} nonsingular, {} failed)\n",
+                run.name, run.paths, run.nonsingular, run.failed
+            ),
+            None => String::new(),
+        };
         format!(
-            "start system  {described}\nstart paths   {} (total degree {}{best})\n",
+            "start system  {described}\nstart paths   {} (total degree {}{best})\n{superseded}",
             self.paths, self.total_degree_paths
         )
     }
@@ -305,6 +349,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     let pool = builder.build().context("cannot start the thread pool")?;
     let started = Instant::now();
     let forced_polyhedral = args.start == Some(StartArg::Polyhedral);
+    let default_start = args.start.is_none() && !args.monodromy;
     let choice = if args.monodromy || forced_polyhedral {
         None
     } else {
@@ -336,7 +381,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             PolyhedralStartSystem::new(&supports, options.seed)
                 .with_context(|| format!("{}: --start polyhedral", args.file.display()))?,
         )
-    } else if args.start == Some(StartArg::Auto) {
+    } else if args.start == Some(StartArg::Auto) || default_start {
         let paths = choice.as_ref().map_or(u128::MAX, StartChoice::paths);
         Supports::from_system(&system)
             .ok()
@@ -345,14 +390,21 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         None
     };
     let mut polyhedral_output = None;
+    let mut superseded = None;
     let (result, trace_residual): (SolveResult, Option<f64>) =
         pool.install(|| match (&polyhedral_start, &choice) {
             (Some(start), _) => {
                 let solved = solve_from_polyhedral_start(&compiled, start, &[], &options)?;
-                polyhedral_output = Some(StartOutput::polyhedral(
-                    &solved,
-                    total_degree_paths(&degrees),
-                ));
+                let total = total_degree_paths(&degrees);
+                if default_start && solved.result.summary.failed > 0 {
+                    // A lost path may be a lost root: the total-degree homotopy too.
+                    let by_degree = solve_total_degree(&compiled, &degrees, &[], &options)?;
+                    if solves_better(&by_degree.summary, &solved.result.summary) {
+                        superseded = Some(Superseded::of(&solved));
+                        return Ok((by_degree, None));
+                    }
+                }
+                polyhedral_output = Some(StartOutput::polyhedral(&solved, total));
                 Ok::<_, anyhow::Error>((solved.result, None))
             }
             (None, None) => {
@@ -369,11 +421,16 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                 None,
             )),
         })?;
-    let start_output = polyhedral_output.or_else(|| {
-        choice
-            .as_ref()
-            .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()))
-    });
+    let start_output = polyhedral_output
+        .or_else(|| {
+            choice
+                .as_ref()
+                .map(|c| StartOutput::new(c, total_degree_paths(&degrees), system.variables()))
+        })
+        .map(|output| StartOutput {
+            superseded,
+            ..output
+        });
     let seconds = started.elapsed().as_secs_f64();
     let s = &result.summary;
     if args.json {
