@@ -27,7 +27,7 @@ use super::rrr_curve::{
     Entry, RrrCurveOptions, path_stream, subproblem_entry, target_parameters, track_from_seed,
 };
 use super::rrr_seed::{RrrFrame, RrrSeededProblem};
-use super::sweep::{Retried, TrackingPlan, track_with_retries};
+use super::sweep::{Retried, TrackingPlan, chain_anchor, track_with_retries};
 use crate::C64;
 use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
@@ -62,18 +62,10 @@ pub(crate) fn chain_blocks(
         .collect()
 }
 
-/// The anchor of `block`: the pose nearest `Re τ*` (analytic motions), else the first.
-pub(crate) fn chain_anchor(block: &[ChainPose], tau_star: Option<C64>) -> usize {
-    match tau_star {
-        Some(tau) => (0..block.len())
-            .min_by(|&a, &b| {
-                (block[a].tau - tau.re)
-                    .abs()
-                    .total_cmp(&(block[b].tau - tau.re).abs())
-            })
-            .unwrap_or(0),
-        None => 0,
-    }
+/// The anchor of `block` ([`super::sweep::chain_anchor`]): the pose nearest `Re τ*`
+/// (analytic motions), else the first.
+pub(crate) fn block_anchor(block: &[ChainPose], tau_star: Option<C64>) -> usize {
+    chain_anchor(block.iter().map(|p| p.tau), tau_star.map(|t| t.re))
 }
 
 /// A complete solution set at a parameter point, from which the next pose of a chain
@@ -213,8 +205,8 @@ mod tests {
             k: [0.0; CONFIGURATION_LEN],
         };
         let block = [pose(0.0), pose(0.1), pose(0.2), pose(0.3)];
-        assert_eq!(chain_anchor(&block, Some(C64::new(0.21, 0.5))), 2);
-        assert_eq!(chain_anchor(&block, Some(C64::new(-4.0, 0.5))), 0);
-        assert_eq!(chain_anchor(&block, None), 0);
+        assert_eq!(block_anchor(&block, Some(C64::new(0.21, 0.5))), 2);
+        assert_eq!(block_anchor(&block, Some(C64::new(-4.0, 0.5))), 0);
+        assert_eq!(block_anchor(&block, None), 0);
     }
 }

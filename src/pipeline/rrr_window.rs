@@ -8,7 +8,7 @@
 
 use super::curve::SelfCheck;
 use super::rrr_ab_initio::RrrAbInitioError;
-use super::rrr_chain::{ChainPose, chain_anchor, chain_blocks, solve_chain};
+use super::rrr_chain::{ChainPose, block_anchor, chain_blocks, solve_chain};
 use super::rrr_curve::{
     Entry, RrrCurveError, RrrCurveOptions, RrrCurveResult, RrrPathFailure, RrrPoseResult,
     configuration_at, parallel_singular_parameters, signed,
@@ -115,7 +115,7 @@ impl<'a> RrrCurveRun<'a> {
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             let (pose_values, poses): (Vec<[f64; 3]>, Vec<ChainPose>) = poses.into_iter().unzip();
-            let anchor = chain_anchor(&poses, stage.tau_star);
+            let anchor = block_anchor(&poses, stage.tau_star);
             chains.push((pose_values, poses, anchor));
         }
         let jobs: Vec<(usize, usize)> = (0..chains.len())

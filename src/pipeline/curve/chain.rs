@@ -106,17 +106,12 @@ pub(super) fn chain_anchor(
     samples: &[SampledPose],
     poses: &std::ops::Range<usize>,
 ) -> usize {
-    match stage.seed.point {
-        MotionPoint::Tau(tau) => poses
-            .clone()
-            .min_by(|&a, &b| {
-                (samples[a].tau - tau.re)
-                    .abs()
-                    .total_cmp(&(samples[b].tau - tau.re).abs())
-            })
-            .unwrap_or(poses.start),
-        MotionPoint::Pose(_) => poses.start,
-    }
+    let seed_tau = match stage.seed.point {
+        MotionPoint::Tau(tau) => Some(tau.re),
+        MotionPoint::Pose(_) => None,
+    };
+    let taus = samples[poses.clone()].iter().map(|s| s.tau);
+    poses.start + crate::pipeline::sweep::chain_anchor(taus, seed_tau)
 }
 
 /// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):

@@ -39,5 +39,17 @@ pub struct PathFailure {
     pub reasons: BTreeMap<String, usize>,
 }
 
+/// The anchor of a chain of poses with motion parameters `taus` (in chain-block
+/// order): the pose nearest `Re τ*` of the seed (the shortest seed route), or the first
+/// one when the seed is not a point of the motion (pose lists).
+pub(crate) fn chain_anchor(taus: impl Iterator<Item = f64>, seed_tau: Option<f64>) -> usize {
+    let Some(target) = seed_tau else {
+        return 0;
+    };
+    taus.enumerate()
+        .min_by(|a, b| (a.1 - target).abs().total_cmp(&(b.1 - target).abs()))
+        .map_or(0, |(i, _)| i)
+}
+
 #[cfg(test)]
 mod tests;
