@@ -210,3 +210,43 @@ fn solve_json(args: &[&str]) -> serde_json::Value {
     assert_success(&out);
     serde_json::from_slice(&out.stdout).unwrap()
 }
+
+/// The default start system on the committed demo systems (verified counts of distinct
+/// nonsingular roots, see `homotopy_demo_suite.rs`), for two seeds: no failed path,
+/// every root once, whichever start system the default takes.
+#[test]
+fn default_start_solves_the_demo_systems_completely_for_two_seeds() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
+    let systems = [
+        ("cyclic5", 70),
+        ("katsura6", 64),
+        ("caprasse", 24),
+        ("noon4", 73),
+        ("camera1s", 20),
+        ("lorentz", 11),
+        ("sendra", 46),
+        ("solotarev", 2),
+        ("chemequ", 16),
+        ("chemequs", 16),
+        ("game5two", 44),
+        ("kotsireas", 84),
+        ("ku10", 2),
+        ("eco8", 64),
+    ];
+    for (stem, roots) in systems {
+        let file = format!("{dir}/{stem}.input");
+        for seed in ["24301", "7"] {
+            let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+            let summary = &value["summary"];
+            let start = &value["start_system"]["name"];
+            assert_eq!(
+                summary["failed"], 0,
+                "{stem}, seed {seed}, {start}: {summary}"
+            );
+            assert_eq!(
+                summary["nonsingular"], roots,
+                "{stem}, seed {seed}, {start}: {summary}"
+            );
+        }
+    }
+}
