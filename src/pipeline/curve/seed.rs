@@ -163,8 +163,8 @@ pub struct SeedStage {
     /// Paths lost in the user homotopy.
     pub failures: Vec<PathFailure>,
     /// What the generic route to the motion's first pose found per sub-problem where
-    /// [`probe_seed_counts`] ran it (by name): `(accounted paths, distinct finite
-    /// points)`. The route does not depend on the seed, so the self-check's stage
+    /// the first-pose probe (`probe_seed_counts`) ran it (by name): `(accounted paths,
+    /// distinct finite points)`. The route does not depend on the seed, so the self-check's stage
     /// takes these instead of tracking it again.
     pub probes: BTreeMap<String, (usize, usize)>,
     /// Paths tracked in this stage.

@@ -249,6 +249,10 @@ pub(super) const LAST_CHANCE_STEPS: usize = 30_000;
 /// re-runs failed), with 15,000–30,000 steps 5 of 7 were.
 pub(super) const LAST_CHANCE_PATHS: usize = 2;
 
+/// Whole detours in a row that add no endpoint and account for no more paths, after
+/// which [`track_with_retries`] tracks no further detour.
+pub(super) const STAGNANT_DETOURS: usize = 2;
+
 /// The tracker settings of [`track_with_retries`].
 #[derive(Clone, Copy)]
 pub(crate) struct TrackingPlan<'a> {
@@ -317,7 +321,10 @@ impl<'a> TrackingPlan<'a> {
 ///    distinct from every endpoint found (an endpoint of any route is a solution at
 ///    the target, but which one a path reaches may depend on the route);
 /// 3. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
-///    distinct finite endpoints;
+///    distinct finite endpoints, until [`STAGNANT_DETOURS`] whole detours in a row add
+///    no endpoint and account for no more paths (on designs whose base is congruent
+///    with or similar to the platform, the `rigid/rigid` seed stage sends 64 of 88 paths
+///    to infinity and a few of them stay unclassified on every detour);
 /// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
 ///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
 /// 5. gives the lost paths the twin did not classify a last, long re-run.
@@ -443,8 +450,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     } else {
         Vec::new()
     };
+    // Whole detours in a row that found no new endpoint and accounted for no more
+    // paths: after STAGNANT_DETOURS of them the rest are not tracked.
+    let mut stagnant = 0;
     for attempt in 1..=attempts {
-        if best >= expected {
+        if best >= expected || stagnant >= STAGNANT_DETOURS {
             break;
         }
         let detour = PathParameterHomotopy::new(system, path(attempt));
@@ -464,6 +474,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         }
         let paths = track_all(&detour, starts, tracker, endgame);
         tracked += starts.len();
+        let (endpoints_before, best_before) = (endpoints.len(), best);
         best = best.max(accounted(&paths));
         at_infinity = at_infinity.max(count_at_infinity(&paths));
         merge(&mut endpoints, finite_solutions(&paths));
@@ -471,6 +482,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         // any one attempt classified at infinity, may account for more than any
         // single attempt.
         best = best.max(endpoints.len() + at_infinity);
+        if endpoints.len() == endpoints_before && best == best_before {
+            stagnant += 1;
+        } else {
+            stagnant = 0;
+        }
     }
     let mut confirmed_by_twin = false;
     // Paths the twin classified (finite, or on its hyperplane at infinity): the last

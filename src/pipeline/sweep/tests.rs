@@ -126,3 +126,35 @@ fn a_plan_hands_over_after_a_first_run_whose_paths_run_out_of_steps() {
         }
     }
 }
+
+/// `x² = p` from `p = 1` to `p = 4` with the start `1` given twice: the two paths
+/// from it always cross on `2`, so one path stays unaccounted for on every route.
+/// Of six whole detours only the first two are tracked: they add no endpoint and
+/// account for no more paths ([`STAGNANT_DETOURS`]). Tracked: 3 (first run) + 2
+/// (re-run of the crossing pair) + 2 (the crossing pair on detour 1) + 3 + 3 (two whole
+/// detours), not 3 + 2 + 2 + 6·3.
+#[test]
+fn detours_stop_after_two_that_add_nothing() {
+    use crate::homotopy::{PolylinePath, TrackerOptions};
+    use crate::system::{Expr, System};
+    let (x, p) = (Expr::variable("x"), Expr::parameter("p"));
+    let system = System::new(["x"], ["p"], vec![x.clone() * x - p])
+        .unwrap()
+        .compile();
+    let one = vec![C64::new(1.0, 0.0)];
+    let starts = vec![one.clone(), vec![C64::new(-1.0, 0.0)], one];
+    let route = |attempt: usize| {
+        let detour = C64::new(2.5, 0.3 * attempt as f64);
+        PolylinePath::new(vec![
+            vec![C64::new(1.0, 0.0)],
+            vec![detour],
+            vec![C64::new(4.0, 0.0)],
+        ])
+    };
+    let options = TrackerOptions::default();
+    let plan = TrackingPlan::with_endgame(&options, &options);
+    let retried = track_with_retries(&system, &starts, route, 6, plan);
+    assert_eq!(retried.endpoints.len(), 2);
+    assert_eq!(retried.accounted, 2);
+    assert_eq!(retried.tracked, 3 + 2 + 2 + STAGNANT_DETOURS * 3);
+}
