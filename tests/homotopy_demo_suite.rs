@@ -15,32 +15,11 @@ use singdist::homotopy::{
 };
 use singdist::system::{CompiledSystem, System, bertini, phc};
 
-/// (file stem, verified number of distinct nonsingular roots).
-const SYSTEMS: [(&str, usize); 13] = [
-    ("cyclic5", 70),
-    ("katsura6", 64),
-    ("caprasse", 24),
-    ("noon4", 73),
-    ("camera1s", 20),
-    ("lorentz", 11),
-    ("sendra", 46),
-    ("solotarev", 2),
-    // Badly scaled systems whose large finite roots are approached like s^(-1/2) for
-    // most of the endgame (they were labelled at infinity), and paths whose step size
-    // reached the resolution of t (they failed).
-    ("chemequ", 16),
-    ("chemequs", 16),
-    ("game5two", 44),
-    ("kotsireas", 84),
-    // Paths to infinity whose norm passes 10⁸ before the endgame zone (they failed).
-    ("ku10", 2),
-];
+mod demo_support;
+use demo_support::{SYSTEMS, demo_file};
 
 fn load(stem: &str) -> System {
-    let path = format!(
-        "{}/tests/demo_systems/{stem}.input",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = demo_file(stem);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     bertini::read(&text).unwrap_or_else(|e| panic!("{path}: {e}"))
 }

@@ -87,6 +87,15 @@ fn paths_diverging_together_are_a_crossing() {
     assert_eq!(accounted(&paths), 4);
 }
 
+/// The family `x² = p`.
+fn square_root_family() -> crate::system::CompiledSystem {
+    use crate::system::{Expr, System};
+    let (x, p) = (Expr::variable("x"), Expr::parameter("p"));
+    System::new(["x"], ["p"], vec![x.clone() * x - p])
+        .unwrap()
+        .compile()
+}
+
 /// `x² = p` from `p = 1` to `p = 4` with a step budget of two steps: both paths run
 /// out of steps. A plan that hands over stops after the first run (both paths
 /// tracked once, nothing found); one that does not re-runs them with the retry
@@ -94,11 +103,7 @@ fn paths_diverging_together_are_a_crossing() {
 #[test]
 fn a_plan_hands_over_after_a_first_run_whose_paths_run_out_of_steps() {
     use crate::homotopy::{PolylinePath, TrackerOptions};
-    use crate::system::{Expr, System};
-    let (x, p) = (Expr::variable("x"), Expr::parameter("p"));
-    let system = System::new(["x"], ["p"], vec![x.clone() * x - p])
-        .unwrap()
-        .compile();
+    let system = square_root_family();
     let starts = vec![vec![C64::new(1.0, 0.0)], vec![C64::new(-1.0, 0.0)]];
     let route = |_| PolylinePath::new(vec![vec![C64::new(1.0, 0.0)], vec![C64::new(4.0, 0.0)]]);
     let mut starved = TrackerOptions::default();
@@ -136,11 +141,7 @@ fn a_plan_hands_over_after_a_first_run_whose_paths_run_out_of_steps() {
 #[test]
 fn detours_stop_after_two_that_add_nothing() {
     use crate::homotopy::{PolylinePath, TrackerOptions};
-    use crate::system::{Expr, System};
-    let (x, p) = (Expr::variable("x"), Expr::parameter("p"));
-    let system = System::new(["x"], ["p"], vec![x.clone() * x - p])
-        .unwrap()
-        .compile();
+    let system = square_root_family();
     let one = vec![C64::new(1.0, 0.0)];
     let starts = vec![one.clone(), vec![C64::new(-1.0, 0.0)], one];
     let route = |attempt: usize| {
