@@ -124,7 +124,7 @@ impl TapeScalar for C64 {
 impl TapeScalar for ComplexDd {
     #[inline(always)]
     fn scale_by_real_part(self, b: Self) -> Self {
-        self.scale(b)
+        ComplexDd::scale_by_real_part(self, b)
     }
 }
 

@@ -266,18 +266,9 @@ impl ComplexDd {
     pub fn to_c64(self) -> C64 {
         C64::new(self.re.hi + self.re.lo, self.im.hi + self.im.lo)
     }
-
-    /// Product with the real part of `other` only.
-    #[inline(always)]
-    pub fn scale(self, other: Self) -> Self {
-        ComplexDd {
-            re: self.re * other.re,
-            im: self.im * other.re,
-        }
-    }
 }
 
-complex_add_sub_neg!(ComplexDd);
+complex_add_sub_neg!(ComplexDd, scale_by_real_part);
 
 impl Mul for ComplexDd {
     type Output = Self;

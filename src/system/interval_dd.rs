@@ -224,19 +224,11 @@ impl MidRadDd {
             im: self.im.to_interval(),
         }
     }
-
-    /// `self · Re(s)` (the real part of `s` with its radius).
-    #[inline]
-    pub fn scale_by_real_part(self, s: MidRadDd) -> MidRadDd {
-        MidRadDd {
-            re: self.re * s.re,
-            im: self.im * s.re,
-        }
-    }
 }
 
-// Sums, differences and negations part by part (`RealDd`'s enclosures).
-complex_add_sub_neg!(MidRadDd);
+// Sums, differences, negations and `z · Re(w)` part by part (`RealDd`'s enclosures,
+// the radius of `Re(w)` included).
+complex_add_sub_neg!(MidRadDd, scale_by_real_part);
 
 impl Mul for MidRadDd {
     type Output = MidRadDd;

@@ -39,6 +39,22 @@ use crate::C64;
 /// `−(a + ib) = −a − ib` (the rounding is the real type's, one operation per part).
 /// Shared by [`double_double::ComplexDd`] and [`interval::ComplexInterval`].
 macro_rules! complex_add_sub_neg {
+    // With `scale_by_real_part`: also `z · Re(w) = Re(z)Re(w) + i Im(z)Re(w)`, the
+    // real type's product per part (double-double values and midpoint–radius boxes).
+    ($complex:ident, scale_by_real_part) => {
+        complex_add_sub_neg!($complex);
+
+        impl $complex {
+            /// `self · Re(other)`: each part times the real part of `other`.
+            #[inline(always)]
+            pub fn scale_by_real_part(self, other: Self) -> Self {
+                $complex {
+                    re: self.re * other.re,
+                    im: self.im * other.re,
+                }
+            }
+        }
+    };
     ($complex:ident) => {
         impl std::ops::Add for $complex {
             type Output = Self;
