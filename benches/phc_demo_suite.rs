@@ -25,6 +25,7 @@ mod bench_support;
 use serde_json::Value;
 use singdist::C64;
 use singdist::homotopy::{group_roots, newton_refine};
+use singdist::system::scaling::Scaling;
 use singdist::system::{CompiledSystem, System, bertini, phc};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -219,7 +220,21 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
     theirs.arg("-b").arg("-t1").arg(&phc_file).arg(&phc_out);
     let (phc_time, phc_code, _) = run_timed(&mut theirs, args.timeout);
 
-    let compiled = system.compile();
+    // Roots are verified where the system is balanced: a badly scaled one (coordinates
+    // of 10⁻¹¹, coefficients of 10⁻¹⁵) in its least-squares scaling, so that Newton's
+    // convergence, the condition number and the same-root test are judged in
+    // coordinates of comparable size (the same for both solvers).
+    let scaling = Scaling::least_squares(system).filter(Scaling::worthwhile);
+    let compiled = match &scaling {
+        Some(s) => s.apply(system).compile(),
+        None => system.compile(),
+    };
+    let balanced = |points: Vec<Vec<C64>>| -> Vec<Vec<C64>> {
+        match &scaling {
+            Some(s) => points.iter().map(|x| s.scale(x)).collect(),
+            None => points,
+        }
+    };
     let names = system.variables();
     // singdist: finite endpoints (nonsingular and singular) in its variable order.
     let ours_json: Option<Value> = our_code
@@ -283,9 +298,9 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
             })
             .collect()
     });
-    let (our_distinct, our_roots) = distinct_nonsingular(&compiled, &our_points);
-    let (phc_distinct, phc_roots) = match &phc_points {
-        Some(p) => distinct_nonsingular(&compiled, p),
+    let (our_distinct, our_roots) = distinct_nonsingular(&compiled, &balanced(our_points));
+    let (phc_distinct, phc_roots) = match phc_points.clone() {
+        Some(p) => distinct_nonsingular(&compiled, &balanced(p)),
         None => (0, Vec::new()),
     };
     let union: Vec<(Vec<C64>, f64)> = our_roots.into_iter().chain(phc_roots).collect();

@@ -179,15 +179,16 @@ fn automatic_start_takes_the_polyhedral_system_where_it_halves_the_paths() {
     assert_eq!(value["summary"]["nonsingular"], 64);
 }
 
-/// PHCpack's `comb3000` (total degree 96, mixed volume 16, no nonsingular root): the
-/// default start takes the polyhedral system, whose paths run into the singular roots
-/// and 12 of them fail; the total-degree run, which accounts for all 96 paths, is
-/// reported instead, with the polyhedral run named as superseded.
+/// PHCpack's `comb3000` unscaled (`--scaling never`; total degree 96, mixed volume
+/// 16; coordinates down to 10⁻¹¹): the default start takes the polyhedral system,
+/// whose paths run into what look like singular roots and 12 of them fail; the
+/// total-degree run, which accounts for all 96 paths, is reported instead, with the
+/// polyhedral run named as superseded.
 #[test]
 fn default_start_falls_back_to_the_total_degree_where_polyhedral_paths_fail() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
     let file = format!("{dir}/comb3000.input");
-    let value = solve_json(&[&file, "--threads", "1"]);
+    let value = solve_json(&[&file, "--threads", "1", "--scaling", "never"]);
     let start = &value["start_system"];
     assert_eq!(start["name"], "total-degree", "{start}");
     assert_eq!(start["superseded"]["name"], "polyhedral", "{start}");
@@ -196,11 +197,100 @@ fn default_start_falls_back_to_the_total_degree_where_polyhedral_paths_fail() {
     assert_eq!(value["summary"]["paths"], 96);
     assert_eq!(value["summary"]["failed"], 0);
     // Asked for, the polyhedral run is reported as it is, failures included (exit 3).
-    let out = singdist(&["solve", &file, "--start", "polyhedral", "--json"]);
+    let out = singdist(&[
+        "solve",
+        &file,
+        "--start",
+        "polyhedral",
+        "--scaling",
+        "never",
+        "--json",
+    ]);
     assert_eq!(out.status.code(), Some(3));
     let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(value["start_system"]["name"], "polyhedral");
     assert!(value["start_system"].get("superseded").is_none());
+}
+
+/// The distinct nonsingular roots of a `solve --json` output, checked in the scaled
+/// coordinates the output names (`y_j = 2^{−d_j} x_j`): each a nonsingular root of
+/// the scaled system (Newton's method converging, residual below `1e-9` of the largest
+/// monomial's size), and no two within `1e-6` of each other there. Returns their number.
+fn verified_distinct_roots(file: &str, value: &serde_json::Value) -> usize {
+    use singdist::C64;
+    use singdist::homotopy::newton_refine;
+    use singdist::system::bertini;
+    use singdist::system::scaling::Scaling;
+    let system = bertini::read(&std::fs::read_to_string(file).unwrap()).unwrap();
+    let exponents: Vec<i32> = value["scaling"]["variable_exponents"]
+        .as_array()
+        .expect("a scaled run")
+        .iter()
+        .map(|d| d.as_i64().unwrap() as i32)
+        .collect();
+    let scaling = Scaling::least_squares(&system).unwrap();
+    // The output's exponents are the least-squares ones, the system scaled by them.
+    assert_eq!(scaling.variables, exponents);
+    let scaled = scaling.apply(&system).compile();
+    let degree = system.degrees().into_iter().max().unwrap() as i32;
+    let mut roots: Vec<Vec<C64>> = Vec::new();
+    for solution in value["solutions"].as_array().unwrap() {
+        if solution["status"] != "nonsingular" {
+            continue;
+        }
+        let x: Vec<C64> = solution["coordinates"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|z| C64::new(z[0].as_f64().unwrap(), z[1].as_f64().unwrap()))
+            .collect();
+        let refined = newton_refine(&scaled, &scaling.scale(&x), &[], 1e-13, 20);
+        assert!(refined.is_nonsingular(1e12), "{file}: {refined:?}");
+        let y = refined.point.clone();
+        let size = y.iter().fold(1.0f64, |m, v| m.max(v.norm()));
+        // Relative to the largest monomial's size.
+        assert!(
+            refined.residual < 1e-9 * size.powi(degree),
+            "{file}: {refined:?}"
+        );
+        let close = |r: &Vec<C64>| r.iter().zip(&y).all(|(a, b)| (a - b).norm() <= 1e-6 * size);
+        assert!(!roots.iter().any(close), "{file}: a root twice");
+        roots.push(y);
+    }
+    roots.len()
+}
+
+/// Badly scaled systems are solved in their least-squares scaling: `comb3000`
+/// (Morgan's combustion model A, coordinates from 10⁻¹¹ to 10⁻⁵) has 16 nonsingular
+/// roots, which the unscaled run above takes for singular ones; `pb601es` has 18
+/// (the mixed volume), three of them about 10⁶ times larger in the scaled coordinates
+/// than the others, which the endgame's norm cap sends to infinity and the random
+/// projective chart recovers. Two seeds; every root verified and distinct.
+#[test]
+fn badly_scaled_systems_are_solved_completely_in_their_scaling() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/demo_systems");
+    for (stem, roots) in [("comb3000", 16), ("pb601es", 18)] {
+        let file = format!("{dir}/{stem}.input");
+        for seed in ["1", "24301"] {
+            let value = solve_json(&[&file, "--seed", seed]);
+            let summary = &value["summary"];
+            assert_eq!(summary["failed"], 0, "{stem} {seed}: {summary}");
+            assert_eq!(summary["nonsingular"], roots, "{stem} {seed}: {summary}");
+            assert_eq!(
+                verified_distinct_roots(&file, &value),
+                roots,
+                "{stem} {seed}"
+            );
+        }
+        // Unscaled, the same start system misses roots or fails paths.
+        let unscaled = singdist(&["solve", &file, "--scaling", "never", "--json"]);
+        let value: serde_json::Value = serde_json::from_slice(&unscaled.stdout).unwrap();
+        assert!(
+            value["summary"]["nonsingular"].as_u64() < Some(roots as u64),
+            "{stem}: {}",
+            value["summary"]
+        );
+    }
 }
 
 /// `singdist solve ARGS --json`, which must succeed, as parsed JSON.

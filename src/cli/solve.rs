@@ -21,6 +21,7 @@ use singdist::homotopy::{
     choose_start_system, polyhedral_if_fewer_paths, solve_by_monodromy,
     solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
 };
+use singdist::system::scaling::Scaling;
 use singdist::system::{System, bertini};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -55,6 +56,36 @@ pub struct SolveArgs {
     /// Value of a parameter, `NAME=VALUE` (VALUE like `1.5` or `0.5+2*I`).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+    /// Equation and variable scaling by powers of two (least squares on the logarithms
+    /// of the coefficients): `auto` scales when the coefficients spread over more than
+    /// 2⁸ on average and the scaling halves that spread; solutions are always reported
+    /// in the file's variables.
+    #[arg(long, value_enum, default_value_t = ScalingArg::Auto)]
+    pub scaling: ScalingArg,
+}
+
+/// `--scaling`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ScalingArg {
+    /// Scale badly scaled systems only.
+    Auto,
+    /// Always scale (when the equations can be expanded).
+    Always,
+    /// Never scale.
+    Never,
+}
+
+/// The scaling in the JSON output.
+#[derive(Serialize)]
+struct ScalingOutput {
+    /// `x_j = 2^{d_j} y_j`, one exponent per variable.
+    variable_exponents: Vec<i32>,
+    /// Equation `i` times `2^{c_i}`.
+    equation_exponents: Vec<i32>,
+    /// Root-mean-square binary orders of magnitude of the coefficients around their
+    /// equation's mean, before and after.
+    rms_before: f64,
+    rms_after: f64,
 }
 
 /// `--start`.
@@ -239,6 +270,10 @@ struct JsonOutput<'a> {
     seconds: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     start_system: Option<StartOutput>,
+    /// The scaling the system was solved in (coordinates and residuals are the file's
+    /// system's, condition numbers those of the scaled system).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scaling: Option<ScalingOutput>,
     #[serde(skip_serializing_if = "Option::is_none")]
     trace_residual: Option<f64>,
     solutions: Vec<SolutionOutput>,
@@ -331,7 +366,15 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             system.parameters().join(", ")
         );
     }
-    let compiled = system.compile();
+    let scaling = match args.scaling {
+        ScalingArg::Never => None,
+        ScalingArg::Always => Scaling::least_squares(&system),
+        ScalingArg::Auto => Scaling::least_squares(&system).filter(Scaling::worthwhile),
+    };
+    let compiled = match &scaling {
+        Some(scaling) => scaling.apply(&system).compile(),
+        None => system.compile(),
+    };
     let degrees: Vec<u32> = system
         .degrees()
         .iter()
@@ -438,11 +481,22 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             .paths
             .iter()
             .filter(|p| p.status.is_finite())
-            .map(|p| SolutionOutput {
+            .map(|p| {
+                let (coordinates, residual) = match &scaling {
+                    Some(s) => {
+                        let x = s.unscale(&p.solution);
+                        let residual = original_residual(&system, &x);
+                        (x, residual)
+                    }
+                    None => (p.solution.clone(), p.residual),
+                };
+                (p, coordinates, residual)
+            })
+            .map(|(p, coordinates, residual)| SolutionOutput {
                 path: p.path_index,
                 status: status_name(p.status),
-                coordinates: p.solution.iter().map(|z| [z.re, z.im]).collect(),
-                residual: p.residual,
+                coordinates: coordinates.iter().map(|z| [z.re, z.im]).collect(),
+                residual,
                 condition: p.condition,
                 winding_number: p.winding_number,
                 multiplicity: p.multiplicity,
@@ -456,6 +510,12 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             variables: system.variables(),
             seconds,
             start_system: start_output,
+            scaling: scaling.as_ref().map(|s| ScalingOutput {
+                variable_exponents: s.variables.clone(),
+                equation_exponents: s.equations.clone(),
+                rms_before: s.rms_before,
+                rms_after: s.rms_after,
+            }),
             trace_residual,
             solutions,
         };
@@ -481,6 +541,18 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             s.failed,
             s.real
         );
+        if let Some(s) = &scaling {
+            text.push_str(&format!(
+                "scaling       variables 2^[{}], coefficient spread {:.1} -> {:.1} binary orders\n",
+                s.variables
+                    .iter()
+                    .map(|d| d.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                s.rms_before,
+                s.rms_after
+            ));
+        }
         if let Some(r) = trace_residual {
             text.push_str(&format!("trace residual {r:.3e}\n"));
         }
@@ -488,6 +560,14 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         emit(&text)?;
     }
     Ok(Outcome::paths_lost_if(warn_failed_paths(&result)))
+}
+
+/// `‖F(x)‖∞` of the file's system (a solution found in scaled coordinates).
+fn original_residual(system: &System, x: &[singdist::C64]) -> f64 {
+    system
+        .evaluate_naive(x, &[])
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.norm()))
 }
 
 /// Writes to standard output; a closed pipe (`| head`) ends quietly.

@@ -10,6 +10,7 @@
 //! re-runs of failed paths), [`monodromy`] (solutions of parametric families from one
 //! start pair, certified by a trace test).
 
+pub mod chart;
 mod divergence;
 pub mod homotopies;
 pub mod linalg;

@@ -123,6 +123,14 @@ pub struct SolveSummary {
     pub real: usize,
     /// Paths re-tracked with conservative options.
     pub retracked: usize,
+    /// Paths at infinity re-tracked in a random projective chart
+    /// ([`super::chart::ChartHomotopy`]).
+    #[serde(default)]
+    pub rechecked_at_infinity: usize,
+    /// Of those, paths whose chart route reached a new finite root (counted under
+    /// `nonsingular`, no longer at infinity).
+    #[serde(default)]
+    pub recovered_from_infinity: usize,
 }
 
 /// Result of a solve run: every path in path order, and the summary.
@@ -246,6 +254,7 @@ pub fn solve_total_degree<F: Evaluator + ?Sized>(
         |index, x| start.start_solution(index as u64, x),
         target_parameters,
         options,
+        degrees,
     ))
 }
 
@@ -262,7 +271,8 @@ pub(super) fn check_target_parameters<F: Evaluator + ?Sized>(
 }
 
 /// Tracks the `count` paths of `(1 − t)·γ·G + t·F` (γ random from `options.seed`) from
-/// the start solutions `start_point(index, x)` of `G`.
+/// the start solutions `start_point(index, x)` of `G`; equation `i` of `G` and `F` of
+/// total degree at most `degrees[i]` (for the chart re-check of the paths at infinity).
 pub(super) fn solve_from_start_system<G, F, S>(
     start: &G,
     system: &F,
@@ -270,6 +280,7 @@ pub(super) fn solve_from_start_system<G, F, S>(
     start_point: S,
     target_parameters: &[C64],
     options: &SolveOptions,
+    degrees: &[u32],
 ) -> SolveResult
 where
     G: Evaluator + ?Sized,
@@ -278,7 +289,8 @@ where
 {
     let gamma = crate::random::unit_complex(&mut crate::random::seeded(options.seed));
     let homotopy = StraightLineHomotopy::new(start, system, target_parameters.to_vec(), gamma);
-    let mut result = solve_with_homotopy(&homotopy, count, start_point, options);
+    let mut result =
+        solve_with_chart_recheck(&homotopy, count, start_point, options, Some(degrees));
     result.gamma = gamma;
     result
 }
@@ -318,6 +330,24 @@ pub fn solve_with_homotopy<H, S>(
     count: usize,
     start: S,
     options: &SolveOptions,
+) -> SolveResult
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    solve_with_chart_recheck(homotopy, count, start, options, None)
+}
+
+/// [`solve_with_homotopy`]; with `chart_degrees` (equation `i` of `H(·, t)` of total
+/// degree at most `chart_degrees[i]`), the paths at infinity are re-tracked in a random
+/// projective chart ([`super::chart::recover_from_infinity`]) and the new finite roots
+/// found there are counted.
+pub(crate) fn solve_with_chart_recheck<H, S>(
+    homotopy: &H,
+    count: usize,
+    start: S,
+    options: &SolveOptions,
+    chart_degrees: Option<&[u32]>,
 ) -> SolveResult
 where
     H: Homotopy + ?Sized,
@@ -378,7 +408,24 @@ where
     }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
     mark_jumped_paths(homotopy, &mut paths);
-    let summary = summarize(&paths, options.real_tolerance, retracked);
+    let (rechecked, recovered) = match chart_degrees {
+        Some(degrees) => super::chart::recover_from_infinity(
+            homotopy,
+            degrees,
+            &mut paths,
+            &start,
+            &options.tracker,
+            options.seed,
+            |a, b| same_point(a, b, options.cluster_tolerance),
+        ),
+        None => (0, 0),
+    };
+    if recovered > 0 {
+        assign_multiplicities(&mut paths, options.cluster_tolerance);
+    }
+    let mut summary = summarize(&paths, options.real_tolerance, retracked);
+    summary.rechecked_at_infinity = rechecked;
+    summary.recovered_from_infinity = recovered;
     SolveResult {
         paths,
         summary,
@@ -464,8 +511,8 @@ fn mark_jumped_paths<H: Homotopy + ?Sized>(homotopy: &H, paths: &mut [PathResult
 
 /// `H(·, 1)` of a homotopy as an [`Evaluator`] without parameters (the target system),
 /// for Newton refinement of endpoints.
-struct TargetSystem<'a, H: Homotopy + ?Sized> {
-    homotopy: &'a H,
+pub(crate) struct TargetSystem<'a, H: Homotopy + ?Sized> {
+    pub(crate) homotopy: &'a H,
 }
 
 impl<H: Homotopy + ?Sized> PlainSystem for TargetSystem<'_, H> {

@@ -15,6 +15,8 @@
 //! - [`compile`]: [`CompiledSystem`], straight-line programs for F, ∂F/∂x, ∂F/∂p and
 //!   (∂F/∂p)·dp, the [`Evaluator`] used by the homotopy engine;
 //! - [`sparse`]: expansion into monomials (exact degrees, PHCpack export);
+//! - [`scaling`]: equation and variable scaling by powers of two (least squares on
+//!   the coefficients' logarithms) for badly scaled systems;
 //! - [`parse`], [`bertini`], [`phc`]: the text formats.
 //!
 //! ```
@@ -101,6 +103,7 @@ pub mod interval_dd;
 pub mod parametric;
 pub mod parse;
 pub mod phc;
+pub mod scaling;
 pub mod sparse;
 
 pub use builder::{System, SystemError};

@@ -160,5 +160,9 @@ pub fn solve_multihomogeneous<F: Evaluator + ?Sized>(
         },
         target_parameters,
         options,
+        // A monomial's total degree is the sum of its group degrees.
+        &(0..n)
+            .map(|i| degrees[i * m..(i + 1) * m].iter().sum())
+            .collect::<Vec<u32>>(),
     ))
 }

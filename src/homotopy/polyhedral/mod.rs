@@ -141,6 +141,7 @@ pub fn solve_from_polyhedral_start<F: Evaluator + ?Sized>(
         |index, x| x.copy_from_slice(&roots[index]),
         target_parameters,
         options,
+        &start.supports().total_degrees(),
     );
     let start_failed = lost.len();
     for mut p in lost {

@@ -1,0 +1,440 @@
+//! Any homotopy in a random affine chart of projective space: an independent route
+//! for the paths the affine formulation sends to infinity.
+//!
+//! An affine path that grows without bound either ends at infinity or at a finite
+//! root too large (or too badly scaled) for the endgame to tell apart from infinity.
+//! In homogeneous coordinates `[x₀ : y]` with `x = y / x₀` on the random chart
+//! `x₀ + b·y = 1`, both are finite points: a root at infinity has `x₀ = 0`, a large
+//! finite root a small non-zero `x₀`. The homotopy `H(x, t)` of equation degrees `d_i`
+//! becomes
+//!
+//! `G_i(x₀, y, t) = x₀^{d_i} H_i(y / x₀, t)` (i < n), `G_n = x₀ + b·y − 1`,
+//!
+//! with `∂G_i/∂y_k = x₀^{d_i − 1} ∂H_i/∂x_k`,
+//! `∂G_i/∂x₀ = x₀^{d_i − 1} (d_i H_i − Σ_j ∂H_i/∂x_j x_j)` and
+//! `∂G_i/∂t = x₀^{d_i} ∂H_i/∂t`: the homogenisation of the system in the random
+//! chart that Bertini tracks in (Bates, Hauenstein, Sommese and Wampler, *Numerically
+//! Solving Polynomial Systems with Bertini*, SIAM 2013, §1.3; A. P. Morgan, *A
+//! transformation to avoid solutions at infinity for polynomial systems*, Appl. Math.
+//! Comput. 18, 1986). The wrapper evaluates `H` at `x = y / x₀`, so it needs no
+//! expansion of the system; each term `a_α x^α x₀^{d_i}` keeps its relative rounding.
+
+use super::newton::max_norm;
+use super::refine::newton_refine;
+use super::solve::TargetSystem;
+use super::{FailureReason, Homotopy, PathResult, PathStatus, Tracker, TrackerOptions};
+use crate::C64;
+use crate::random;
+use rayon::prelude::*;
+
+/// `H(x, t)` homogenised with degrees `d_i` on the chart `x₀ + b·y = 1`; unknowns
+/// `(x₀, y_1, …, y_n)`, `x₀` the homogenising coordinate.
+pub struct ChartHomotopy<'a, H: Homotopy + ?Sized> {
+    inner: &'a H,
+    degrees: Vec<i32>,
+    chart: Vec<C64>,
+    n: usize,
+}
+
+impl<'a, H: Homotopy + ?Sized> ChartHomotopy<'a, H> {
+    /// `inner` (each `H_i(·, t)` of total degree at most `degrees[i]` for every `t`) on
+    /// a chart drawn from `seed`.
+    pub fn new(inner: &'a H, degrees: &[u32], seed: u64) -> Self {
+        let n = inner.dimension();
+        assert_eq!(degrees.len(), n, "one degree per equation");
+        let mut rng = random::seeded(seed);
+        let chart = (0..n).map(|_| random::unit_complex(&mut rng)).collect();
+        ChartHomotopy {
+            inner,
+            degrees: degrees.iter().map(|&d| d as i32).collect(),
+            chart,
+            n,
+        }
+    }
+
+    /// An affine point `x` in the chart: `x₀ = 1 / (1 + b·x)`, `y = x₀ x`.
+    pub fn lift(&self, x: &[C64], z: &mut [C64]) {
+        let bx: C64 = self.chart.iter().zip(x).map(|(b, v)| b * v).sum();
+        let x0 = (C64::new(1.0, 0.0) + bx).inv();
+        z[0] = x0;
+        for (zi, v) in z[1..].iter_mut().zip(x) {
+            *zi = v * x0;
+        }
+    }
+
+    /// A chart point with `x₀ ≠ 0` as an affine point: `x = y / x₀`.
+    pub fn lower(&self, z: &[C64]) -> Vec<C64> {
+        z[1..].iter().map(|v| v / z[0]).collect()
+    }
+
+    /// Splits the workspace into the inner one and `x`, `H`, `∂H/∂x`, `∂H/∂t`.
+    #[allow(clippy::type_complexity)]
+    fn split<'w>(
+        &self,
+        work: &'w mut [C64],
+    ) -> (
+        &'w mut [C64],
+        &'w mut [C64],
+        &'w mut [C64],
+        &'w mut [C64],
+        &'w mut [C64],
+    ) {
+        let n = self.n;
+        let (inner, rest) = work.split_at_mut(self.inner.workspace_len());
+        let (x, rest) = rest.split_at_mut(n);
+        let (h, rest) = rest.split_at_mut(n);
+        let (jac, rest) = rest.split_at_mut(n * n);
+        (inner, x, h, jac, &mut rest[..n])
+    }
+
+    fn affine(&self, z: &[C64], x: &mut [C64]) {
+        let inverse = z[0].inv();
+        for (xi, y) in x.iter_mut().zip(&z[1..]) {
+            *xi = y * inverse;
+        }
+    }
+
+    fn chart_equation(&self, z: &[C64]) -> C64 {
+        z[0] + self
+            .chart
+            .iter()
+            .zip(&z[1..])
+            .map(|(b, y)| b * y)
+            .sum::<C64>()
+            - C64::new(1.0, 0.0)
+    }
+
+    /// `G ← (x₀^{d_i} H_i, chart equation)` from `H` at `x = y / x₀`.
+    fn homogenized(&self, z: &[C64], h: &[C64], g: &mut [C64]) {
+        for i in 0..self.n {
+            g[i] = z[0].powi(self.degrees[i]) * h[i];
+        }
+        g[self.n] = self.chart_equation(z);
+    }
+
+    /// `∂G/∂t ← (x₀^{d_i} ∂H_i/∂t, 0)`.
+    fn homogenized_time_derivative(&self, z: &[C64], dh: &[C64], dg: &mut [C64]) {
+        for i in 0..self.n {
+            dg[i] = z[0].powi(self.degrees[i]) * dh[i];
+        }
+        dg[self.n] = C64::new(0.0, 0.0);
+    }
+
+    /// Rows `0..n` of `∂G/∂z` from `H` and `∂H/∂x` at `x`, and the chart row.
+    fn jacobian(&self, z: &[C64], x: &[C64], h: &[C64], inner_jac: &[C64], jac: &mut [C64]) {
+        let (n, m) = (self.n, self.n + 1);
+        for i in 0..n {
+            let d = self.degrees[i];
+            let power = z[0].powi(d - 1);
+            let row = &inner_jac[i * n..(i + 1) * n];
+            let euler: C64 = row.iter().zip(x).map(|(a, v)| a * v).sum();
+            jac[i * m] = power * (h[i] * d as f64 - euler);
+            for k in 0..n {
+                jac[i * m + 1 + k] = power * row[k];
+            }
+        }
+        jac[n * m] = C64::new(1.0, 0.0);
+        jac[n * m + 1..].copy_from_slice(&self.chart);
+    }
+}
+
+impl<H: Homotopy + ?Sized> Homotopy for ChartHomotopy<'_, H> {
+    fn dimension(&self) -> usize {
+        self.n + 1
+    }
+
+    fn workspace_len(&self) -> usize {
+        self.inner.workspace_len() + 3 * self.n + self.n * self.n
+    }
+
+    fn homogenizing_variable(&self) -> Option<usize> {
+        Some(0)
+    }
+
+    fn evaluate(&self, z: &[C64], t: C64, work: &mut [C64], g: &mut [C64]) {
+        let (inner, x, h, _, _) = self.split(work);
+        self.affine(z, x);
+        self.inner.evaluate(x, t, inner, h);
+        self.homogenized(z, h, g);
+    }
+
+    fn evaluate_with_jacobian(
+        &self,
+        z: &[C64],
+        t: C64,
+        work: &mut [C64],
+        g: &mut [C64],
+        jac: &mut [C64],
+    ) {
+        let (inner, x, h, inner_jac, _) = self.split(work);
+        self.affine(z, x);
+        self.inner.evaluate_with_jacobian(x, t, inner, h, inner_jac);
+        self.jacobian(z, x, h, inner_jac, jac);
+        self.homogenized(z, h, g);
+    }
+
+    fn evaluate_time_derivative(&self, z: &[C64], t: C64, work: &mut [C64], dg: &mut [C64]) {
+        let (inner, x, _, _, dh) = self.split(work);
+        self.affine(z, x);
+        self.inner.evaluate_time_derivative(x, t, inner, dh);
+        self.homogenized_time_derivative(z, dh, dg);
+    }
+
+    fn evaluate_with_jacobian_and_time_derivative(
+        &self,
+        z: &[C64],
+        t: C64,
+        work: &mut [C64],
+        g: &mut [C64],
+        jac: &mut [C64],
+        dg: &mut [C64],
+    ) {
+        let (inner, x, h, inner_jac, dh) = self.split(work);
+        self.affine(z, x);
+        self.inner
+            .evaluate_with_jacobian_and_time_derivative(x, t, inner, h, inner_jac, dh);
+        self.jacobian(z, x, h, inner_jac, jac);
+        self.homogenized(z, h, g);
+        self.homogenized_time_derivative(z, dh, dg);
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        self.inner.breakpoints()
+    }
+}
+
+/// Step budget of a chart path. In the chart a path to infinity ends at a finite,
+/// usually singular, point on `x₀ = 0`, whose endgame costs several times the affine
+/// path; a large finite root is reached in a few hundred steps (`pb601`: 210–240).
+const CHART_MAX_STEPS: usize = 400;
+
+/// Seed offset of the chart, so that it differs from the homotopy's γ drawn from the
+/// same seed.
+const CHART_SEED: u64 = 0xc4a7_0001;
+
+/// Largest condition number of a root recovered from a chart endpoint: the chart's
+/// own estimate is meaningless there (its Jacobian scales with powers of a small
+/// `x₀`), so the root must be a nonsingular one of the affine system.
+const RECOVERED_MAX_CONDITION: f64 = 1e14;
+
+/// Re-tracks every path of `paths` that the endgame sent to infinity because its norm
+/// passed [`EndgameOptions::at_infinity_norm`](super::EndgameOptions::at_infinity_norm)
+/// (not on the evidence of stable negative valuations of its power series, which is
+/// how paths to infinity are classified otherwise) in the random chart of
+/// `homotopy` (degrees `degrees`); a chart endpoint that is a nonsingular finite root
+/// (its homogenising coordinate not zero, Newton's method on `H(·, 1)` converging)
+/// and distinct from every finite endpoint (`same_point`) replaces the path's result.
+/// A chart endpoint at infinity, singular, failed or already known leaves the path as
+/// it was. Returns `(re-tracked, recovered)`.
+pub(crate) fn recover_from_infinity<H, S>(
+    homotopy: &H,
+    degrees: &[u32],
+    paths: &mut [PathResult],
+    start: S,
+    options: &TrackerOptions,
+    seed: u64,
+    same_point: impl Fn(&[C64], &[C64]) -> bool + Sync,
+) -> (usize, usize)
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    // Classified by the norm cap: no valuation evidence of divergence.
+    let capped = 0.5 * options.endgame.at_infinity_norm;
+    let at_infinity: Vec<usize> = paths
+        .iter()
+        .filter(|p| p.status == PathStatus::AtInfinity && max_norm(&p.solution) >= capped)
+        .map(|p| p.path_index)
+        .collect();
+    if at_infinity.is_empty() {
+        return (0, 0);
+    }
+    let chart = ChartHomotopy::new(homotopy, degrees, seed ^ CHART_SEED);
+    let mut options = options.clone();
+    options.step.max_steps = options.step.max_steps.min(CHART_MAX_STEPS);
+    let n = homotopy.dimension();
+    let target = TargetSystem { homotopy };
+    let found: Vec<(usize, PathResult)> = at_infinity
+        .par_iter()
+        .map_init(
+            || {
+                (
+                    Tracker::new(&chart, options.clone()),
+                    vec![C64::new(0.0, 0.0); n],
+                    vec![C64::new(0.0, 0.0); n + 1],
+                )
+            },
+            |(tracker, x, z), &index| {
+                start(index, x);
+                chart.lift(x, z);
+                (index, tracker.track(z, index))
+            },
+        )
+        .collect();
+    let mut known: Vec<Vec<C64>> = paths
+        .iter()
+        .filter(|p| p.status.is_finite())
+        .map(|p| p.solution.clone())
+        .collect();
+    let mut recovered = 0;
+    for (index, result) in found {
+        // A finite chart endpoint, or one the hyperplane test could not place (its
+        // Newton iterates neither converging nor shrinking `x₀`): Newton's method on the
+        // affine target decides.
+        let undecided = result.status == PathStatus::Failed(FailureReason::HyperplaneUndecided);
+        if !result.status.is_finite() && !undecided {
+            continue;
+        }
+        let refined = newton_refine(&target, &chart.lower(&result.solution), &[], 1e-13, 8);
+        let finite = refined
+            .point
+            .iter()
+            .all(|v| v.re.is_finite() && v.im.is_finite());
+        if !refined.is_nonsingular(RECOVERED_MAX_CONDITION)
+            || !finite
+            || known.iter().any(|y| same_point(y, &refined.point))
+        {
+            continue;
+        }
+        let path = &mut paths[index];
+        path.status = PathStatus::Nonsingular;
+        path.solution = refined.point.clone();
+        path.residual = refined.residual;
+        path.condition = refined.condition;
+        path.winding_number = 1;
+        path.steps += result.steps;
+        path.rejected_steps += result.rejected_steps;
+        path.last_t = result.last_t;
+        known.push(refined.point);
+        recovered += 1;
+    }
+    (at_infinity.len(), recovered)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::homotopy::StraightLineHomotopy;
+    use crate::system::{Evaluator, Expr, System};
+
+    fn c(re: f64, im: f64) -> C64 {
+        C64::new(re, im)
+    }
+
+    /// The chart system's Jacobian and time derivative agree with central
+    /// differences of its values.
+    #[test]
+    fn derivatives_match_differences() {
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+        let target = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![
+                &x * &x * &y - Expr::from(2.0) * &y + Expr::from(0.5),
+                &x * &y - &y * &y + Expr::from(3.0),
+            ],
+        )
+        .unwrap()
+        .compile();
+        let start = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![&x * &x * &x - Expr::from(1.0), &y * &y - Expr::from(1.0)],
+        )
+        .unwrap()
+        .compile();
+        let inner = StraightLineHomotopy::new(&start, &target, vec![], c(0.6, 0.8));
+        let chart = ChartHomotopy::new(&inner, &[3, 2], 7);
+        let mut work = vec![c(0.0, 0.0); chart.workspace_len()];
+        let z = [c(0.7, -0.2), c(0.3, 0.4), c(-0.5, 0.1)];
+        let t = c(0.4, 0.0);
+        let (mut g, mut jac, mut dg) = (
+            vec![c(0.0, 0.0); 3],
+            vec![c(0.0, 0.0); 9],
+            vec![c(0.0, 0.0); 3],
+        );
+        let mut g2 = g.clone();
+        chart.evaluate_with_jacobian_and_time_derivative(
+            &z, t, &mut work, &mut g, &mut jac, &mut dg,
+        );
+        chart.evaluate(&z, t, &mut work, &mut g2);
+        assert_eq!(g, g2);
+        let h = 1e-6;
+        let (mut plus, mut minus) = (vec![c(0.0, 0.0); 3], vec![c(0.0, 0.0); 3]);
+        for k in 0..3 {
+            let (mut zp, mut zm) = (z, z);
+            zp[k] += h;
+            zm[k] -= h;
+            chart.evaluate(&zp, t, &mut work, &mut plus);
+            chart.evaluate(&zm, t, &mut work, &mut minus);
+            for i in 0..3 {
+                let difference = (plus[i] - minus[i]) / (2.0 * h);
+                assert!((difference - jac[i * 3 + k]).norm() < 1e-6, "{i} {k}");
+            }
+        }
+        chart.evaluate(&z, t + h, &mut work, &mut plus);
+        chart.evaluate(&z, t - h, &mut work, &mut minus);
+        for i in 0..3 {
+            assert!(((plus[i] - minus[i]) / (2.0 * h) - dg[i]).norm() < 1e-6);
+        }
+        // Lift and lower are inverse; a lifted point satisfies the chart equation.
+        let point = [c(2.0, -1.0), c(0.25, 3.0)];
+        let mut lifted = [c(0.0, 0.0); 3];
+        chart.lift(&point, &mut lifted);
+        assert!(chart.chart_equation(&lifted).norm() < 1e-14);
+        let back = chart.lower(&lifted);
+        assert!(back.iter().zip(&point).all(|(a, b)| (a - b).norm() < 1e-14));
+        let _ = target.num_variables();
+    }
+
+    /// A path the endgame sent to infinity by the norm cap although it ends at a
+    /// finite root: the chart route finds that root; a path whose chart endpoint is
+    /// a root already known stays at infinity.
+    #[test]
+    fn a_capped_path_to_a_large_root_is_recovered_in_the_chart() {
+        use crate::homotopy::{TotalDegreeStartSystem, newton::max_norm as norm};
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+        // Roots (±300, 2): norm 300.
+        let target = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![&x * &x - Expr::from(9e4), &y - Expr::from(2.0)],
+        )
+        .unwrap()
+        .compile();
+        let start = TotalDegreeStartSystem::new(vec![2, 1]);
+        let homotopy = StraightLineHomotopy::new(&start, &target, vec![], c(0.6, -0.8));
+        let options = TrackerOptions::default();
+        let begin = |index: usize, point: &mut [C64]| start.start_solution(index as u64, point);
+        let mut paths: Vec<PathResult> = (0..2)
+            .map(|i| {
+                let mut point = vec![c(0.0, 0.0); 2];
+                begin(i, &mut point);
+                Tracker::new(&homotopy, options.clone()).track(&point, i)
+            })
+            .collect();
+        assert!(paths.iter().all(|p| p.status == PathStatus::Nonsingular));
+        let root = paths[0].solution.clone();
+        // Path 0 as the cap would have left it.
+        paths[0].status = PathStatus::AtInfinity;
+        paths[0].solution = vec![c(2e8, 0.0), c(2.0, 0.0)];
+        let same = |a: &[C64], b: &[C64]| {
+            a.iter()
+                .zip(b)
+                .all(|(u, v)| (u - v).norm() <= 1e-6 * (1.0 + norm(a)))
+        };
+        let (rechecked, recovered) =
+            recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
+        assert_eq!((rechecked, recovered), (1, 1));
+        assert_eq!(paths[0].status, PathStatus::Nonsingular);
+        assert!(same(&paths[0].solution, &root), "{:?}", paths[0].solution);
+        // Known already: path 1's root given to path 0 as well is not counted twice.
+        paths[0].status = PathStatus::AtInfinity;
+        paths[0].solution = vec![c(2e8, 0.0), c(2.0, 0.0)];
+        paths[1].solution = root.clone();
+        let (_, recovered) =
+            recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
+        assert_eq!(recovered, 0);
+        assert_eq!(paths[0].status, PathStatus::AtInfinity);
+    }
+}
