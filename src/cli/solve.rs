@@ -308,6 +308,12 @@ fn reason_name(reason: FailureReason) -> &'static str {
 /// Prints a one-line warning listing the failed paths with their reasons; returns
 /// whether any path failed.
 fn warn_failed_paths(result: &SolveResult) -> bool {
+    let unconfirmed = result.summary.unconfirmed_at_infinity;
+    if unconfirmed > 0 {
+        eprintln!(
+            "singdist: warning: {unconfirmed} path(s) classified at infinity only because their norm passed 1e8 were not confirmed in a projective chart (JSON unconfirmed_at_infinity): a root of large norm may be missing"
+        );
+    }
     let failed: Vec<(usize, FailureReason)> = result
         .paths
         .iter()

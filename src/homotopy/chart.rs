@@ -225,7 +225,7 @@ const RECOVERED_MAX_CONDITION: f64 = 1e14;
 /// (its homogenising coordinate not zero, Newton's method on `H(·, 1)` converging)
 /// and distinct from every finite endpoint (`same_point`) replaces the path's result.
 /// A chart endpoint at infinity, singular, failed or already known leaves the path as
-/// it was. Returns `(re-tracked, recovered)`.
+/// it was.
 pub(crate) fn recover_from_infinity<H, S>(
     homotopy: &H,
     degrees: &[u32],
@@ -234,7 +234,7 @@ pub(crate) fn recover_from_infinity<H, S>(
     options: &TrackerOptions,
     seed: u64,
     same_point: impl Fn(&[C64], &[C64]) -> bool + Sync,
-) -> (usize, usize)
+) -> ChartRecheck
 where
     H: Homotopy + ?Sized,
     S: Fn(usize, &mut [C64]) + Sync,
@@ -246,8 +246,12 @@ where
         .filter(|p| p.status == PathStatus::AtInfinity && max_norm(&p.solution) >= capped)
         .map(|p| p.path_index)
         .collect();
+    let mut outcome = ChartRecheck {
+        rechecked: at_infinity.len(),
+        ..ChartRecheck::default()
+    };
     if at_infinity.is_empty() {
-        return (0, 0);
+        return outcome;
     }
     let chart = ChartHomotopy::new(homotopy, degrees, seed ^ CHART_SEED);
     let mut options = options.clone();
@@ -276,8 +280,10 @@ where
         .filter(|p| p.status.is_finite())
         .map(|p| p.solution.clone())
         .collect();
-    let mut recovered = 0;
     for (index, result) in found {
+        if result.status == PathStatus::AtInfinity {
+            outcome.confirmed += 1;
+        }
         // A finite chart endpoint, or one the hyperplane test could not place (its
         // Newton iterates neither converging nor shrinking `x₀`): Newton's method on the
         // affine target decides.
@@ -306,9 +312,29 @@ where
         path.rejected_steps += result.rejected_steps;
         path.last_t = result.last_t;
         known.push(refined.point);
-        recovered += 1;
+        outcome.recovered += 1;
     }
-    (at_infinity.len(), recovered)
+    outcome
+}
+
+/// What [`recover_from_infinity`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ChartRecheck {
+    /// Paths re-tracked in the chart.
+    pub rechecked: usize,
+    /// Of those, paths whose chart endpoint lies at infinity too (`x₀ = 0`).
+    pub confirmed: usize,
+    /// Paths whose chart route reached a new finite root.
+    pub recovered: usize,
+}
+
+impl ChartRecheck {
+    /// Paths left at infinity that the chart neither confirmed nor recovered (it
+    /// failed, or reached a root already known): their classification rests on the
+    /// norm cap alone.
+    pub fn unconfirmed(&self) -> usize {
+        self.rechecked - self.confirmed - self.recovered
+    }
 }
 
 #[cfg(test)]
@@ -423,18 +449,21 @@ mod tests {
                 .zip(b)
                 .all(|(u, v)| (u - v).norm() <= 1e-6 * (1.0 + norm(a)))
         };
-        let (rechecked, recovered) =
+        let outcome =
             recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
-        assert_eq!((rechecked, recovered), (1, 1));
+        assert_eq!((outcome.rechecked, outcome.recovered), (1, 1));
+        assert_eq!(outcome.unconfirmed(), 0);
         assert_eq!(paths[0].status, PathStatus::Nonsingular);
         assert!(same(&paths[0].solution, &root), "{:?}", paths[0].solution);
         // Known already: path 1's root given to path 0 as well is not counted twice.
         paths[0].status = PathStatus::AtInfinity;
         paths[0].solution = vec![c(2e8, 0.0), c(2.0, 0.0)];
         paths[1].solution = root.clone();
-        let (_, recovered) =
+        let outcome =
             recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
-        assert_eq!(recovered, 0);
+        assert_eq!(outcome.recovered, 0);
+        // Its chart endpoint is the known root: not a confirmation of infinity.
+        assert_eq!(outcome.unconfirmed(), 1);
         assert_eq!(paths[0].status, PathStatus::AtInfinity);
     }
 }

@@ -131,6 +131,10 @@ pub struct SolveSummary {
     /// `nonsingular`, no longer at infinity).
     #[serde(default)]
     pub recovered_from_infinity: usize,
+    /// Of those, paths left at infinity whose chart route neither ended at infinity
+    /// nor reached a new root: their classification rests on the norm cap alone.
+    #[serde(default)]
+    pub unconfirmed_at_infinity: usize,
 }
 
 /// Result of a solve run: every path in path order, and the summary.
@@ -408,7 +412,7 @@ where
     }
     assign_multiplicities(&mut paths, options.cluster_tolerance);
     mark_jumped_paths(homotopy, &mut paths);
-    let (rechecked, recovered) = match chart_degrees {
+    let recheck = match chart_degrees {
         Some(degrees) => super::chart::recover_from_infinity(
             homotopy,
             degrees,
@@ -418,14 +422,15 @@ where
             options.seed,
             |a, b| same_point(a, b, options.cluster_tolerance),
         ),
-        None => (0, 0),
+        None => Default::default(),
     };
-    if recovered > 0 {
+    if recheck.recovered > 0 {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
     }
     let mut summary = summarize(&paths, options.real_tolerance, retracked);
-    summary.rechecked_at_infinity = rechecked;
-    summary.recovered_from_infinity = recovered;
+    summary.rechecked_at_infinity = recheck.rechecked;
+    summary.recovered_from_infinity = recheck.recovered;
+    summary.unconfirmed_at_infinity = recheck.unconfirmed();
     SolveResult {
         paths,
         summary,
