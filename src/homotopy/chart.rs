@@ -112,14 +112,6 @@ impl<'a, H: Homotopy + ?Sized> ChartHomotopy<'a, H> {
         g[self.n] = self.chart_equation(z);
     }
 
-    /// `∂G/∂t ← (x₀^{d_i} ∂H_i/∂t, 0)`.
-    fn homogenized_time_derivative(&self, z: &[C64], dh: &[C64], dg: &mut [C64]) {
-        for i in 0..self.n {
-            dg[i] = z[0].powi(self.degrees[i]) * dh[i];
-        }
-        dg[self.n] = C64::new(0.0, 0.0);
-    }
-
     /// Rows `0..n` of `∂G/∂z` from `H` and `∂H/∂x` at `x`, and the chart row.
     fn jacobian(&self, z: &[C64], x: &[C64], h: &[C64], inner_jac: &[C64], jac: &mut [C64]) {
         let (n, m) = (self.n, self.n + 1);
@@ -177,25 +169,10 @@ impl<H: Homotopy + ?Sized> Homotopy for ChartHomotopy<'_, H> {
         let (inner, x, _, _, dh) = self.split(work);
         self.affine(z, x);
         self.inner.evaluate_time_derivative(x, t, inner, dh);
-        self.homogenized_time_derivative(z, dh, dg);
-    }
-
-    fn evaluate_with_jacobian_and_time_derivative(
-        &self,
-        z: &[C64],
-        t: C64,
-        work: &mut [C64],
-        g: &mut [C64],
-        jac: &mut [C64],
-        dg: &mut [C64],
-    ) {
-        let (inner, x, h, inner_jac, dh) = self.split(work);
-        self.affine(z, x);
-        self.inner
-            .evaluate_with_jacobian_and_time_derivative(x, t, inner, h, inner_jac, dh);
-        self.jacobian(z, x, h, inner_jac, jac);
-        self.homogenized(z, h, g);
-        self.homogenized_time_derivative(z, dh, dg);
+        for i in 0..self.n {
+            dg[i] = z[0].powi(self.degrees[i]) * dh[i];
+        }
+        dg[self.n] = C64::new(0.0, 0.0);
     }
 
     fn breakpoints(&self) -> &[f64] {
@@ -341,34 +318,28 @@ impl ChartRecheck {
 mod tests {
     use super::*;
     use crate::homotopy::StraightLineHomotopy;
-    use crate::system::{Evaluator, Expr, System};
+    use crate::system::{CompiledSystem, Evaluator};
 
     fn c(re: f64, im: f64) -> C64 {
         C64::new(re, im)
+    }
+
+    /// Equations `f`, `g` in `x`, `y` (Bertini syntax), compiled.
+    fn read(equations: &str) -> CompiledSystem {
+        let text = format!("INPUT\nvariable_group x, y;\nfunction f, g;\n{equations}\nEND;\n");
+        crate::system::bertini::read(&text).unwrap().compile()
     }
 
     /// The chart system's Jacobian and time derivative agree with central
     /// differences of its values.
     #[test]
     fn derivatives_match_differences() {
-        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
-        let target = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![
-                &x * &x * &y - Expr::from(2.0) * &y + Expr::from(0.5),
-                &x * &y - &y * &y + Expr::from(3.0),
-            ],
-        )
-        .unwrap()
-        .compile();
-        let start = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![&x * &x * &x - Expr::from(1.0), &y * &y - Expr::from(1.0)],
-        )
-        .unwrap()
-        .compile();
+        let read = |equations: &str| {
+            let text = format!("INPUT\nvariable_group x, y;\nfunction f, g;\n{equations}\nEND;\n");
+            crate::system::bertini::read(&text).unwrap().compile()
+        };
+        let target = read("f = x^2*y - 2*y + 0.5;\ng = x*y - y^2 + 3;");
+        let start = read("f = x^3 - 1;\ng = y^2 - 1;");
         let inner = StraightLineHomotopy::new(&start, &target, vec![], c(0.6, 0.8));
         let chart = ChartHomotopy::new(&inner, &[3, 2], 7);
         let mut work = vec![c(0.0, 0.0); chart.workspace_len()];
@@ -419,15 +390,8 @@ mod tests {
     #[test]
     fn a_capped_path_to_a_large_root_is_recovered_in_the_chart() {
         use crate::homotopy::{TotalDegreeStartSystem, newton::max_norm as norm};
-        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
         // Roots (±300, 2): norm 300.
-        let target = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![&x * &x - Expr::from(9e4), &y - Expr::from(2.0)],
-        )
-        .unwrap()
-        .compile();
+        let target = read("f = x^2 - 90000;\ng = y - 2;");
         let start = TotalDegreeStartSystem::new(vec![2, 1]);
         let homotopy = StraightLineHomotopy::new(&start, &target, vec![], c(0.6, -0.8));
         let options = TrackerOptions::default();
