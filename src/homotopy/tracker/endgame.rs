@@ -30,6 +30,7 @@ pub(super) struct EndgameState {
     endgame_origin: Vec<f64>,
     /// Change of each valuation between the last two radii of the endgame.
     valuation_changes: Vec<f64>,
+    direct_endpoint: Vec<C64>,
     /// The endgame's last valuation check found stable negative valuations.
     divergence_evidence: bool,
 }
@@ -40,6 +41,7 @@ impl EndgameState {
         let zero = C64::new(0.0, 0.0);
         EndgameState {
             cauchy_sum: vec![zero; n],
+            direct_endpoint: vec![zero; n],
             estimate: vec![zero; n],
             previous_estimate: vec![zero; n],
             valuations: vec![0.0; n],
@@ -73,6 +75,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         // consecutive differences agreeing pin the valuation `w_i` down.
         let mut loops_done = 0;
         let mut previous_loop_radius = 0.0f64;
+        let mut have_direct_endpoint = false;
         self.state.divergence_evidence = false;
         self.state
             .valuation_changes
@@ -196,6 +199,12 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     {
                         return PathStatus::Nonsingular;
                     }
+                    if self.options.endgame.settle_on_direct_endpoint
+                        && self.residual_small_at_end()
+                    {
+                        self.state.direct_endpoint.copy_from_slice(&self.x);
+                        have_direct_endpoint = true;
+                    }
                 }
                 self.x.copy_from_slice(&self.x_checkpoint);
                 self.t = t;
@@ -269,7 +278,13 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         have_estimate = true;
                     }
                     Err(RouteStop::Diverged) => return PathStatus::AtInfinity,
-                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge)) => {}
+                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge)) => {
+                        if have_direct_endpoint {
+                            self.x.copy_from_slice(&self.state.direct_endpoint);
+                            self.t = C64::new(1.0, 0.0);
+                            return PathStatus::Singular;
+                        }
+                    }
                     Err(RouteStop::Failed(reason)) => {
                         return self.give_up(have_estimate, reason);
                     }
@@ -285,6 +300,17 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 Err(RouteStop::Failed(reason)) => return self.give_up(have_estimate, reason),
             }
         }
+    }
+
+    /// Whether `‖H(x, 1)‖∞ ≤ endpoint_residual · (1 + ‖x‖∞)` at the current point.
+    fn residual_small_at_end(&mut self) -> bool {
+        self.homotopy.evaluate(
+            &self.x,
+            C64::new(1.0, 0.0),
+            &mut self.eval.work,
+            &mut self.eval.h,
+        );
+        max_norm(&self.eval.h) <= self.options.endgame.endpoint_residual * (1.0 + max_norm(&self.x))
     }
 
     /// Whether coordinate `i` has grown by [`MIN_COORDINATE_GROWTH`] since the start of

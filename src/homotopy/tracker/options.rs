@@ -123,6 +123,15 @@ pub struct EndgameOptions {
     /// presets, which the curve pipeline's near-degenerate designs are tuned for.
     #[serde(default)]
     pub growth_before_divergence: bool,
+    /// Where the direct finish reached `t = 1` with a small residual but a singular
+    /// Jacobian (the endpoint is singular) and a Cauchy loop then cannot close within
+    /// `max_winding_number` turns, the path ends at that singular endpoint instead of
+    /// looping again at smaller radii. Near a positive-dimensional solution set the
+    /// loops close (if at all) after 11–24 turns that differ from radius to radius:
+    /// PHCpack's `fbrfive4` spent 10,000–18,000 steps per such path. On for `solve`,
+    /// off in the presets.
+    #[serde(default)]
+    pub settle_on_direct_endpoint: bool,
 }
 
 fn default_extended_after_rejections() -> usize {
@@ -217,6 +226,7 @@ impl Default for EndgameOptions {
             refinement_iterations: 6,
             endpoint_residual: 1e-8,
             growth_before_divergence: false,
+            settle_on_direct_endpoint: false,
         }
     }
 }
@@ -362,7 +372,8 @@ mod tests {
         }
     }
 
-    /// Fields with serde defaults (the precision group, `growth_before_divergence`)
+    /// Fields with serde defaults (the precision group, `growth_before_divergence`,
+    /// `settle_on_direct_endpoint`)
     /// may be left out, as before; the others are required.
     #[test]
     fn optional_fields_default_and_required_ones_are_required() {
@@ -374,6 +385,7 @@ mod tests {
             "extended_accepted_steps",
             "max_extended_steps",
             "growth_before_divergence",
+            "settle_on_direct_endpoint",
         ] {
             assert!(object.remove(key).is_some(), "{key}");
         }
