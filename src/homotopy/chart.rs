@@ -233,6 +233,7 @@ where
     let chart = ChartHomotopy::new(homotopy, degrees, seed ^ CHART_SEED);
     let mut options = options.clone();
     options.step.max_steps = options.step.max_steps.min(CHART_MAX_STEPS);
+    options.endgame.homogenizing_valuation_test = true;
     let n = homotopy.dimension();
     let target = TargetSystem { homotopy };
     let found: Vec<(usize, PathResult)> = at_infinity
@@ -429,5 +430,57 @@ mod tests {
         // Its chart endpoint is the known root: not a confirmation of infinity.
         assert_eq!(outcome.unconfirmed(), 1);
         assert_eq!(paths[0].status, PathStatus::AtInfinity);
+    }
+
+    /// Every path of the total-degree homotopy to `f, g` (degrees `degrees`) tracked in
+    /// a chart with the valuation test on: status, steps and the affine endpoint.
+    fn chart_paths(equations: &str, degrees: [u32; 2]) -> Vec<(PathStatus, usize, Vec<C64>)> {
+        use crate::homotopy::TotalDegreeStartSystem;
+        let target = read(equations);
+        let start = TotalDegreeStartSystem::new(degrees.to_vec());
+        let homotopy = StraightLineHomotopy::new(&start, &target, vec![], c(0.6, -0.8));
+        let chart = ChartHomotopy::new(&homotopy, &degrees, 11);
+        let mut options = TrackerOptions::default();
+        options.step.max_steps = CHART_MAX_STEPS;
+        options.endgame.homogenizing_valuation_test = true;
+        let mut tracker = Tracker::new(&chart, options);
+        (0..(degrees[0] * degrees[1]) as usize)
+            .map(|index| {
+                let (mut x, mut z) = (vec![c(0.0, 0.0); 2], vec![c(0.0, 0.0); 3]);
+                start.start_solution(index as u64, &mut x);
+                chart.lift(&x, &mut z);
+                let result = tracker.track(&z, index);
+                (result.status, result.steps, chart.lower(&result.solution))
+            })
+            .collect()
+    }
+
+    /// With the valuation test on, a path to a regular point at infinity is still
+    /// classified there, and the finite path reaches its root (`x·y = 1`, `y = 2`).
+    #[test]
+    fn a_path_to_infinity_is_classified_on_the_hyperplane() {
+        let paths = chart_paths("f = x*y - 1;\ng = y - 2;", [2, 1]);
+        let finite: Vec<&Vec<C64>> = paths
+            .iter()
+            .filter(|(status, _, _)| *status == PathStatus::Nonsingular)
+            .map(|(_, _, root)| root)
+            .collect();
+        assert_eq!(finite.len(), 1, "{paths:?}");
+        assert!((finite[0][0] - c(0.5, 0.0)).norm() < 1e-10, "{paths:?}");
+        assert!((finite[0][1] - c(2.0, 0.0)).norm() < 1e-10, "{paths:?}");
+        let at_infinity = paths.iter().filter(|p| p.0 == PathStatus::AtInfinity);
+        assert_eq!(at_infinity.count(), 1, "{paths:?}");
+    }
+
+    /// `x·y = 1`, `x·y = 2`: no finite root; the four paths end at two double points
+    /// on the hyperplane at infinity. The valuation test classifies each there in a
+    /// few radii (23–81 steps); without it two of them fail (the Cauchy endgame does
+    /// not converge at the singular point).
+    #[test]
+    fn paths_to_singular_points_at_infinity_are_classified() {
+        for (status, steps, _) in chart_paths("f = x*y - 1;\ng = x*y - 2;", [2, 2]) {
+            assert_eq!(status, PathStatus::AtInfinity);
+            assert!(steps < 120, "{steps} steps");
+        }
     }
 }

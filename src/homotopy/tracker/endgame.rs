@@ -76,6 +76,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let mut loops_done = 0;
         let mut previous_loop_radius = 0.0f64;
         let mut have_direct_endpoint = false;
+        // Successive radii with a stable positive valuation of the homogenising
+        // coordinate (`homogenizing_valuation_test`).
+        let mut vanishing = 0;
         self.state.divergence_evidence = false;
         self.state
             .valuation_changes
@@ -100,6 +103,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 f64::INFINITY
             };
             let mut diverging = false;
+            let mut vanishing_now = false;
             if ok {
                 for i in 0..n {
                     self.state.valuations[i] = if self.x[i].norm() > 0.0 {
@@ -107,6 +111,28 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                     } else {
                         0.0
                     };
+                }
+                if let Some(h) = self
+                    .homotopy
+                    .homogenizing_variable()
+                    .filter(|_| self.options.endgame.homogenizing_valuation_test)
+                {
+                    let (v, previous) =
+                        (self.state.valuations[h], self.state.previous_valuations[h]);
+                    vanishing = if have_valuations
+                        && v > self.options.endgame.valuation_threshold
+                        && (v - previous).abs() <= 0.01
+                    {
+                        vanishing + 1
+                    } else {
+                        0
+                    };
+                    if vanishing >= 2 {
+                        return PathStatus::AtInfinity;
+                    }
+                    // Heading for the hyperplane at infinity: no Cauchy loop around the
+                    // (singular) point there; the next radius decides.
+                    vanishing_now = v > self.options.endgame.valuation_threshold;
                 }
                 let mut stable = have_valuations;
                 let mut smallest = f64::INFINITY;
@@ -217,6 +243,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // would not close on a finite estimate; the next radius is cheaper and the
             // valuation test above classifies a divergent path.
             if !diverging
+                && !vanishing_now
                 && (direct_failed || condition >= self.options.endgame.direct_finish_condition)
             {
                 match self.cauchy_loop(s) {

@@ -132,6 +132,13 @@ pub struct EndgameOptions {
     /// off in the presets.
     #[serde(default)]
     pub settle_on_direct_endpoint: bool,
+    /// In a chart of projective space (a homotopy with a homogenising coordinate
+    /// `x₀`): a valuation of `x₀` above `valuation_threshold` (`x₀ ~ s^v`, `v > 0`),
+    /// stable over two successive radii, classifies the path at infinity without
+    /// converging to the (usually singular) point on `x₀ = 0`. The chart re-check of
+    /// `solve` turns it on; off in the presets.
+    #[serde(default)]
+    pub homogenizing_valuation_test: bool,
 }
 
 fn default_extended_after_rejections() -> usize {
@@ -227,6 +234,7 @@ impl Default for EndgameOptions {
             endpoint_residual: 1e-8,
             growth_before_divergence: false,
             settle_on_direct_endpoint: false,
+            homogenizing_valuation_test: false,
         }
     }
 }
@@ -373,7 +381,7 @@ mod tests {
     }
 
     /// Fields with serde defaults (the precision group, `growth_before_divergence`,
-    /// `settle_on_direct_endpoint`)
+    /// `settle_on_direct_endpoint`, `homogenizing_valuation_test`)
     /// may be left out, as before; the others are required.
     #[test]
     fn optional_fields_default_and_required_ones_are_required() {
@@ -386,6 +394,7 @@ mod tests {
             "max_extended_steps",
             "growth_before_divergence",
             "settle_on_direct_endpoint",
+            "homogenizing_valuation_test",
         ] {
             assert!(object.remove(key).is_some(), "{key}");
         }
