@@ -180,6 +180,12 @@ impl<H: Homotopy + ?Sized> Homotopy for ChartHomotopy<'_, H> {
     }
 }
 
+/// `|x₀|` (relative to the chart point) at which a path the chart tracker stopped
+/// counts as on the hyperplane at infinity: an affine root there would have norm
+/// `10²⁰`, beyond anything double precision tracks (`des18_3`'s undecided chart
+/// endpoints have `x₀` of 10⁻³²–10⁻²⁴).
+const VANISHED: f64 = 1e-20;
+
 /// Step budget of a chart path. In the chart a path to infinity ends at a finite,
 /// usually singular, point on `x₀ = 0`, whose endgame costs several times the affine
 /// path; a large finite root is reached in a few hundred steps (`pb601`: 210–240).
@@ -259,8 +265,14 @@ where
         .map(|p| p.solution.clone())
         .collect();
     for (index, result) in found {
-        if result.status == PathStatus::AtInfinity {
+        // At infinity: classified there, or stopped (hyperplane test undecided, endgame
+        // not converged) with its homogenising coordinate below any scale the affine
+        // formulation could hold a root at.
+        let on_hyperplane = matches!(result.status, PathStatus::Failed(_))
+            && result.solution[0].norm() <= VANISHED * (1.0 + max_norm(&result.solution));
+        if result.status == PathStatus::AtInfinity || on_hyperplane {
             outcome.confirmed += 1;
+            continue;
         }
         // A finite chart endpoint, or one the hyperplane test could not place (its
         // Newton iterates neither converging nor shrinking `x₀`): Newton's method on the
