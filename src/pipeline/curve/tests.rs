@@ -101,14 +101,8 @@ fn plate_plate_stage() -> (Motion, CurveOptions, SeedStage, usize) {
         self_check: false,
         ..CurveOptions::default()
     };
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &options,
-        &default_start_solutions,
-    )
-    .expect("stage");
+    let start = default_start_solutions;
+    let stage = seed_stage(&design, &motion, &metrics, &options, &start).expect("stage");
     let index = stage
         .problems
         .iter()
