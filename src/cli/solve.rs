@@ -377,6 +377,12 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         ScalingArg::Always => Scaling::least_squares(&system),
         ScalingArg::Auto => Scaling::least_squares(&system).filter(Scaling::worthwhile),
     };
+    if args.scaling == ScalingArg::Always && scaling.is_none() {
+        eprintln!(
+            "singdist: warning: {}: --scaling always: no scaling (an equation cannot be expanded, or the exponents would leave the double range); solved unscaled",
+            args.file.display()
+        );
+    }
     let compiled = match &scaling {
         Some(scaling) => scaling.apply(&system).compile(),
         None => system.compile(),

@@ -31,6 +31,11 @@ const LEAST_NORM_WEIGHT: f64 = 1e-8;
 /// normalisation.
 pub const BADLY_SCALED_RMS: f64 = 8.0;
 
+/// Largest binary exponent a scaled term's factors may reach (`|c_i| + Σ α_j |d_j|`):
+/// far inside the double range (`2^{±1022}`), so that no power of a scaled variable
+/// overflows or underflows before the coefficient brings it back.
+const MAX_EXPONENT: i64 = 900;
+
 /// Exponents `c_i` (equation `i` times `2^{c_i}`) and `d_j` (`x_j = 2^{d_j} y_j`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scaling {
@@ -90,7 +95,7 @@ fn rms(terms: &[(usize, Vec<u32>, f64)], c: &[f64], d: &[f64]) -> f64 {
 
 impl Scaling {
     /// The least-squares scaling of `system` (no parameters left, every equation
-    /// expandable); `None` otherwise.
+    /// expandable, every scaled factor within [`MAX_EXPONENT`]); `None` otherwise.
     pub fn least_squares(system: &System) -> Option<Scaling> {
         if !system.parameters().is_empty() || system.homogenizing().is_some() {
             return None;
@@ -130,10 +135,23 @@ impl Scaling {
             }
         }
         let z = normal.cholesky()?.solve(&rhs);
-        let round = |v: f64| v.round().clamp(-1000.0, 1000.0) as i32;
+        let round = |v: f64| v.round().clamp(-2000.0, 2000.0) as i32;
         let equations: Vec<i32> = (0..m).map(|i| round(z[i])).collect();
         let variables: Vec<i32> = (0..n).map(|j| round(z[m + j])).collect();
         let as_f64 = |v: &[i32]| v.iter().map(|&e| e as f64).collect::<Vec<_>>();
+        // The scaled system evaluates 2^{d_j}·y_j, its powers and 2^{c_i} apart: every
+        // such factor must stay far inside the double range.
+        let representable = terms.iter().all(|(i, alpha, _)| {
+            let shift: i64 = alpha
+                .iter()
+                .zip(&variables)
+                .map(|(&e, &d)| e as i64 * (d as i64).abs())
+                .sum();
+            (equations[*i] as i64).abs() + shift <= MAX_EXPONENT
+        });
+        if !representable {
+            return None;
+        }
         let rms_after = rms(&terms, &as_f64(&equations), &as_f64(&variables));
         Some(Scaling {
             equations,
@@ -256,5 +274,19 @@ mod tests {
         .unwrap();
         let scaling = Scaling::least_squares(&system).unwrap();
         assert!(!scaling.worthwhile(), "{scaling:?}");
+    }
+
+    /// Exponents that would overflow a power of a scaled variable are refused: `x`
+    /// of order 10⁻³⁰⁰ squared.
+    #[test]
+    fn an_unrepresentable_scaling_is_refused() {
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+        let system = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![c(1.0) * &x * &x - c(1e-300) * &y, &y - c(1.0)],
+        )
+        .unwrap();
+        assert_eq!(Scaling::least_squares(&system), None);
     }
 }
