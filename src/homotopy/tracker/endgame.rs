@@ -30,6 +30,7 @@ pub(super) struct EndgameState {
     endgame_origin: Vec<f64>,
     /// Change of each valuation between the last two radii of the endgame.
     valuation_changes: Vec<f64>,
+    /// The direct finish's singular endpoint (`settle_on_direct_endpoint`).
     direct_endpoint: Vec<C64>,
     /// The endgame's last valuation check found stable negative valuations.
     divergence_evidence: bool,
@@ -226,7 +227,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                         return PathStatus::Nonsingular;
                     }
                     if self.options.endgame.settle_on_direct_endpoint
-                        && self.residual_small_at_end()
+                        && self.residual_small_at_one(false)
                     {
                         self.state.direct_endpoint.copy_from_slice(&self.x);
                         have_direct_endpoint = true;
@@ -329,17 +330,6 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         }
     }
 
-    /// Whether `‖H(x, 1)‖∞ ≤ endpoint_residual · (1 + ‖x‖∞)` at the current point.
-    fn residual_small_at_end(&mut self) -> bool {
-        self.homotopy.evaluate(
-            &self.x,
-            C64::new(1.0, 0.0),
-            &mut self.eval.work,
-            &mut self.eval.h,
-        );
-        max_norm(&self.eval.h) <= self.options.endgame.endpoint_residual * (1.0 + max_norm(&self.x))
-    }
-
     /// Whether coordinate `i` has grown by [`MIN_COORDINATE_GROWTH`] since the start of
     /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
     /// valuation classifies a path as diverging.
@@ -397,14 +387,21 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// Whether `‖H(estimate, 1)‖∞ ≤ endpoint_residual · (1 + ‖estimate‖∞)^d̂` with a
     /// generous d̂ = 2 (a Cauchy mean of a diverging path has an O(1) residual).
     pub(super) fn estimate_residual_small(&mut self) -> bool {
+        self.residual_small_at_one(true)
+    }
+
+    /// Whether `‖H(p, 1)‖∞ ≤ endpoint_residual · (1 + ‖p‖∞)²` at `p` the Cauchy
+    /// estimate (`estimate`) or the current point.
+    fn residual_small_at_one(&mut self, estimate: bool) -> bool {
+        let point = if estimate {
+            &self.state.estimate
+        } else {
+            &self.x
+        };
         let e = &mut self.eval;
-        self.homotopy.evaluate(
-            &self.state.estimate,
-            C64::new(1.0, 0.0),
-            &mut e.work,
-            &mut e.h,
-        );
-        let scale = 1.0 + max_norm(&self.state.estimate);
+        self.homotopy
+            .evaluate(point, C64::new(1.0, 0.0), &mut e.work, &mut e.h);
+        let scale = 1.0 + max_norm(point);
         max_norm(&e.h) <= self.options.endgame.endpoint_residual * scale * scale
     }
 
