@@ -280,13 +280,9 @@ mod tests {
     /// of order 10⁻³⁰⁰ squared.
     #[test]
     fn an_unrepresentable_scaling_is_refused() {
-        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
-        let system = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![c(1.0) * &x * &x - c(1e-300) * &y, &y - c(1.0)],
-        )
-        .unwrap();
+        let text =
+            "INPUT\nvariable_group x, y;\nfunction f, g;\nf = x^2 - 1e-300*y;\ng = y - 1;\nEND;\n";
+        let system = crate::system::bertini::read(text).unwrap();
         assert_eq!(Scaling::least_squares(&system), None);
     }
 }
