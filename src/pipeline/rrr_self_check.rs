@@ -109,6 +109,7 @@ pub(crate) fn check_window(
         poses: checked_poses,
         worst_relative_difference: worst,
         disagreements,
+        completed: 0,
     };
     (check, changed)
 }

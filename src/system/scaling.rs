@@ -95,7 +95,7 @@ fn rms(terms: &[(usize, Vec<u32>, f64)], c: &[f64], d: &[f64]) -> f64 {
 
 impl Scaling {
     /// The least-squares scaling of `system` (no parameters left, every equation
-    /// expandable, every scaled factor within [`MAX_EXPONENT`]); `None` otherwise.
+    /// expandable, every scaled factor within 2^±900, `MAX_EXPONENT`); `None` otherwise.
     pub fn least_squares(system: &System) -> Option<Scaling> {
         if !system.parameters().is_empty() || system.homogenizing().is_some() {
             return None;

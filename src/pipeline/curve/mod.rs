@@ -66,8 +66,14 @@
 //!    poses at which a sub-problem still lost paths is re-solved pose by pose from the
 //!    complete finite solution set of the pose before the run (forward), then of the
 //!    pose after it (backward), through a random complex midpoint between the two
-//!    poses; a re-solved pose whose set is complete seeds the next one. What still
-//!    fails is reported as a [`PathFailure`].
+//!    poses; a re-solved pose whose set is complete seeds the next one.
+//!    **Seed at the pose** (`local_seed`): a metric that still lost paths at a pose is
+//!    solved there once more from a seed stage of its own next to the pose (what
+//!    `singdist distance` runs), and its result taken where it lost nothing and
+//!    expects as many critical points. The self-check's stage and the run's expect the
+//!    larger of their two seed counts at every pose, and a checked pose where the run
+//!    lost paths that the check did not takes the check's result. What still fails is
+//!    reported as a [`PathFailure`].
 //! 4. **Post-processing** ([`super::postprocess`]).
 
 use super::bisection::bisect_sign_change;
@@ -105,6 +111,7 @@ use std::collections::BTreeMap;
 mod certificates;
 mod chain;
 mod jump;
+mod local_seed;
 mod options;
 mod seed;
 mod self_check;

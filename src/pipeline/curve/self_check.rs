@@ -11,8 +11,10 @@
 //! result and a [`PathFailure`] `self-check` (exit code 3), since the poses that were
 //! not checked may have missed it too. A run in windows ([`CurveOptions::window_poses`])
 //! checks every window this way (its first, last and closest poses) before the window
-//! is written.
+//! is written. Where the run lost paths of a metric at a checked pose and the check
+//! lost none there, the check's result replaces the run's (`completed`).
 
+use super::local_seed::{completes, lost_paths_of};
 use super::*;
 
 /// What the self-check compared.
@@ -27,6 +29,14 @@ pub struct SelfCheck {
     pub worst_relative_difference: f64,
     /// (Pose, metric) pairs where the check found a closer singular configuration.
     pub disagreements: usize,
+    /// (Pose, metric) pairs where the run lost paths and the check, losing none,
+    /// completed them: the check's result replaced the run's and its failures.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub completed: usize,
+}
+
+fn is_zero(count: &usize) -> bool {
+    *count == 0
 }
 
 /// Relative difference above which the check's smaller distance counts as a missed
@@ -150,12 +160,36 @@ pub(super) fn check_poses(
     let floor = 1e-12 * design.length_scale();
     let mut worst: f64 = 0.0;
     let mut disagreements = 0;
+    let mut completed_by_check = 0;
     for (check, entries, k) in checked {
         let Some(run) = results.iter_mut().find(|r| r.index == check.index) else {
             continue;
         };
         let mut certified: Option<PoseResult> = None;
         for (name, checked_metric) in &check.metrics {
+            // Where the run lost paths of this metric and the check completed it, the
+            // check's result stands (an independent route that lost nothing).
+            if lost_paths_of(&run.failures, name) && completes(&check, run, name) {
+                let completed = if check_options.certify {
+                    let j = check.index;
+                    let certified = certified.get_or_insert_with(|| {
+                        let entries = entries.clone();
+                        assemble_pose(stage, metrics, j, samples[j], &k, entries, check_options)
+                    });
+                    certified
+                        .metrics
+                        .get(name)
+                        .unwrap_or(checked_metric)
+                        .clone()
+                } else {
+                    checked_metric.clone()
+                };
+                run.failures
+                    .retain(|f| !lost_paths_of(std::slice::from_ref(f), name));
+                run.metrics.insert(name.clone(), completed);
+                completed_by_check += 1;
+                continue;
+            }
             let Some(run_metric) = run.metrics.get_mut(name) else {
                 continue;
             };
@@ -194,6 +228,7 @@ pub(super) fn check_poses(
         poses,
         worst_relative_difference: worst,
         disagreements,
+        completed: completed_by_check,
     }
 }
 
@@ -207,6 +242,7 @@ impl SelfCheck {
             .worst_relative_difference
             .max(later.worst_relative_difference);
         self.disagreements += later.disagreements;
+        self.completed += later.completed;
     }
 }
 

@@ -61,6 +61,7 @@ pub struct CurveRun<'a> {
     windows: Vec<std::ops::Range<usize>>,
     stage: SeedStage,
     check: Option<(SeedStage, CurveOptions)>,
+    provider: StartProvider<'a>,
 }
 
 impl<'a> CurveRun<'a> {
@@ -69,7 +70,7 @@ impl<'a> CurveRun<'a> {
         (design, motion, metrics): (&'a Design, &'a Motion, &'a [Metric]),
         poses: usize,
         options: &'a CurveOptions,
-        provider: StartProvider<'_>,
+        provider: StartProvider<'a>,
     ) -> Result<Self, PipelineError> {
         if options.window_poses == 0 {
             return Err(PipelineError::Option {
@@ -78,15 +79,13 @@ impl<'a> CurveRun<'a> {
             });
         }
         let samples = sample_motion(motion, poses)?;
-        let stage = seed_stage(design, motion, metrics, options, provider)?;
+        let mut stage = seed_stage(design, motion, metrics, options, provider)?;
         let check = if options.self_check {
             let context = (design, motion, metrics);
-            Some(self_check::check_stage(
-                context,
-                options,
-                provider,
-                &stage.probes,
-            )?)
+            let (mut check_stage, check_options) =
+                self_check::check_stage(context, options, provider, &stage.probes)?;
+            reconcile_seed_counts(&mut stage, &mut check_stage);
+            Some((check_stage, check_options))
         } else {
             None
         };
@@ -99,6 +98,7 @@ impl<'a> CurveRun<'a> {
             samples,
             stage,
             check,
+            provider,
         })
     }
 
@@ -131,7 +131,7 @@ impl<'a> CurveRun<'a> {
 
     /// Solves window `index` completely: its chains in parallel (stage 2), the rescue
     /// of its poses that lost paths from complete neighbours in the window (stage 3b),
-    /// its self-check. `on_pose` is called as poses complete (progress).
+    /// then from a seed stage at the pose itself (stage 3c), its self-check. `on_pose` is called as poses complete (progress).
     pub fn solve_window(
         &self,
         index: usize,
@@ -176,6 +176,14 @@ impl<'a> CurveRun<'a> {
             on_pose(&results[local]);
         }
         drop(work);
+        // Stage 3c: what is still lost, from a seed stage at the pose itself.
+        let context = (design, metrics);
+        let provider = self.provider;
+        for local in
+            local_seed::rescue_by_local_seed(context, samples, &mut results, options, provider)
+        {
+            on_pose(&results[local]);
+        }
         let self_check = self.check.as_ref().map(|(check_stage, check_options)| {
             self_check::check_poses(
                 (check_stage, check_options),
