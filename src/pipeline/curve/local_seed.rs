@@ -116,6 +116,25 @@ pub(super) fn rescue_by_local_seed(
     changed
 }
 
+/// The seed count of sub-problem `id` in a seed stage of its metric alone next to
+/// `pose` (its first pose perturbed, as for a pose list of one), or `None` if that
+/// stage could not be built or lost paths of the sub-problem.
+pub(super) fn seed_count_at(
+    design: &Design,
+    pose: Pose,
+    id: ProblemId,
+    options: &CurveOptions,
+    provider: StartProvider<'_>,
+) -> Option<usize> {
+    let motion = Motion::Poses(PoseList { poses: vec![pose] });
+    let stage = seed_stage(design, &motion, &[id.metric], options, provider).ok()?;
+    if stage.failures.iter().any(|f| f.problem == id.name()) {
+        return None;
+    }
+    let seeded = stage.problems.iter().find(|p| p.id == id)?;
+    Some(seeded.start_count)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

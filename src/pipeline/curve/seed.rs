@@ -562,24 +562,47 @@ pub(super) fn settle_seed_failures(problems: &[SeededProblem], failures: &mut Ve
 }
 
 /// Makes the run's stage and the self-check's stage expect the same count per
-/// sub-problem: the larger of the two. Each stage confirms a count below the generic one
-/// only by two of its own seed points agreeing (or its projective twin); on two base
-/// anchors 10⁻⁴ apart, `bars/rigid` had 78 of 80 confirmed at two seed points of one
-/// seed while the other seed's stage reached 80 distinct finite critical points, so a
-/// pose complete with 78 would have missed two. No parameter has more isolated
-/// critical points than a count some seed reached (each is a set of distinct finite
-/// solutions at one parameter, and the family's finite count is generically
-/// constant), so the larger count refutes the smaller; a stage short of it sends its
-/// poses the generic route first and reports what that cannot complete. Seed-stage
-/// failures that the raised count settles are dropped ([`settle_seed_failures`]).
-pub(super) fn reconcile_seed_counts(run: &mut SeedStage, check: &mut SeedStage) {
-    for problem in &mut run.problems {
-        let Some(other) = check.problems.iter_mut().find(|p| p.id == problem.id) else {
+/// sub-problem: the larger of the two, and where they disagree, the larger with the
+/// count of a third seed stage at the motion's first pose (`probe_at_pose(id)`, the
+/// seed count of a stage for that sub-problem's metric alone, next to the pose; `None`
+/// where it lost paths itself). Each stage confirms a count below the generic one only
+/// by two of its own seed points agreeing (or its projective twin), and on two anchors
+/// of a rigid part 10⁻⁴ apart both can fall short: `bars/rigid` had 78 of 80
+/// confirmed at two seed points of one seed while the other seed's stage reached 80;
+/// on two platform anchors 10⁻⁴ apart the stages had 85 and 86 `rigid/rigid` points
+/// where a stage at the first pose reached all 88 (at a real pose an odd count of a
+/// sub-problem's critical points, which come in conjugate pairs besides the real ones,
+/// cannot be complete). No parameter has more isolated critical points than a count
+/// some seed reached (each is a set of distinct finite solutions at one parameter,
+/// and the family's finite count is generically constant), so the largest count
+/// refutes the smaller; a stage short of it sends its poses the generic route first
+/// and reports what that cannot complete. Seed-stage failures that the raised count
+/// settles are dropped ([`settle_seed_failures`]).
+pub(super) fn reconcile_seed_counts(
+    run: &mut SeedStage,
+    check: &mut SeedStage,
+    probe_at_pose: impl Fn(ProblemId) -> Option<usize> + Sync,
+) {
+    let counts: Vec<Option<usize>> = run
+        .problems
+        .par_iter()
+        .map(|problem| {
+            let other = check.problems.iter().find(|p| p.id == problem.id)?;
+            let mut count = problem.start_count.max(other.start_count);
+            if problem.start_count != other.start_count && count < problem.generic_count {
+                count = count.max(probe_at_pose(problem.id).unwrap_or(0));
+            }
+            Some(count.min(problem.generic_count))
+        })
+        .collect();
+    for (problem, count) in run.problems.iter_mut().zip(counts) {
+        let Some(count) = count else {
             continue;
         };
-        let count = problem.start_count.max(other.start_count);
         problem.start_count = count;
-        other.start_count = count;
+        if let Some(other) = check.problems.iter_mut().find(|p| p.id == problem.id) {
+            other.start_count = count;
+        }
     }
     for stage in [run, check] {
         settle_seed_failures(&stage.problems, &mut stage.failures);

@@ -84,7 +84,12 @@ impl<'a> CurveRun<'a> {
             let context = (design, motion, metrics);
             let (mut check_stage, check_options) =
                 self_check::check_stage(context, options, provider, &stage.probes)?;
-            reconcile_seed_counts(&mut stage, &mut check_stage);
+            let first = samples.first().map(|s| s.pose);
+            let probe = |id: ProblemId| {
+                first
+                    .and_then(|pose| local_seed::seed_count_at(design, pose, id, options, provider))
+            };
+            reconcile_seed_counts(&mut stage, &mut check_stage, probe);
             Some((check_stage, check_options))
         } else {
             None
