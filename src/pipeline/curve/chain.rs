@@ -30,6 +30,20 @@ pub(super) fn track_pose(
     (index, sample): (usize, SampledPose),
     options: &CurveOptions,
 ) -> (Vec<PoseEntry>, [f64; 12]) {
+    track_pose_of(stage, design, motion, (index, sample), options, &|_| true)
+}
+
+/// [`track_pose`] for the sub-problems of the metrics `wanted` accepts; the others'
+/// entries are empty (no candidate, no path, no failure), so a pose assembled from
+/// them with only the wanted metrics is theirs alone.
+pub(super) fn track_pose_of(
+    stage: &SeedStage,
+    design: &Design,
+    motion: &Motion,
+    (index, sample): (usize, SampledPose),
+    options: &CurveOptions,
+    wanted: &(dyn Fn(Metric) -> bool + Sync),
+) -> (Vec<PoseEntry>, [f64; 12]) {
     let context = SolveContext {
         stage,
         motion,
@@ -38,6 +52,9 @@ pub(super) fn track_pose(
     let entries = (0..stage.problems.len())
         .into_par_iter()
         .map(|problem_index| {
+            if !wanted(stage.problems[problem_index].id.metric) {
+                return (Vec::new(), 0, None, 0, None);
+            }
             let at = (index, sample);
             track_problem(context, at, problem_index, Route::Seed).entry
         })

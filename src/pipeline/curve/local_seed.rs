@@ -30,6 +30,17 @@ pub(super) fn lost_paths_of(failures: &[PathFailure], name: &str) -> bool {
     })
 }
 
+/// The options of a seed stage at a pose: the run's, with its own seed (the run's plus
+/// 68,769: a pose list's first pose is the run's seed point too, and the same seed
+/// there would repeat the run's stage) and a bent generic route (as the self-check's).
+fn local_options(options: &CurveOptions) -> CurveOptions {
+    CurveOptions {
+        seed: options.seed.wrapping_add(0x10ca1),
+        generic_route_bend: true,
+        ..options.clone()
+    }
+}
+
 /// The metrics whose sub-problems lost paths at `result`'s pose, in the order of
 /// `metrics`.
 fn metrics_that_lost_paths<'m>(result: &PoseResult, metrics: &'m [Metric]) -> Vec<&'m Metric> {
@@ -91,6 +102,7 @@ pub(super) fn rescue_by_local_seed(
                 poses: vec![sample.pose],
             });
             let one = std::slice::from_ref(metric);
+            let options = &local_options(options);
             let stage = seed_stage(design, &motion, one, options, provider).ok()?;
             let name = metric.name();
             if lost_paths_of(&stage.failures, &name) {
@@ -127,6 +139,7 @@ pub(super) fn seed_count_at(
     provider: StartProvider<'_>,
 ) -> Option<usize> {
     let motion = Motion::Poses(PoseList { poses: vec![pose] });
+    let options = &local_options(options);
     let stage = seed_stage(design, &motion, &[id.metric], options, provider).ok()?;
     if stage.failures.iter().any(|f| f.problem == id.name()) {
         return None;

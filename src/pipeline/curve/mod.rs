@@ -119,7 +119,7 @@ mod window;
 pub use crate::pipeline::sweep::PathFailure;
 use crate::pipeline::sweep::{
     ProjectiveTwin, Retried, TrackingPlan, crossings, detour_point, distinct_solutions,
-    same_endpoint, simple_endpoint, track_with_retries,
+    same_endpoint, simple_endpoint, track_with_retries, with_conjugates,
 };
 use certificates::*;
 pub use chain::solve_pose;
@@ -643,6 +643,8 @@ fn track_problem(
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let seed_route = matches!(route, Route::Seed);
+    // The pose is real: the endpoints' conjugates are critical points too.
+    let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
     let track_route = |hand_over_when_steps_run_out: bool| {
         track_with_retries(
             seeded.problem.evaluator(),
@@ -680,6 +682,7 @@ fn track_problem(
                 whole_detours: true,
                 twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
                 hand_over_when_steps_run_out,
+                conjugate: Some(&conjugate),
             },
         )
     };
@@ -757,7 +760,12 @@ fn track_problem(
         (endpoints, best, tracked, reasons)
     };
     let (endpoints, best, reasons) = if best < seeded.start_count {
-        let (endpoints, added) = with_conjugates(&seeded.problem, endpoints, seeded.start_count);
+        // At a real pose the critical points are real or come in conjugate pairs (on
+        // two platform anchors 10⁻⁴ apart `rigid/rigid` poses ended with 85 of 88
+        // distinct points: an odd count, one of them without its partner).
+        let mut endpoints = endpoints;
+        let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
+        let added = with_conjugates(&conjugate, &mut endpoints, seeded.start_count);
         if endpoints.len() == seeded.start_count {
             (endpoints, seeded.start_count, BTreeMap::new())
         } else {
@@ -800,6 +808,8 @@ fn generic_route(
     options: &CurveOptions,
 ) -> Retried {
     let (source, starts) = &seeded.generic_start;
+    // The target pose is real (see `TrackingPlan::conjugate`).
+    let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
     let retried = track_with_retries(
         seeded.problem.evaluator(),
         starts,
@@ -821,40 +831,13 @@ fn generic_route(
         options.seed_retry_attempts,
         TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
             .lost_paths_only()
-            .with_twin(seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin)),
+            .with_twin(seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin))
+            .with_conjugate(Some(&conjugate)),
     );
     Retried {
         endpoints: distinct_solutions(retried.endpoints, seeded.generic_count),
         ..retried
     }
-}
-
-/// `endpoints` (critical points at a real pose) with the complex conjugate of every
-/// one whose conjugate is not among them, up to `limit` points; returns them and how
-/// many were added. At a real pose the Lagrange system has real coefficients (in
-/// isotropic coordinates its conjugation also swaps each point's two coordinates,
-/// [`LagrangeProblem::conjugate`]), so the conjugate of a nonsingular critical point
-/// is one too, with the same residual and condition: a route that reached one of a
-/// pair and lost the other has found both. (On two platform anchors 10⁻⁴ apart,
-/// `rigid/rigid` poses ended with 85 of 88 distinct finite critical points: an odd
-/// count, so at least one of them without its partner.)
-fn with_conjugates(
-    problem: &LagrangeProblem,
-    mut endpoints: Vec<Vec<C64>>,
-    limit: usize,
-) -> (Vec<Vec<C64>>, usize) {
-    let found = endpoints.len();
-    for i in 0..found {
-        if endpoints.len() >= limit {
-            break;
-        }
-        let conjugate = problem.conjugate(&endpoints[i]);
-        if !endpoints.iter().any(|y| same_endpoint(y, &conjugate)) {
-            endpoints.push(conjugate);
-        }
-    }
-    let added = endpoints.len() - found;
-    (endpoints, added)
 }
 
 /// Random stream tag of [`bend_point`].

@@ -216,6 +216,34 @@ pub(crate) fn finite_solutions(paths: &[PathResult]) -> Vec<Vec<C64>> {
     out
 }
 
+/// The complex conjugation of a family's unknowns at real parameters (see
+/// [`TrackingPlan::conjugate`]).
+pub(crate) type Conjugation<'c> = dyn Fn(&[C64]) -> Vec<C64> + Sync + 'c;
+
+/// Adds to `endpoints` the image under `conjugate` of every one whose image is not
+/// among them (the same point by [`same_endpoint`]), up to `limit` points in all.
+/// Where the target parameters are real the system has real coefficients, and the
+/// conjugate of a nonsingular solution is a nonsingular solution with the same
+/// residual and condition: a route that reached one of a pair and lost the other has
+/// found both. Returns how many were added.
+pub(crate) fn with_conjugates(
+    conjugate: &Conjugation<'_>,
+    endpoints: &mut Vec<Vec<C64>>,
+    limit: usize,
+) -> usize {
+    let found = endpoints.len();
+    for i in 0..found {
+        if endpoints.len() >= limit {
+            break;
+        }
+        let image = conjugate(&endpoints[i]);
+        if !endpoints.iter().any(|y| same_endpoint(y, &image)) {
+            endpoints.push(image);
+        }
+    }
+    endpoints.len() - found
+}
+
 /// Random complex detour point near `target`: `target + ε·ξ` on its first `moving`
 /// coordinates (the ones the motion moves; the others, e.g. a rigid part's shape
 /// constants, stay), ξ standard complex normal, `ε = 0.1·(1 + ‖target‖∞)`.
@@ -280,6 +308,12 @@ pub(crate) struct TrackingPlan<'a> {
     /// detours and long last re-runs cost 10–40 times a route that meets that
     /// trouble only at its end.
     pub hand_over_when_steps_run_out: bool,
+    /// The complex conjugation of the family's unknowns, where the route's target
+    /// parameters are real (a real pose): the system there has real coefficients, so
+    /// the conjugate of a finite nonsingular endpoint is one too. After each attempt
+    /// the endpoints are completed with the conjugates they lack
+    /// ([`with_conjugates`]), and a set completed that way ends the attempts.
+    pub conjugate: Option<&'a Conjugation<'a>>,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -292,6 +326,7 @@ impl<'a> TrackingPlan<'a> {
             whole_detours: true,
             twin: None,
             hand_over_when_steps_run_out: false,
+            conjugate: None,
         }
     }
 
@@ -306,6 +341,14 @@ impl<'a> TrackingPlan<'a> {
     /// The same plan with a projective twin (`None`: without).
     pub fn with_twin(self, twin: Option<&'a dyn ProjectiveTwin>) -> Self {
         TrackingPlan { twin, ..self }
+    }
+
+    /// The same plan with the target's conjugation (see [`TrackingPlan::conjugate`]).
+    pub fn with_conjugate(
+        self,
+        conjugate: Option<&'a Conjugation<'a>>,
+    ) -> Self {
+        TrackingPlan { conjugate, ..self }
     }
 }
 
@@ -346,8 +389,16 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         whole_detours,
         twin,
         hand_over_when_steps_run_out,
+        conjugate,
     } = plan;
     let expected = starts.len();
+    // The endpoints with the conjugates they lack (up to `expected`), where the target
+    // is real.
+    let complete_conjugates = |endpoints: &mut Vec<Vec<C64>>| {
+        if let Some(conjugate) = conjugate {
+            with_conjugates(conjugate, endpoints, expected);
+        }
+    };
     let reference = PathParameterHomotopy::new(system, path(0));
     let mut paths = track_all(&reference, starts, tracker, endgame);
     let mut tracked = starts.len();
@@ -387,6 +438,9 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     }
     let mut endpoints = finite_solutions(&paths);
     let mut best = accounted(&paths);
+    let conjugates_before = endpoints.len();
+    complete_conjugates(&mut endpoints);
+    best += endpoints.len() - conjugates_before;
     let reasons = if best < expected {
         unaccounted_reasons(&paths)
     } else {
@@ -436,6 +490,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 }
             }
         }
+        complete_conjugates(&mut endpoints);
         best = best.max(endpoints.len() + at_infinity);
     }
     // The starts whose paths are still unaccounted for on the reference route.
@@ -467,6 +522,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             let found = track_all(&detour, &missing, tracker, endgame);
             tracked += missing.len();
             merge(&mut endpoints, finite_solutions(&found));
+            complete_conjugates(&mut endpoints);
             best = best.max(endpoints.len() + at_infinity);
             if best >= expected || !whole_detours {
                 continue;
@@ -478,6 +534,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         best = best.max(accounted(&paths));
         at_infinity = at_infinity.max(count_at_infinity(&paths));
         merge(&mut endpoints, finite_solutions(&paths));
+        complete_conjugates(&mut endpoints);
         // The union of the attempts' distinct finite endpoints, plus the most paths
         // any one attempt classified at infinity, may account for more than any
         // single attempt.
@@ -539,6 +596,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 .max(reference_at_infinity)
                 .saturating_sub(recovered_from_infinity)
                 + lost_at_infinity;
+            complete_conjugates(&mut endpoints);
             best = best.max(endpoints.len() + at_infinity);
             confirmed_by_twin = endpoints.len() + check.at_infinity.len() >= expected
                 && classified == unsettled.len();

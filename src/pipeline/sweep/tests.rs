@@ -159,3 +159,22 @@ fn detours_stop_after_two_that_add_nothing() {
     assert_eq!(retried.accounted, 2);
     assert_eq!(retried.tracked, 3 + 2 + 2 + STAGNANT_DETOURS * 3);
 }
+
+/// The conjugates a set lacks are added (a real point is its own conjugate), up to
+/// the limit, and the count of those added is returned.
+#[test]
+fn endpoints_are_completed_with_their_missing_conjugates() {
+    let conjugate = |x: &[C64]| x.iter().map(|v| v.conj()).collect::<Vec<C64>>();
+    let point = |re: f64, im: f64| vec![C64::new(re, im), C64::new(2.0 * re, -im)];
+    let mut endpoints = vec![point(1.0, 2.0), point(3.0, 0.0), point(-1.0, 0.5)];
+    assert_eq!(with_conjugates(&conjugate, &mut endpoints, 10), 2);
+    assert_eq!(endpoints.len(), 5);
+    for x in &endpoints {
+        assert!(endpoints.iter().any(|y| same_endpoint(y, &conjugate(x))));
+    }
+    // Complete sets gain nothing; the limit caps what is added.
+    assert_eq!(with_conjugates(&conjugate, &mut endpoints, 10), 0);
+    let mut capped = vec![point(1.0, 2.0), point(-1.0, 0.5)];
+    assert_eq!(with_conjugates(&conjugate, &mut capped, 3), 1);
+    assert_eq!(capped.len(), 3);
+}
