@@ -8,9 +8,11 @@
 //! may account for every path. A seed stage at the pose itself — the start file's
 //! solutions tracked to a complex point next to the pose, confirmed there as every
 //! seed is, then the short route to the pose — is a route independent of all of
-//! them (it is what `singdist distance` runs). Its result replaces the metric's at
-//! that pose only where it is complete: no path lost at its seed or at the pose, and
-//! every sub-problem expecting at least as many critical points as the run's did.
+//! them (it is what `singdist distance` runs). It expects at least the run's count
+//! of each sub-problem (a count some seed reached), and its result replaces the
+//! metric's at that pose only where it is complete: no path lost at its seed or at
+//! the pose, and every sub-problem expecting at least as many critical points as the
+//! run's did.
 
 use super::*;
 use crate::mechanism::rpr::PoseList;
@@ -103,8 +105,18 @@ pub(super) fn rescue_by_local_seed(
             });
             let one = std::slice::from_ref(metric);
             let options = &local_options(options);
-            let stage = seed_stage(design, &motion, one, options, provider).ok()?;
+            let mut stage = seed_stage(design, &motion, one, options, provider).ok()?;
             let name = metric.name();
+            // The run's count was reached at some seed: no fewer are expected here
+            // (as between the run's and the check's stages, `reconcile_seed_counts`).
+            let run_metric = view[position].metrics.get(&name);
+            for problem in &mut stage.problems {
+                let sub = problem.id.subproblem.name();
+                if let Some(run) = run_metric.and_then(|m| m.subproblems.get(sub)) {
+                    problem.start_count = problem.start_count.max(run.expected_paths);
+                }
+            }
+            settle_seed_failures(&stage.problems, &mut stage.failures);
             if lost_paths_of(&stage.failures, &name) {
                 return None;
             }

@@ -344,10 +344,7 @@ impl<'a> TrackingPlan<'a> {
     }
 
     /// The same plan with the target's conjugation (see [`TrackingPlan::conjugate`]).
-    pub fn with_conjugate(
-        self,
-        conjugate: Option<&'a Conjugation<'a>>,
-    ) -> Self {
+    pub fn with_conjugate(self, conjugate: Option<&'a Conjugation<'a>>) -> Self {
         TrackingPlan { conjugate, ..self }
     }
 }
