@@ -118,17 +118,13 @@ pub(super) const JUMP_HISTORY: usize = 3;
 /// (the shortest seed route: on the built-in example the `rigid/rigid` seed route to
 /// the motion's first pose took 13 × as long as to the pose nearest `Re τ*`), or the
 /// first pose for explicit pose lists (whose seed is the first pose perturbed).
-pub(super) fn chain_anchor(
-    stage: &SeedStage,
-    samples: &[SampledPose],
-    poses: &std::ops::Range<usize>,
-) -> usize {
+pub(super) fn chain_anchor(stage: &SeedStage, samples: &[SampledPose], chain: &[usize]) -> usize {
     let seed_tau = match stage.seed.point {
         MotionPoint::Tau(tau) => Some(tau.re),
         MotionPoint::Pose(_) => None,
     };
-    let taus = samples[poses.clone()].iter().map(|s| s.tau);
-    poses.start + crate::pipeline::sweep::chain_anchor(taus, seed_tau)
+    let taus = chain.iter().map(|&j| samples[j].tau);
+    crate::pipeline::sweep::chain_anchor(taus, seed_tau)
 }
 
 /// Stage 2 along one block of consecutive poses (see [`CurveOptions::chain_length`]):
@@ -141,16 +137,17 @@ pub(super) fn solve_chain(
     context: SolveContext<'_>,
     (design, metrics): (&Design, &[Metric]),
     samples: &[SampledPose],
-    poses: std::ops::Range<usize>,
+    (window, chain): (std::ops::Range<usize>, &[usize]),
     on_pose: &(dyn Fn(&PoseResult) + Sync),
 ) -> Vec<(PoseResult, Vec<ProblemAtPose>)> {
     let SolveContext { stage, options, .. } = context;
     let problems = stage.problems.len();
-    let anchor = chain_anchor(stage, samples, &poses);
+    let at = chain_anchor(stage, samples, chain);
+    let anchor = chain[at];
     // The two directions, in chain order after the anchor.
     let directions: [Vec<usize>; 2] = [
-        (anchor + 1..poses.end).collect(),
-        (poses.start..anchor).rev().collect(),
+        chain[at + 1..].to_vec(),
+        chain[..at].iter().rev().copied().collect(),
     ];
     // Per (direction, sub-problem), the complete solution sets of the last poses
     // (latest first) and the latest pose: cleared where a pose went the seed route.
@@ -207,8 +204,10 @@ pub(super) fn solve_chain(
         .map(|(problem_index, history)| run(history, problem_index, &[anchor]).remove(0))
         .collect();
     let mut out = vec![assemble(anchor, at_anchor)];
-    let mut position: Vec<Option<usize>> = vec![None; poses.len()];
-    position[anchor - poses.start] = Some(0);
+    // Where each pose of the window is in `out` (by pose index; poses of other chains
+    // stay `None`).
+    let mut position: Vec<Option<usize>> = vec![None; window.len()];
+    position[anchor - window.start] = Some(0);
     // Both directions continue from the anchor's sets.
     let mut histories: Vec<History> = [anchor_history.clone(), anchor_history].concat();
     // The sub-problems' chains are independent: each runs through a block of poses
@@ -240,7 +239,7 @@ pub(super) fn solve_chain(
                     .iter_mut()
                     .map(|results| results.next().expect("one result per pose"))
                     .collect();
-                position[j - poses.start] = Some(out.len());
+                position[j - window.start] = Some(out.len());
                 out.push(assemble(j, at_pose));
             }
         }
@@ -251,11 +250,11 @@ pub(super) fn solve_chain(
 }
 
 /// Drops the complete solution sets of a chain's poses (`out`, with `position[i]` the
-/// place of the chain's `i`-th pose in it, if solved) that the rescue pass cannot need:
-/// it starts only from a pose next to one that lost paths for that sub-problem, so a
-/// set whose two neighbours in the chain are solved and lost nothing goes. The chain's
-/// first and last pose keep theirs (their other neighbours are in other chains). This
-/// bounds a chain's memory by its results, not by its critical points.
+/// place of the window's `i`-th pose in it, if this chain solved it) that the rescue
+/// pass cannot need: it starts only from a pose next to one (in pose order) that lost
+/// paths for that sub-problem, so a set whose two neighbours are solved by this chain
+/// and lost nothing goes. A pose whose neighbour is in another chain keeps its set.
+/// This bounds a chain's memory by its results, not by its critical points.
 fn release_unneeded_sets(out: &mut [(PoseResult, Vec<ProblemAtPose>)], position: &[Option<usize>]) {
     let lost = |out: &[(PoseResult, Vec<ProblemAtPose>)], at: usize, p: usize| {
         out[at].1[p].entry.2.is_some()

@@ -158,19 +158,27 @@ impl<'a> CurveRun<'a> {
         let samples = &self.samples;
         let blocks = chain_blocks(
             design,
-            &samples[range.clone()],
+            (motion, samples),
+            (range.start, range.end),
             options.chain_length,
             stage.normalization,
         );
-        let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) = blocks
+        let mut solved: Vec<(PoseResult, Vec<ProblemAtPose>)> = blocks
             .par_iter()
-            .flat_map_iter(|&(first, last)| {
-                let poses = range.start + first..range.start + last;
-                solve_chain(context, (design, metrics), samples, poses, on_pose)
+            .flat_map_iter(|chain| {
+                solve_chain(
+                    context,
+                    (design, metrics),
+                    samples,
+                    (range.clone(), chain),
+                    on_pose,
+                )
             })
-            .collect::<Vec<_>>()
-            .into_iter()
-            .unzip();
+            .collect();
+        // In pose order (a pose list's chains run in nearest-neighbour order).
+        solved.sort_by_key(|(result, _)| result.index);
+        let (mut results, mut work): (Vec<PoseResult>, Vec<Vec<ProblemAtPose>>) =
+            solved.into_iter().unzip();
         let window_samples = &samples[range.clone()];
         let rescued = rescue_from_neighbours(context, (range.start, window_samples), &mut work);
         for local in rescued {
