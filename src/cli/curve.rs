@@ -33,7 +33,8 @@ pub struct CurveArgs {
     #[command(flatten)]
     report: HtmlReportArg,
     /// Poses per chain: one pose of every block of N is solved from the seed (the
-    /// one nearest Re τ*; the first for pose lists), the others forwards and
+    /// one nearest Re τ*; the first for pose lists, which are chained in
+    /// nearest-neighbour order), the others forwards and
     /// backwards from it, each from its predecessors (Newton's method from extrapolated critical
     /// points, short pose-to-pose paths where that set is incomplete, the seed route
     /// where those lose a critical point); 1 = every pose from the seed.
