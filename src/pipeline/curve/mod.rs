@@ -122,8 +122,8 @@ use crate::pipeline::sweep::{
     same_endpoint, simple_endpoint, track_with_retries, with_conjugates,
 };
 use certificates::*;
-pub use chain::solve_pose;
 use chain::*;
+pub use chain::{FAR_POSE_STEP, solve_pose};
 use jump::*;
 pub use options::*;
 pub use seed::*;
@@ -995,85 +995,6 @@ pub fn sample_motion(motion: &Motion, n: usize) -> Result<Vec<SampledPose>, Pipe
         .validate()
         .map_err(|e| PipelineError::Motion(e.to_string()))?;
     Ok(motion.sample(n))
-}
-
-/// Largest step between consecutive poses that a chain continues across: the
-/// largest coordinate change of the normalised configuration (units of the RMS size
-/// of the configuration). Across a larger step the Newton jumps and pose-to-pose
-/// paths of a chain cost more than the seed route (30 scattered poses of the
-/// example design: chained through every step 2.2 × the CPU time of the seed route
-/// per pose), so a new chain starts there. The built-in example's steps are 0.05.
-pub const FAR_POSE_STEP: f64 = 0.25;
-
-/// The chains of stage 2 over the poses `first..last` (a window), each as its pose
-/// indices in chain order: at most `chain_length` poses each
-/// ([`CurveOptions::chain_length`]), split where consecutive poses of the order are
-/// farther apart than [`FAR_POSE_STEP`]. Analytic motions keep the order of τ; an
-/// explicit pose list is ordered by nearest neighbours ([`nearest_neighbour_order`]),
-/// so that scattered poses form chains too (200 random poses of a generic design,
-/// nine metrics, 2 threads: 9.0 s in the given order, 3.9 s ordered). Depends on the
-/// poses only, not on the thread count.
-fn chain_blocks(
-    design: &Design,
-    (motion, samples): (&Motion, &[SampledPose]),
-    (first, last): (usize, usize),
-    chain_length: usize,
-    normalization: Normalization,
-) -> Vec<Vec<usize>> {
-    let normalised: Vec<[C64; 12]> = (first..last)
-        .map(|j| normalization.apply(&to_real(&design.configuration(samples[j].pose).to_array())))
-        .collect();
-    let step = |a: usize, b: usize| {
-        normalised[a - first]
-            .iter()
-            .zip(&normalised[b - first])
-            .fold(0.0f64, |m, (u, v)| m.max((u - v).norm()))
-    };
-    let order: Vec<usize> = match motion {
-        Motion::Poses(_) => nearest_neighbour_order(first..last, &step),
-        Motion::Analytic(_) => (first..last).collect(),
-    };
-    let mut blocks: Vec<Vec<usize>> = Vec::new();
-    for (i, &j) in order.iter().enumerate() {
-        let split = match blocks.last() {
-            None => true,
-            Some(block) => {
-                block.len() >= chain_length.max(1) || step(order[i - 1], j) > FAR_POSE_STEP
-            }
-        };
-        if split {
-            blocks.push(Vec::new());
-        }
-        blocks.last_mut().expect("a block").push(j);
-    }
-    blocks
-}
-
-/// The poses `range` in nearest-neighbour order: from the first, always on to the
-/// nearest pose not yet visited by `distance` (the first of equally near ones).
-fn nearest_neighbour_order(
-    range: std::ops::Range<usize>,
-    distance: &dyn Fn(usize, usize) -> f64,
-) -> Vec<usize> {
-    let mut left: Vec<usize> = range.collect();
-    let mut order = Vec::with_capacity(left.len());
-    if left.is_empty() {
-        return order;
-    }
-    order.push(left.remove(0));
-    while !left.is_empty() {
-        let last = *order.last().expect("a pose");
-        let (k, _) = left
-            .iter()
-            .enumerate()
-            .map(|(k, &j)| (k, distance(last, j)))
-            .fold(
-                (0, f64::INFINITY),
-                |best, c| if c.1 < best.1 { c } else { best },
-            );
-        order.push(left.remove(k));
-    }
-    order
 }
 
 /// The whole curve: seed stage, then every window of poses ([`CurveRun`]) in order,
