@@ -136,7 +136,8 @@ impl<'a> CurveRun<'a> {
 
     /// Solves window `index` completely: its chains in parallel (stage 2), the rescue
     /// of its poses that lost paths from complete neighbours in the window (stage 3b),
-    /// then from a seed stage at the pose itself (stage 3c), its self-check. `on_pose` is called as poses complete (progress).
+    /// then from a seed stage at the pose itself (stage 3c), its self-check. `on_pose`
+    /// is called as poses complete (progress).
     pub fn solve_window(
         &self,
         index: usize,
