@@ -64,6 +64,39 @@ fn system_is_the_gradient_of_the_lagrangian() {
     }
 }
 
+/// At real parameters the system has real coefficients: `F(x̄; p) = conj F(x; p)`, so
+/// the conjugate of a critical point ([`RrrProblem::conjugate`]) is one too — what the
+/// curve's conjugate completion relies on.
+#[test]
+fn conjugation_maps_solutions_to_solutions_at_real_parameters() {
+    let mut rng = singdist::random::seeded(11);
+    for kind in RrrSubProblem::ALL {
+        let problem = RrrProblem::new(kind).unwrap();
+        let system = problem.evaluator();
+        let x: Vec<C64> = (0..19)
+            .map(|_| singdist::random::complex_normal(&mut rng))
+            .collect();
+        let p: Vec<C64> = (0..18)
+            .map(|_| C64::new(singdist::random::complex_normal(&mut rng).re, 0.0))
+            .collect();
+        let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+        let (mut f, mut g) = (vec![C64::new(0.0, 0.0); 19], vec![C64::new(0.0, 0.0); 19]);
+        system.evaluate(&x, &p, &mut work, &mut f);
+        let conjugate = RrrProblem::conjugate(&x);
+        assert_eq!(conjugate.len(), 19);
+        system.evaluate(&conjugate, &p, &mut work, &mut g);
+        for j in 0..19 {
+            assert!(
+                (g[j] - f[j].conj()).norm() <= 1e-12 * (1.0 + f[j].norm()),
+                "{}: equation {j}: {} vs conj {}",
+                kind.name(),
+                g[j],
+                f[j]
+            );
+        }
+    }
+}
+
 #[test]
 fn stored_start_files_are_certified_with_small_residuals() {
     for kind in RrrSubProblem::ALL {

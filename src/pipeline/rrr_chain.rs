@@ -31,6 +31,7 @@ use super::sweep::{Retried, TrackingPlan, chain_anchor, track_with_retries};
 use crate::C64;
 use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
+use crate::problem::rrr::RrrProblem;
 use crate::random;
 
 /// One pose of a block: its index along the motion, τ and its configuration.
@@ -173,6 +174,7 @@ fn track_from_neighbour(
         // nonsingular: no endgame; paths that fail, cross or diverge are re-run with it.
         endgame: false,
         ..TrackingPlan::with_endgame(&options.neighbour_tracker, &options.retry_tracker)
+            .with_conjugate(Some(&RrrProblem::conjugate))
     };
     track_with_retries(
         seeded.problem.evaluator(),

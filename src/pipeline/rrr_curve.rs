@@ -240,8 +240,16 @@ pub struct RrrCurveResult {
     pub paths_tracked: usize,
 }
 
-/// Per (pose, sub-problem): sub-problem result, failure, paths tracked.
-pub(crate) type Entry = (RrrSubproblemResult, Option<RrrPathFailure>, usize);
+/// One sub-problem at one pose after tracking.
+#[derive(Clone, Debug)]
+pub(crate) struct Entry {
+    /// What the pose reports for the sub-problem.
+    pub result: RrrSubproblemResult,
+    /// The paths that are not accounted for, if any.
+    pub failure: Option<RrrPathFailure>,
+    /// Paths tracked for this (pose, sub-problem), over every route and re-run.
+    pub tracked: usize,
+}
 
 /// The parameters of the real configuration `k` in `frame`.
 pub(crate) fn target_parameters(frame: &RrrFrame, k: &[f64; CONFIGURATION_LEN]) -> Vec<C64> {
@@ -253,7 +261,9 @@ pub(crate) fn path_stream(index: usize, problem_index: usize) -> u64 {
     ((index as u64 + 1) << 32) | problem_index as u64
 }
 
-/// The seed's solutions tracked to `target` (straight, then detours; [`route`]).
+/// The seed's solutions tracked to the real pose's parameters `target` (straight, then
+/// detours; [`route`]); a conjugate pair half found is completed
+/// ([`RrrProblem::conjugate`]).
 pub(crate) fn track_from_seed(
     seeded: &RrrSeededProblem,
     target: &[C64],
@@ -273,7 +283,8 @@ pub(crate) fn track_from_seed(
             )
         },
         options.retry_attempts,
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker),
+        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
+            .with_conjugate(Some(&RrrProblem::conjugate)),
     )
 }
 
@@ -319,8 +330,8 @@ pub(crate) fn subproblem_entry(
         }
     }
     let determinant = kind.constraint(k);
-    (
-        RrrSubproblemResult {
+    Entry {
+        result: RrrSubproblemResult {
             distance: best_candidate.map(|(d, _)| d),
             closest: best_candidate.map(|(_, c)| c),
             determinant,
@@ -330,8 +341,8 @@ pub(crate) fn subproblem_entry(
             expected_endpoints: seeded.start_count,
         },
         failure,
-        *tracked,
-    )
+        tracked: *tracked,
+    }
 }
 
 pub(crate) fn signed(result: &RrrSubproblemResult) -> Option<f64> {

@@ -65,7 +65,7 @@ pub(crate) fn check_window(
             let pose = [poses[at]];
             let seeded = &stage.problems[p];
             let entry = solve_chain(seeded, &stage.frame, &pose, 0, p, options).remove(0);
-            (at, seeded.problem.kind(), entry.0)
+            (at, seeded.problem.kind(), entry.result)
         })
         .collect();
     let floor = 1e-12 * length_scale;

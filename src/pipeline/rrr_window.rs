@@ -141,12 +141,12 @@ impl<'a> RrrCurveRun<'a> {
                 let mut failures = Vec::new();
                 let mut paths_tracked = 0;
                 for (seeded, entries) in stage.problems.iter().zip(&per_problem) {
-                    let Some((result, failure, tracked)) = entries.get(j).cloned() else {
+                    let Some(entry) = entries.get(j).cloned() else {
                         continue;
                     };
-                    failures.extend(failure);
-                    paths_tracked += tracked;
-                    subproblems.insert(seeded.problem.kind().short_name(), result);
+                    failures.extend(entry.failure);
+                    paths_tracked += entry.tracked;
+                    subproblems.insert(seeded.problem.kind().short_name(), entry.result);
                 }
                 results.push(self.assemble(
                     at.index,

@@ -182,6 +182,13 @@ impl RrrProblem {
         std::array::from_fn(|j| x.get(j).copied().unwrap_or_default())
     }
 
+    /// The complex conjugate solution `x̄`: at real parameters (a real configuration
+    /// `K`) the Lagrange system has real coefficients in these Cartesian unknowns, so
+    /// with `x` also `x̄` is a solution, nonsingular with it.
+    pub fn conjugate(x: &[C64]) -> Vec<C64> {
+        x.iter().map(|v| v.conj()).collect()
+    }
+
     /// Scratch length of the compiled system.
     pub fn workspace_len(&self) -> usize {
         self.evaluator().workspace_len()

@@ -53,7 +53,7 @@ pub(super) fn track_pose_of(
         .into_par_iter()
         .map(|problem_index| {
             if !wanted(stage.problems[problem_index].id.metric) {
-                return (Vec::new(), 0, None, 0, None);
+                return PoseEntry::default();
             }
             let at = (index, sample);
             track_problem(context, at, problem_index, Route::Seed).entry
@@ -179,11 +179,11 @@ pub(super) fn solve_problem_in_chain(
             let seed = Route::Seed;
             let mut result = track_problem(context, at, problem_index, seed);
             if let Some(neighbour) = neighbour {
-                let tracked = result.entry.3 + neighbour.entry.3;
-                if neighbour.entry.1 > result.entry.1 {
+                let tracked = result.entry.tracked + neighbour.entry.tracked;
+                if neighbour.entry.accounted > result.entry.accounted {
                     result = neighbour;
                 }
-                result.entry.3 = tracked;
+                result.entry.tracked = tracked;
             }
             (result, false)
         }
@@ -239,9 +239,9 @@ pub(super) fn solve_chain(
         on_pose(&result);
         // Only poses that lost paths are assembled again (by the rescue pass): the
         // others' candidates are done with.
-        if at_pose.iter().all(|p| p.entry.2.is_none()) {
+        if at_pose.iter().all(|p| p.entry.failure.is_none()) {
             for problem in &mut at_pose {
-                problem.entry.0 = Vec::new();
+                problem.entry.candidates = Vec::new();
             }
         }
         (result, at_pose)
@@ -336,7 +336,7 @@ pub(super) fn solve_chain(
 /// This bounds a chain's memory by its results, not by its critical points.
 fn release_unneeded_sets(out: &mut [(PoseResult, Vec<ProblemAtPose>)], position: &[Option<usize>]) {
     let lost = |out: &[(PoseResult, Vec<ProblemAtPose>)], at: usize, p: usize| {
-        out[at].1[p].entry.2.is_some()
+        out[at].1[p].entry.failure.is_some()
     };
     for i in 1..position.len().saturating_sub(1) {
         let (Some(at), Some(before), Some(after)) = (position[i], position[i - 1], position[i + 1])
@@ -367,7 +367,7 @@ pub(super) fn rescue_from_neighbours(
 ) -> Vec<usize> {
     let SolveContext { stage, motion, .. } = context;
     let n = samples.len();
-    let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.2.is_some();
+    let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.failure.is_some();
     // (sub-problem, first pose, last pose) of every run of failing poses.
     let mut runs = Vec::new();
     for p in 0..stage.problems.len() {
@@ -404,10 +404,12 @@ pub(super) fn rescue_from_neighbours(
                         solutions,
                     },
                 );
-                *tracked.entry(to).or_default() += result.entry.3;
-                let best = improved.get(&to).map_or(view[to][p].entry.1, |r| r.entry.1);
+                *tracked.entry(to).or_default() += result.entry.tracked;
+                let best = improved
+                    .get(&to)
+                    .map_or(view[to][p].entry.accounted, |r| r.entry.accounted);
                 let complete = result.complete.clone();
-                if result.entry.1 > best {
+                if result.entry.accounted > best {
                     improved.insert(to, result);
                 }
                 complete
@@ -449,12 +451,12 @@ pub(super) fn rescue_from_neighbours(
     let mut changed = Vec::new();
     for (p, (improved, tracked)) in outcomes {
         for (j, count) in tracked {
-            work[j][p].entry.3 += count;
+            work[j][p].entry.tracked += count;
             changed.push(j);
         }
         for (j, mut result) in improved {
             // Every path tracked counts: the seed route's and the rescue's.
-            result.entry.3 = work[j][p].entry.3;
+            result.entry.tracked = work[j][p].entry.tracked;
             work[j][p] = result;
         }
     }

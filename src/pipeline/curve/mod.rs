@@ -80,15 +80,23 @@ use super::bisection::bisect_sign_change;
 use super::family::frame_scale;
 use super::postprocess::{self, Candidate, MetricDistance};
 
-/// Per (pose, sub-problem): real candidates, finite endpoints, failure, paths tracked,
-/// and the certificate of its critical points ([`CurveOptions::certify`]).
-type PoseEntry = (
-    Vec<Candidate>,
-    usize,
-    Option<PathFailure>,
-    usize,
-    Option<PendingCertificate>,
-);
+/// One sub-problem at one pose after tracking: what post-processing and the failure
+/// report need.
+#[derive(Clone, Default)]
+struct PoseEntry {
+    /// The real critical points as candidate closest configurations.
+    candidates: Vec<Candidate>,
+    /// Paths accounted for (distinct finite endpoints, or paths shown to diverge),
+    /// at most the sub-problem's generic count.
+    accounted: usize,
+    /// The paths that are not accounted for, if any.
+    failure: Option<PathFailure>,
+    /// Paths tracked for this (pose, sub-problem), over every route and re-run.
+    tracked: usize,
+    /// The certificate of its critical points, computed when the pose is assembled
+    /// ([`CurveOptions::certify`]).
+    certificate: Option<PendingCertificate>,
+}
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::certify::distance::{self as certification, SubproblemCertificate};
@@ -887,7 +895,13 @@ fn problem_at_pose(
         .then(|| PendingCertificate::new(endpoints.clone(), *k));
     let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
     ProblemAtPose {
-        entry: (list, best, failure, tracked, certificate),
+        entry: PoseEntry {
+            candidates: list,
+            accounted: best,
+            failure,
+            tracked,
+            certificate,
+        },
         complete,
     }
 }
@@ -913,7 +927,7 @@ fn assemble_pose(
             .par_iter()
             .zip(per_problem.par_iter())
             .filter_map(|(seeded, entry)| {
-                let certificate = entry.4.as_ref()?.get(stage, seeded);
+                let certificate = entry.certificate.as_ref()?.get(stage, seeded);
                 let key = (
                     seeded.id.metric.name(),
                     seeded.id.subproblem.name().to_string(),
@@ -924,13 +938,13 @@ fn assemble_pose(
     } else {
         BTreeMap::new()
     };
-    for (seeded, (list, finite, failure, tracked, _)) in stage.problems.iter().zip(per_problem) {
-        failures.extend(failure);
-        paths_tracked += tracked;
+    for (seeded, entry) in stage.problems.iter().zip(per_problem) {
+        failures.extend(entry.failure);
+        paths_tracked += entry.tracked;
         by_metric.entry(seeded.id.metric.name()).or_default().push((
             seeded.id.subproblem,
-            list,
-            finite,
+            entry.candidates,
+            entry.accounted,
             seeded.start_count,
         ));
     }

@@ -182,7 +182,7 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
     };
     let at_pose = track_problem(context, (2, samples[2]), index, Route::Seed);
     assert_eq!(at_pose.complete.map(|set| set.len()), Some(generic));
-    assert!(at_pose.entry.2.is_none());
+    assert!(at_pose.entry.failure.is_none());
 }
 
 /// The self-check's generic route bends through a seed-drawn complex point
