@@ -19,6 +19,13 @@ fn names_round_trip_and_unknown_names_are_errors() {
 
 /// The compiled system is ∇Λ of `D² − λ C`: compare with complex-step derivatives of the
 /// generic formulas at a random complex point.
+/// `n` standard complex normal numbers.
+fn random_point(rng: &mut singdist::random::SeededRng, n: usize) -> Vec<C64> {
+    (0..n)
+        .map(|_| singdist::random::complex_normal(rng))
+        .collect()
+}
+
 #[test]
 fn system_is_the_gradient_of_the_lagrangian() {
     let mut rng = singdist::random::seeded(5);
@@ -27,12 +34,8 @@ fn system_is_the_gradient_of_the_lagrangian() {
         let system = problem.evaluator();
         assert_eq!(system.num_variables(), 19);
         assert_eq!(system.num_parameters(), 18);
-        let x: Vec<C64> = (0..19)
-            .map(|_| singdist::random::complex_normal(&mut rng))
-            .collect();
-        let p: Vec<C64> = (0..18)
-            .map(|_| singdist::random::complex_normal(&mut rng))
-            .collect();
+        let x = random_point(&mut rng, 19);
+        let p = random_point(&mut rng, 18);
         let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
         let mut f = vec![C64::new(0.0, 0.0); 19];
         system.evaluate(&x, &p, &mut work, &mut f);
@@ -73,11 +76,10 @@ fn conjugation_maps_solutions_to_solutions_at_real_parameters() {
     for kind in RrrSubProblem::ALL {
         let problem = RrrProblem::new(kind).unwrap();
         let system = problem.evaluator();
-        let x: Vec<C64> = (0..19)
-            .map(|_| singdist::random::complex_normal(&mut rng))
-            .collect();
-        let p: Vec<C64> = (0..18)
-            .map(|_| C64::new(singdist::random::complex_normal(&mut rng).re, 0.0))
+        let x = random_point(&mut rng, 19);
+        let p: Vec<C64> = random_point(&mut rng, 18)
+            .iter()
+            .map(|v| C64::new(v.re, 0.0))
             .collect();
         let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
         let (mut f, mut g) = (vec![C64::new(0.0, 0.0); 19], vec![C64::new(0.0, 0.0); 19]);
