@@ -20,7 +20,7 @@ use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine, same_point};
 use super::start::TotalDegreeStartSystem;
 use super::tracker::{
-    EndgameOptions, FailureReason, PathResult, PathStatus, Tracker, TrackerOptions,
+    EndgameOptions, FailureReason, PathResult, PathStatus, StepOptions, Tracker, TrackerOptions,
 };
 use crate::C64;
 use crate::system::{Evaluator, PlainSystem};
@@ -89,7 +89,16 @@ impl Default for SolveOptions {
         SolveOptions {
             // The endgame for badly scaled systems (PHCpack's demo suite: chemequ,
             // kotsireas, game5two have large finite roots approached like s^{-1/2}).
+            //
+            // The steps of the fast preset (steps up to 0.2, prediction tolerance
+            // 10⁻⁵): paths that fail or cross with them are re-tracked with the
+            // conservative preset. On PHCpack's 82 demo systems of total degree at most
+            // 1,000 (one thread) the time ratio phc/singdist went from a geometric
+            // mean of 5.3 to 6.8 with the same counts (the default steps, 10⁻⁶ and
+            // 0.1, were 1.3 × slower; a tolerance of 10⁻⁴ counted a duplicated
+            // endpoint of `cpdm5` as a second root).
             tracker: TrackerOptions {
+                step: StepOptions::fast(),
                 endgame: EndgameOptions {
                     growth_before_divergence: true,
                     settle_on_direct_endpoint: true,
