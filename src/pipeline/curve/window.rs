@@ -80,18 +80,37 @@ impl<'a> CurveRun<'a> {
         }
         let samples = sample_motion(motion, poses)?;
         let mut stage = seed_stage(design, motion, metrics, options, provider)?;
+        let first = samples.first().map(|s| s.pose);
+        let probe = |id: ProblemId| {
+            first.and_then(|pose| local_seed::seed_count_at(design, pose, id, options, provider))
+        };
         let check = if options.self_check {
             let context = (design, motion, metrics);
             let (mut check_stage, check_options) =
                 self_check::check_stage(context, options, provider, &stage.probes)?;
-            let first = samples.first().map(|s| s.pose);
-            let probe = |id: ProblemId| {
-                first
-                    .and_then(|pose| local_seed::seed_count_at(design, pose, id, options, provider))
-            };
             reconcile_seed_counts(&mut stage, &mut check_stage, probe);
             Some((check_stage, check_options))
         } else {
+            // Without the self-check a count below the generic one is still checked by
+            // the self-check's independent seed stage, for those metrics alone: two
+            // seed points of one stage can agree on too few (see
+            // `reconcile_seed_counts`), and nothing else would notice.
+            let short: Vec<Metric> = metrics
+                .iter()
+                .copied()
+                .filter(|&metric| {
+                    stage
+                        .problems
+                        .iter()
+                        .any(|p| p.id.metric == metric && p.start_count < p.generic_count)
+                })
+                .collect();
+            if !short.is_empty() {
+                let context = (design, motion, &short[..]);
+                let (mut count_stage, _) =
+                    self_check::check_stage(context, options, provider, &stage.probes)?;
+                reconcile_seed_counts(&mut stage, &mut count_stage, probe);
+            }
             None
         };
         Ok(CurveRun {
