@@ -122,6 +122,23 @@ pub struct RrrSeededProblem {
     pub start_count: usize,
 }
 
+/// Makes the run's seed stage and the self-check's expect the same count per
+/// sub-problem: the larger of their two counts (at most the generic one). Each stage
+/// confirms a count below the generic one by two of its own seed points agreeing, and
+/// two seed points can agree on too few; no parameter has more isolated critical
+/// points than a count some seed point reached, so the larger count refutes the
+/// smaller. A stage with fewer seed solutions than the reconciled count then reports
+/// the shortfall at its poses (its paths cannot account for more) instead of
+/// expecting too few.
+pub fn reconcile_seed_counts(run: &mut RrrSeedStage, check: &mut RrrSeedStage) {
+    for (a, b) in run.problems.iter_mut().zip(check.problems.iter_mut()) {
+        debug_assert_eq!(a.problem.kind(), b.problem.kind());
+        let count = a.start_count.max(b.start_count).min(a.generic_count);
+        a.start_count = count;
+        b.start_count = count;
+    }
+}
+
 /// Every sub-problem at the common seed.
 pub struct RrrSeedStage {
     /// Parallel, leg 1, leg 2, leg 3.
@@ -305,4 +322,47 @@ pub fn rrr_seed_stage(
         failures,
         paths_tracked,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stage(counts: &[usize]) -> RrrSeedStage {
+        let problems = RrrSubProblem::ALL
+            .iter()
+            .zip(counts)
+            .map(|(&kind, &count)| RrrSeededProblem {
+                problem: RrrProblem::new(kind).unwrap(),
+                seed_parameters: Vec::new(),
+                seed_solutions: vec![Vec::new(); count],
+                generic_count: if kind == RrrSubProblem::Parallel {
+                    50
+                } else {
+                    2
+                },
+                start_count: count,
+            })
+            .collect();
+        RrrSeedStage {
+            problems,
+            tau_star: None,
+            frame: RrrFrame::of(&[0.0; CONFIGURATION_LEN]),
+            failures: Vec::new(),
+            paths_tracked: 0,
+        }
+    }
+
+    /// Both stages expect the larger count, never more than the generic one; a stage
+    /// that found fewer keeps its solutions (and will report the shortfall).
+    #[test]
+    fn the_larger_seed_count_refutes_the_smaller() {
+        let (mut run, mut check) = (stage(&[48, 2, 1, 2]), stage(&[50, 2, 2, 1]));
+        reconcile_seed_counts(&mut run, &mut check);
+        for s in [&run, &check] {
+            let counts: Vec<usize> = s.problems.iter().map(|p| p.start_count).collect();
+            assert_eq!(counts, vec![50, 2, 2, 2]);
+        }
+        assert_eq!(run.problems[0].seed_solutions.len(), 48);
+    }
 }

@@ -13,7 +13,7 @@ use super::rrr_curve::{
     Entry, RrrCurveError, RrrCurveOptions, RrrCurveResult, RrrPathFailure, RrrPoseResult,
     configuration_at, parallel_singular_parameters, signed,
 };
-use super::rrr_seed::{RrrSeedStage, rrr_seed_stage};
+use super::rrr_seed::{RrrSeedStage, reconcile_seed_counts, rrr_seed_stage};
 use super::rrr_self_check::{check_options, check_window};
 use super::start_file::StartSolutions;
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory, parallel_polynomial};
@@ -63,14 +63,20 @@ impl<'a> RrrCurveRun<'a> {
             let (_, k) = configuration_at(trajectory, index, tau)?;
             max_parallel = max_parallel.max(parallel_polynomial(&k.to_array()).abs());
         }
-        let stage = rrr_seed_stage(trajectory, options, provider)?;
-        let check = match options.self_check {
-            true => {
-                let check_options = check_options(options);
-                let check_stage = rrr_seed_stage(trajectory, &check_options, provider)?;
-                Some((check_stage, check_options))
-            }
-            false => None,
+        let mut stage = rrr_seed_stage(trajectory, options, provider)?;
+        // Without the self-check, its seed stage still runs where a count is below the
+        // generic one, to reconcile the counts ([`reconcile_seed_counts`]).
+        let short = stage
+            .problems
+            .iter()
+            .any(|p| p.start_count < p.generic_count);
+        let check = if options.self_check || short {
+            let check_options = check_options(options);
+            let mut check_stage = rrr_seed_stage(trajectory, &check_options, provider)?;
+            reconcile_seed_counts(&mut stage, &mut check_stage);
+            options.self_check.then_some((check_stage, check_options))
+        } else {
+            None
         };
         Ok(RrrCurveRun {
             trajectory,
