@@ -94,10 +94,10 @@ impl Default for SolveOptions {
             // 10⁻⁵): paths that fail or cross with them are re-tracked with the
             // conservative preset. On PHCpack's 82 demo systems of total degree at most
             // 1,000 (one thread) the time ratio phc/singdist went from a geometric
-            // mean of 5.3 to 6.8 with the same counts except `discret3s`'s, which change with
-            // the seed either way (the default steps, 10⁻⁶ and
-            // 0.1, were 1.3 × slower; a tolerance of 10⁻⁴ counted a duplicated
-            // endpoint of `cpdm5` as a second root).
+            // mean of 5.3 to 6.8 with the same counts except `discret3s`'s, which
+            // change with the seed either way (the default steps, 10⁻⁶ and 0.1, were
+            // 1.3 × slower; a tolerance of 10⁻⁴ counted a duplicated endpoint of
+            // `cpdm5` as a second root).
             tracker: TrackerOptions {
                 step: StepOptions::fast(),
                 endgame: EndgameOptions {
