@@ -323,6 +323,24 @@ fn bad_input_is_an_error_naming_the_field() {
     );
 }
 
+/// Pose by pose, `a` and `b` have the same counts of real and finite critical points
+/// per sub-problem and the same distances to 1e-9 relative.
+fn assert_same_critical_points(a: &RrrCurveResult, b: &RrrCurveResult) {
+    for (p, q) in a.poses.iter().zip(&b.poses) {
+        for (name, x) in &p.subproblems {
+            let y = &q.subproblems[name];
+            assert_eq!(x.real_critical_points, y.real_critical_points, "{name}");
+            assert_eq!(x.finite_endpoints, y.finite_endpoints, "{name}");
+            let (dx, dy) = (x.distance.expect("real"), y.distance.expect("real"));
+            assert!(
+                (dx - dy).abs() <= 1e-9 * dx.abs().max(1e-12),
+                "pose {} {name}: {dx} vs {dy}",
+                p.index
+            );
+        }
+    }
+}
+
 /// Results do not depend on the number of worker threads (every path is a pure function
 /// of its inputs and seeded streams).
 /// Chained poses (each from its neighbour's critical points) and poses solved from the
@@ -346,20 +364,40 @@ fn chained_poses_equal_poses_from_the_seed() {
         };
         let (from_seed, chained) = (solve(1), solve(8));
         assert_no_lost_paths(&chained);
-        for (a, b) in from_seed.poses.iter().zip(&chained.poses) {
-            for (name, x) in &a.subproblems {
-                let y = &b.subproblems[name];
-                assert_eq!(x.real_critical_points, y.real_critical_points, "{name}");
-                assert_eq!(x.finite_endpoints, y.finite_endpoints, "{name}");
-                let (dx, dy) = (x.distance.expect("real"), y.distance.expect("real"));
-                assert!(
-                    (dx - dy).abs() <= 1e-9 * dx.abs().max(1e-12),
-                    "pose {} {name}: {dx} vs {dy}",
-                    a.index
-                );
-            }
-        }
+        assert_same_critical_points(&from_seed, &chained);
     }
+}
+
+/// A scattered pose list (points of the example's circle in random order) is chained
+/// in nearest-neighbour order: the same counts and distances (1e-9 relative) as every
+/// pose from the seed, no lost path, and the poses reported in their own order.
+#[test]
+fn scattered_pose_lists_chain_in_nearest_neighbour_order() {
+    let mut rng = singdist::random::seeded(17);
+    let poses: Vec<Pose> = (0..16)
+        .map(|_| {
+            let t = singdist::random::uniform(&mut rng, 0.0, 2.0 * PI);
+            Pose::new(
+                0.15 + 0.25 * t.cos(),
+                0.4 + 0.25 * (t - PI / 2.0).cos(),
+                0.0,
+            )
+        })
+        .collect();
+    let list = Motion::Poses(PoseList { poses });
+    let trajectory = RrrTrajectory::new(example_design(), EXAMPLE_MODES, list).unwrap();
+    let solve = |chain_length| {
+        let options = RrrCurveOptions {
+            chain_length,
+            ..RrrCurveOptions::default()
+        };
+        compute_rrr_curve(&trajectory, 0, &options, &default_rrr_start_solutions).expect("curve")
+    };
+    let (from_seed, chained) = (solve(1), solve(1000));
+    assert_no_lost_paths(&chained);
+    let indices: Vec<usize> = chained.poses.iter().map(|p| p.index).collect();
+    assert_eq!(indices, (0..16).collect::<Vec<_>>());
+    assert_same_critical_points(&from_seed, &chained);
 }
 
 #[test]

@@ -69,10 +69,12 @@ pub struct RrrCurveArgs {
     /// configuration through leg singularities.
     #[arg(long)]
     hold_modes: bool,
-    /// Poses per chain: one pose of every block of N is solved from the seed (the one
-    /// nearest Re τ*; the first for pose lists), the others forwards and backwards from
-    /// it, each from its neighbour's complete set of critical points (the seed route
-    /// where that set or the pose-to-pose paths lose one); 1 = every pose from the seed.
+    /// Poses per chain: the poses are cut into blocks of N, each block into chains
+    /// (pose lists in nearest-neighbour order, a new chain where the next pose is far);
+    /// one pose of every chain is solved from the seed (the one nearest Re τ*; the
+    /// first for pose lists), the others forwards and backwards from it, each from its
+    /// neighbour's complete set of critical points (the seed route where that set or
+    /// the pose-to-pose paths lose one); 1 = every pose from the seed.
     #[arg(long, value_name = "N", default_value_t = RrrCurveOptions::default().chain_length)]
     chain: usize,
     /// Skip the self-check: by default the first and last pose and each sub-problem's

@@ -2,10 +2,15 @@
 //! ([`super::curve::CurveOptions::chain_length`]): the poses are cut into blocks of
 //! [`RrrCurveOptions::chain_length`] consecutive poses (at fixed pose indices, so
 //! that neither the thread count nor the window a caller asks for changes a result).
-//! In each block one pose, the *anchor*, is solved from the seed (the pose nearest
-//! `Re τ*`, the shortest seed route; the block's first pose for pose lists), and the
-//! others forwards and backwards from it, each sub-problem from its predecessor's
-//! solutions:
+//! Each block is split into chains by the sweep engine's scheduler
+//! ([`super::sweep::chains_over`], shared with the 3-RPR): in the order of τ for an
+//! analytic motion, in nearest-neighbour order for a pose list (60 scattered poses of
+//! the example's circle: 0.99 s in the given order, 0.46 s ordered, the same distances
+//! to 10⁻¹⁴), cut where the next pose is more than [`super::sweep::FAR_POSE_STEP`]
+//! away in the run's normalised frame. In each chain one pose, the *anchor*, is solved
+//! from the seed (the pose nearest `Re τ*`, the shortest seed route; the chain's first
+//! pose for pose lists), and the others forwards and backwards from it, each
+//! sub-problem from its predecessor's solutions:
 //!
 //! - the predecessor's distinct finite critical points are tracked along two
 //!   segments through a random complex midpoint `(p + q)/2 + ε·ξ` of the two

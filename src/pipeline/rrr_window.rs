@@ -16,6 +16,7 @@ use super::rrr_curve::{
 use super::rrr_seed::{RrrSeedStage, reconcile_seed_counts, rrr_seed_stage};
 use super::rrr_self_check::{check_options, check_window};
 use super::start_file::StartSolutions;
+use super::sweep::chains_over;
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory, parallel_polynomial};
 use crate::problem::rrr::RrrProblem;
 use rayon::prelude::*;
@@ -120,9 +121,26 @@ impl<'a> RrrCurveRun<'a> {
                     })
                 })
                 .collect::<Result<Vec<_>, _>>()?;
-            let (pose_values, poses): (Vec<[f64; 3]>, Vec<ChainPose>) = poses.into_iter().unzip();
-            let anchor = block_anchor(&poses, stage.tau_star);
-            chains.push((pose_values, poses, anchor));
+            // The block's chains ([`chains_over`]): an analytic motion in the order of
+            // τ, a pose list in nearest-neighbour order, cut where the next pose is far
+            // in the run's normalised frame.
+            let normalised: Vec<[f64; CONFIGURATION_LEN]> = poses
+                .iter()
+                .map(|(_, at)| stage.frame.apply(&at.k))
+                .collect();
+            let step = |a: usize, b: usize| {
+                normalised[a]
+                    .iter()
+                    .zip(&normalised[b])
+                    .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()))
+            };
+            let ordered_motion = stage.tau_star.is_some();
+            for chain in chains_over(0..poses.len(), &step, ordered_motion, poses.len()) {
+                let (pose_values, chain_poses): (Vec<[f64; 3]>, Vec<ChainPose>) =
+                    chain.iter().map(|&i| poses[i]).unzip();
+                let anchor = block_anchor(&chain_poses, stage.tau_star);
+                chains.push((pose_values, chain_poses, anchor));
+            }
         }
         let jobs: Vec<(usize, usize)> = (0..chains.len())
             .flat_map(|c| (0..stage.problems.len()).map(move |p| (c, p)))
@@ -164,6 +182,11 @@ impl<'a> RrrCurveRun<'a> {
                 window_poses.push((*pose, *at));
             }
         }
+        // Chains of a pose list run in nearest-neighbour order: back to pose order.
+        let mut by_pose: Vec<_> = results.into_iter().zip(window_poses).collect();
+        by_pose.sort_by_key(|(_, (_, at))| at.index);
+        let (mut results, window_poses): (Vec<RrrPoseResult>, Vec<([f64; 3], ChainPose)>) =
+            by_pose.into_iter().unzip();
         let self_check = self.check.as_ref().map(|(check_stage, check_options)| {
             let poses: Vec<ChainPose> = window_poses.iter().map(|(_, at)| *at).collect();
             let checked = (check_stage, check_options);

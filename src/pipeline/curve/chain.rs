@@ -2,6 +2,7 @@
 //! predecessors, and the rescue of poses that lost paths from complete neighbours.
 
 use super::*;
+use crate::pipeline::sweep::chains_over;
 
 /// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
 /// along the complexified motion (`MotionPath`) for every sub-problem (in parallel),
@@ -62,19 +63,11 @@ pub(super) fn track_pose_of(
     (entries, design.configuration(sample.pose).to_array())
 }
 
-/// Largest step between consecutive poses that a chain continues across: the
-/// largest coordinate change of the normalised configuration (units of the RMS size
-/// of the configuration). Across a larger step the Newton jumps and pose-to-pose
-/// paths of a chain cost more than the seed route (30 scattered poses of the
-/// example design: chained through every step 2.2 × the CPU time of the seed route
-/// per pose), so a new chain starts there. The built-in example's steps are 0.05.
-pub const FAR_POSE_STEP: f64 = 0.25;
-
 /// The chains of stage 2 over the poses `first..last` (a window), each as its pose
 /// indices in chain order: at most `chain_length` poses each
 /// ([`CurveOptions::chain_length`]), split where consecutive poses of the order are
-/// farther apart than [`FAR_POSE_STEP`]. Analytic motions keep the order of τ; an
-/// explicit pose list is ordered by nearest neighbours ([`nearest_neighbour_order`]),
+/// farther apart than [`FAR_POSE_STEP`] ([`chains_over`]). Analytic motions keep the order of τ; an
+/// explicit pose list is ordered by nearest neighbours,
 /// so that scattered poses form chains too (200 random poses of a generic design,
 /// nine metrics, 2 threads: 9.0 s in the given order, 3.9 s ordered). Depends on the
 /// poses only, not on the thread count.
@@ -94,51 +87,8 @@ pub(super) fn chain_blocks(
             .zip(&normalised[b - first])
             .fold(0.0f64, |m, (u, v)| m.max((u - v).norm()))
     };
-    let order: Vec<usize> = match motion {
-        Motion::Poses(_) => nearest_neighbour_order(first..last, &step),
-        Motion::Analytic(_) => (first..last).collect(),
-    };
-    let mut blocks: Vec<Vec<usize>> = Vec::new();
-    for (i, &j) in order.iter().enumerate() {
-        let split = match blocks.last() {
-            None => true,
-            Some(block) => {
-                block.len() >= chain_length.max(1) || step(order[i - 1], j) > FAR_POSE_STEP
-            }
-        };
-        if split {
-            blocks.push(Vec::new());
-        }
-        blocks.last_mut().expect("a block").push(j);
-    }
-    blocks
-}
-
-/// The poses `range` in nearest-neighbour order: from the first, always on to the
-/// nearest pose not yet visited by `distance` (the first of equally near ones).
-pub(super) fn nearest_neighbour_order(
-    range: std::ops::Range<usize>,
-    distance: &dyn Fn(usize, usize) -> f64,
-) -> Vec<usize> {
-    let mut left: Vec<usize> = range.collect();
-    let mut order = Vec::with_capacity(left.len());
-    if left.is_empty() {
-        return order;
-    }
-    order.push(left.remove(0));
-    while !left.is_empty() {
-        let last = *order.last().expect("a pose");
-        let (k, _) = left
-            .iter()
-            .enumerate()
-            .map(|(k, &j)| (k, distance(last, j)))
-            .fold(
-                (0, f64::INFINITY),
-                |best, c| if c.1 < best.1 { c } else { best },
-            );
-        order.push(left.remove(k));
-    }
-    order
+    let ordered_motion = matches!(motion, Motion::Analytic(_));
+    chains_over(first..last, &step, ordered_motion, chain_length)
 }
 
 /// Poses a block of [`solve_chain`] runs through per sub-problem before they are

@@ -124,14 +124,15 @@ mod options;
 mod seed;
 mod self_check;
 mod window;
+pub use super::sweep::FAR_POSE_STEP;
 pub use crate::pipeline::sweep::PathFailure;
 use crate::pipeline::sweep::{
     ProjectiveTwin, Retried, TrackingPlan, crossings, detour_point, distinct_solutions,
     same_endpoint, simple_endpoint, track_with_retries, with_conjugates,
 };
 use certificates::*;
+pub use chain::solve_pose;
 use chain::*;
-pub use chain::{FAR_POSE_STEP, solve_pose};
 use jump::*;
 pub use options::*;
 pub use seed::*;

@@ -219,19 +219,3 @@ fn the_bent_generic_route_reaches_the_same_set_along_another_path() {
         assert!(straight.endpoints.iter().any(near));
     }
 }
-
-/// Scattered poses are chained in nearest-neighbour order from the first one, the
-/// first of equally near poses winning.
-#[test]
-fn pose_lists_are_chained_in_nearest_neighbour_order() {
-    let positions: [f64; 6] = [0.0, 5.0, 1.0, 4.0, 2.0, 3.0];
-    let distance = |a: usize, b: usize| (positions[a] - positions[b]).abs();
-    assert_eq!(
-        nearest_neighbour_order(0..6, &distance),
-        vec![0, 2, 4, 5, 3, 1]
-    );
-    // From 10 (index 0 of 10..13): 11 and 12 are equally near; the first wins.
-    let ties = |a: usize, b: usize| if a == b { 0.0 } else { 1.0 };
-    assert_eq!(nearest_neighbour_order(10..13, &ties), vec![10, 11, 12]);
-    assert!(nearest_neighbour_order(3..3, &ties).is_empty());
-}

@@ -9,9 +9,12 @@
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
+mod chains;
 mod retry;
 mod seed;
 mod twin;
+pub use chains::FAR_POSE_STEP;
+pub(crate) use chains::{chain_anchor, chains_over};
 pub(crate) use retry::*;
 pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
@@ -37,18 +40,6 @@ pub struct PathFailure {
     /// endpoint. The detours may have recovered some of them since.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub reasons: BTreeMap<String, usize>,
-}
-
-/// The anchor of a chain of poses with motion parameters `taus` (in chain-block
-/// order): the pose nearest `Re τ*` of the seed (the shortest seed route), or the first
-/// one when the seed is not a point of the motion (pose lists).
-pub(crate) fn chain_anchor(taus: impl Iterator<Item = f64>, seed_tau: Option<f64>) -> usize {
-    let Some(target) = seed_tau else {
-        return 0;
-    };
-    taus.enumerate()
-        .min_by(|a, b| (a.1 - target).abs().total_cmp(&(b.1 - target).abs()))
-        .map_or(0, |(i, _)| i)
 }
 
 #[cfg(test)]
