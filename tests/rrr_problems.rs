@@ -74,19 +74,22 @@ fn system_is_the_gradient_of_the_lagrangian() {
 fn conjugation_maps_solutions_to_solutions_at_real_parameters() {
     let mut rng = singdist::random::seeded(11);
     for kind in RrrSubProblem::ALL {
-        let problem = RrrProblem::new(kind).unwrap();
-        let system = problem.evaluator();
         let x = random_point(&mut rng, 19);
         let p: Vec<C64> = random_point(&mut rng, 18)
             .iter()
             .map(|v| C64::new(v.re, 0.0))
             .collect();
-        let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
-        let (mut f, mut g) = (vec![C64::new(0.0, 0.0); 19], vec![C64::new(0.0, 0.0); 19]);
-        system.evaluate(&x, &p, &mut work, &mut f);
         let conjugate = RrrProblem::conjugate(&x);
         assert_eq!(conjugate.len(), 19);
-        system.evaluate(&conjugate, &p, &mut work, &mut g);
+        let problem = RrrProblem::new(kind).unwrap();
+        let values = |x: &[C64]| {
+            let system = problem.evaluator();
+            let mut work = vec![C64::new(0.0, 0.0); system.workspace_len()];
+            let mut f = vec![C64::new(0.0, 0.0); 19];
+            system.evaluate(x, &p, &mut work, &mut f);
+            f
+        };
+        let (f, g) = (values(&x), values(&conjugate));
         for j in 0..19 {
             assert!(
                 (g[j] - f[j].conj()).norm() <= 1e-12 * (1.0 + f[j].norm()),
