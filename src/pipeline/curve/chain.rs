@@ -66,11 +66,11 @@ pub(super) fn track_pose_of(
 /// The chains of stage 2 over the poses `first..last` (a window), each as its pose
 /// indices in chain order: at most `chain_length` poses each
 /// ([`CurveOptions::chain_length`]), split where consecutive poses of the order are
-/// farther apart than [`FAR_POSE_STEP`] ([`chains_over`]). Analytic motions keep the order of τ; an
-/// explicit pose list is ordered by nearest neighbours,
-/// so that scattered poses form chains too (200 random poses of a generic design,
-/// nine metrics, 2 threads: 9.0 s in the given order, 3.9 s ordered). Depends on the
-/// poses only, not on the thread count.
+/// farther apart than [`FAR_POSE_STEP`] (the sweep engine's scheduler,
+/// [`chains_over`]). Analytic motions keep the order of τ; an explicit pose list is
+/// ordered by nearest neighbours, so that scattered poses form chains too (200 random
+/// poses of a generic design, nine metrics, 2 threads: 9.0 s in the given order, 3.9 s
+/// ordered). Depends on the poses only, not on the thread count.
 pub(super) fn chain_blocks(
     design: &Design,
     (motion, samples): (&Motion, &[SampledPose]),
