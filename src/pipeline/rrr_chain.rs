@@ -3,7 +3,7 @@
 //! [`RrrCurveOptions::chain_length`] consecutive poses (at fixed pose indices, so
 //! that neither the thread count nor the window a caller asks for changes a result).
 //! Each block is split into chains by the sweep engine's scheduler
-//! ([`super::sweep::chains_over`], shared with the 3-RPR): in the order of τ for an
+//! (`chains_over`, shared with the 3-RPR): in the order of τ for an
 //! analytic motion, in nearest-neighbour order for a pose list (60 scattered poses of
 //! the example's circle: 0.99 s in the given order, 0.46 s ordered, the same distances
 //! to 10⁻¹⁴), cut where the next pose is more than [`super::sweep::FAR_POSE_STEP`]
