@@ -10,7 +10,9 @@
 //! away in the run's normalised frame. In each chain one pose, the *anchor*, is solved
 //! from the seed (the pose nearest `Re τ*`, the shortest seed route; the chain's first
 //! pose for pose lists), and the others forwards and backwards from it, each
-//! sub-problem from its predecessor's solutions:
+//! sub-problem from its predecessor's solutions by the sweep engine's chain walk
+//! (`walk_chain`, the rule the 3-RPR's chains follow too; the 3-RRR has no Newton
+//! jumps):
 //!
 //! - the predecessor's distinct finite critical points are tracked along two
 //!   segments through a random complex midpoint `(p + q)/2 + ε·ξ` of the two
@@ -32,7 +34,9 @@ use super::rrr_curve::{
     Entry, RrrCurveOptions, path_stream, subproblem_entry, target_parameters, track_from_seed,
 };
 use super::rrr_seed::{RrrFrame, RrrSeededProblem};
-use super::sweep::{Retried, TrackingPlan, chain_anchor, track_with_retries};
+use super::sweep::{
+    ChainRoutes, Retried, TrackingPlan, chain_anchor, track_with_retries, walk_chain,
+};
 use crate::C64;
 use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
@@ -76,9 +80,67 @@ pub(crate) fn block_anchor(block: &[ChainPose], tau_star: Option<C64>) -> usize 
 
 /// A complete solution set at a parameter point, from which the next pose of a chain
 /// starts.
+#[derive(Clone)]
 struct CompleteSet {
     parameters: Vec<C64>,
     solutions: Vec<Vec<C64>>,
+}
+
+/// One sub-problem along a block of the 3-RRR curve, as the sweep engine's chain walk
+/// ([`walk_chain`]) sees it: pose-to-pose paths from the latest complete set, the seed
+/// route (no Newton jumps).
+struct ProblemChain<'a> {
+    seeded: &'a RrrSeededProblem,
+    frame: &'a RrrFrame,
+    block: &'a [ChainPose],
+    problem_index: usize,
+    options: &'a RrrCurveOptions,
+}
+
+impl ProblemChain<'_> {
+    /// The parameters of pose `j` of the block and its random stream.
+    fn target(&self, j: usize) -> (Vec<C64>, u64) {
+        let pose = &self.block[j];
+        (
+            target_parameters(self.frame, &pose.k),
+            path_stream(pose.index, self.problem_index),
+        )
+    }
+}
+
+impl ChainRoutes for ProblemChain<'_> {
+    type Set = CompleteSet;
+    type Outcome = (Retried, Vec<C64>);
+
+    fn seed_route(&self, j: usize) -> Self::Outcome {
+        let (target, stream) = self.target(j);
+        (
+            track_from_seed(self.seeded, &target, stream, self.options),
+            target,
+        )
+    }
+
+    fn neighbour_route(&self, j: usize, _previous: usize, set: &CompleteSet) -> Self::Outcome {
+        let (target, stream) = self.target(j);
+        let retried = track_from_neighbour(self.seeded, set, &target, stream, self.options);
+        (retried, target)
+    }
+
+    fn complete_set(&self, (retried, target): &Self::Outcome) -> Option<CompleteSet> {
+        let count = self.seeded.start_count;
+        (retried.accounted == count && retried.endpoints.len() == count).then(|| CompleteSet {
+            parameters: target.clone(),
+            solutions: retried.endpoints.clone(),
+        })
+    }
+
+    fn accounted(&self, (retried, _): &Self::Outcome) -> usize {
+        retried.accounted
+    }
+
+    fn tracked<'o>(&self, (retried, _): &'o mut Self::Outcome) -> &'o mut usize {
+        &mut retried.tracked
+    }
 }
 
 /// One sub-problem at every pose of `block` (module documentation), in block order.
@@ -90,31 +152,18 @@ pub(crate) fn solve_chain(
     problem_index: usize,
     options: &RrrCurveOptions,
 ) -> Vec<Entry> {
+    let routes = ProblemChain {
+        seeded,
+        frame,
+        block,
+        problem_index,
+        options,
+    };
+    let forwards: Vec<usize> = (anchor + 1..block.len()).collect();
+    let backwards: Vec<usize> = (0..anchor).rev().collect();
     let mut entries: Vec<Option<Entry>> = vec![None; block.len()];
-    let mut solve = |j: usize, from: Option<&CompleteSet>| -> Option<CompleteSet> {
+    for (j, (retried, _)) in walk_chain(&routes, anchor, [&forwards, &backwards], 1) {
         let pose = &block[j];
-        let target = target_parameters(frame, &pose.k);
-        let stream = path_stream(pose.index, problem_index);
-        let complete = |r: &Retried| {
-            r.accounted == seeded.start_count && r.endpoints.len() == seeded.start_count
-        };
-        let retried = match from {
-            Some(set) => {
-                let neighbour = track_from_neighbour(seeded, set, &target, stream, options);
-                if complete(&neighbour) {
-                    neighbour
-                } else {
-                    let mut from_seed = track_from_seed(seeded, &target, stream, options);
-                    let tracked = from_seed.tracked + neighbour.tracked;
-                    if neighbour.accounted > from_seed.accounted {
-                        from_seed = neighbour;
-                    }
-                    from_seed.tracked = tracked;
-                    from_seed
-                }
-            }
-            None => track_from_seed(seeded, &target, stream, options),
-        };
         entries[j] = Some(subproblem_entry(
             seeded,
             frame,
@@ -123,22 +172,6 @@ pub(crate) fn solve_chain(
             &retried,
             options,
         ));
-        complete(&retried).then_some(CompleteSet {
-            parameters: target,
-            solutions: retried.endpoints,
-        })
-    };
-    let at_anchor = solve(anchor, None);
-    let mut previous = at_anchor.as_ref().map(|set| CompleteSet {
-        parameters: set.parameters.clone(),
-        solutions: set.solutions.clone(),
-    });
-    for j in anchor + 1..block.len() {
-        previous = solve(j, previous.as_ref());
-    }
-    previous = at_anchor;
-    for j in (0..anchor).rev() {
-        previous = solve(j, previous.as_ref());
     }
     entries.into_iter().flatten().collect()
 }

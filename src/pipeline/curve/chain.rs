@@ -2,7 +2,7 @@
 //! predecessors, and the rescue of poses that lost paths from complete neighbours.
 
 use super::*;
-use crate::pipeline::sweep::chains_over;
+use crate::pipeline::sweep::{ChainHistory, ChainRoutes, chains_over, solve_in_chain};
 
 /// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
 /// along the complexified motion (`MotionPath`) for every sub-problem (in parallel),
@@ -95,48 +95,55 @@ pub(super) fn chain_blocks(
 /// assembled (and reported as partial results).
 pub(super) const POSES_PER_BLOCK: usize = 10;
 
-/// One sub-problem at pose `at` of a chain, from the solution sets of the preceding
-/// poses in chain order (`history`, latest first; the latest is pose `previous`):
-/// Newton jumps ([`jump_problem`]), else pose-to-pose paths from the latest set, else
-/// the seed route. Returns the result and whether its solution set is in the order of
-/// `history` (not after the seed route).
-pub(super) fn solve_problem_in_chain(
-    context: SolveContext<'_>,
-    samples: &[SampledPose],
-    (j, sample): (usize, SampledPose),
-    problem_index: usize,
-    (previous, history): (usize, &[Vec<Vec<C64>>]),
-) -> (ProblemAtPose, bool) {
-    let at = (j, sample);
-    let from = || MotionPoint::target(context.motion, &samples[previous]);
-    if context.options.jump && !history.is_empty() {
-        let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
-        let jumped = jump_problem(context, at, problem_index, from(), &sets);
-        if let Some(result) = jumped {
-            return (result, true);
-        }
+/// One sub-problem along a chain of the 3-RPR curve, as the sweep engine's chain walk
+/// ([`solve_in_chain`]) sees it: Newton jumps ([`jump_problem`]) where
+/// [`CurveOptions::jump`] allows, pose-to-pose paths along the motion from the latest
+/// complete set, the seed route.
+pub(super) struct ProblemChain<'a> {
+    pub context: SolveContext<'a>,
+    /// The window's poses (indexed by pose index).
+    pub samples: &'a [SampledPose],
+    pub problem_index: usize,
+}
+
+impl ChainRoutes for ProblemChain<'_> {
+    type Set = Vec<Vec<C64>>;
+    type Outcome = ProblemAtPose;
+
+    fn seed_route(&self, pose: usize) -> ProblemAtPose {
+        let at = (pose, self.samples[pose]);
+        track_problem(self.context, at, self.problem_index, Route::Seed)
     }
-    let from_neighbour = history.first().map(|solutions| {
+
+    fn neighbour_route(&self, pose: usize, previous: usize, set: &Self::Set) -> ProblemAtPose {
         let route = Route::Neighbour {
-            from: from(),
-            solutions,
+            from: MotionPoint::target(self.context.motion, &self.samples[previous]),
+            solutions: set,
         };
-        track_problem(context, at, problem_index, route)
-    });
-    match from_neighbour {
-        Some(result) if result.complete.is_some() => (result, true),
-        neighbour => {
-            let seed = Route::Seed;
-            let mut result = track_problem(context, at, problem_index, seed);
-            if let Some(neighbour) = neighbour {
-                let tracked = result.entry.tracked + neighbour.entry.tracked;
-                if neighbour.entry.accounted > result.entry.accounted {
-                    result = neighbour;
-                }
-                result.entry.tracked = tracked;
-            }
-            (result, false)
+        let at = (pose, self.samples[pose]);
+        track_problem(self.context, at, self.problem_index, route)
+    }
+
+    fn jump(&self, pose: usize, previous: usize, history: &[Self::Set]) -> Option<ProblemAtPose> {
+        if !self.context.options.jump {
+            return None;
         }
+        let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
+        let from = MotionPoint::target(self.context.motion, &self.samples[previous]);
+        let at = (pose, self.samples[pose]);
+        jump_problem(self.context, at, self.problem_index, from, &sets)
+    }
+
+    fn complete_set(&self, outcome: &ProblemAtPose) -> Option<Self::Set> {
+        outcome.complete.clone()
+    }
+
+    fn accounted(&self, outcome: &ProblemAtPose) -> usize {
+        outcome.entry.accounted
+    }
+
+    fn tracked<'o>(&self, outcome: &'o mut ProblemAtPose) -> &'o mut usize {
+        &mut outcome.entry.tracked
     }
 }
 
@@ -180,7 +187,7 @@ pub(super) fn solve_chain(
     ];
     // Per (direction, sub-problem), the complete solution sets of the last poses
     // (latest first) and the latest pose: cleared where a pose went the seed route.
-    type History = (usize, Vec<Vec<Vec<C64>>>);
+    type History = ChainHistory<Vec<Vec<C64>>>;
     let assemble = |j: usize, mut at_pose: Vec<ProblemAtPose>| {
         let sample = samples[j];
         let k = design.configuration(sample.pose).to_array();
@@ -199,34 +206,17 @@ pub(super) fn solve_chain(
     // Runs one sub-problem's chain through `block` (poses in chain order).
     let run =
         |history: &mut History, problem_index: usize, block: &[usize]| -> Vec<ProblemAtPose> {
+            let routes = ProblemChain {
+                context,
+                samples,
+                problem_index,
+            };
             block
                 .iter()
-                .map(|&j| {
-                    let (previous, sets) = (history.0, &history.1);
-                    let (result, same_order) = solve_problem_in_chain(
-                        context,
-                        samples,
-                        (j, samples[j]),
-                        problem_index,
-                        (previous, sets),
-                    );
-                    let sets = &mut history.1;
-                    if !same_order {
-                        sets.clear();
-                    }
-                    match &result.complete {
-                        Some(set) => {
-                            sets.insert(0, set.clone());
-                            sets.truncate(JUMP_HISTORY);
-                        }
-                        None => sets.clear(),
-                    }
-                    history.0 = j;
-                    result
-                })
+                .map(|&j| solve_in_chain(&routes, j, history))
                 .collect()
         };
-    let mut anchor_history: Vec<History> = vec![(anchor, Vec::new()); problems];
+    let mut anchor_history: Vec<History> = vec![ChainHistory::new(anchor, JUMP_HISTORY); problems];
     let at_anchor: Vec<ProblemAtPose> = anchor_history
         .par_iter_mut()
         .enumerate()

@@ -13,12 +13,14 @@ mod chains;
 mod retry;
 mod seed;
 mod twin;
+mod walk;
 pub use chains::FAR_POSE_STEP;
 pub(crate) use chains::{chain_anchor, chains_over};
 pub(crate) use retry::*;
 pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
 pub use twin::ProjectiveTwin;
+pub(crate) use walk::{ChainHistory, ChainRoutes, solve_in_chain, walk_chain};
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
