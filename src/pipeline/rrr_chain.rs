@@ -35,7 +35,8 @@ use super::rrr_curve::{
 };
 use super::rrr_seed::{RrrFrame, RrrSeededProblem};
 use super::sweep::{
-    ChainRoutes, Retried, TrackingPlan, chain_anchor, track_with_retries, walk_chain,
+    ChainRoutes, Retried, TrackingPlan, chain_anchor, rescue_lost_runs, track_with_retries,
+    walk_chain,
 };
 use crate::C64;
 use crate::homotopy::PolylinePath;
@@ -141,6 +142,10 @@ impl ChainRoutes for ProblemChain<'_> {
     fn tracked<'o>(&self, (retried, _): &'o mut Self::Outcome) -> &'o mut usize {
         &mut retried.tracked
     }
+
+    fn lost(&self, (retried, _): &Self::Outcome) -> bool {
+        retried.accounted < self.seeded.start_count
+    }
 }
 
 /// One sub-problem at every pose of `block` (module documentation), in block order.
@@ -161,8 +166,14 @@ pub(crate) fn solve_chain(
     };
     let forwards: Vec<usize> = (anchor + 1..block.len()).collect();
     let backwards: Vec<usize> = (0..anchor).rev().collect();
+    let mut outcomes: Vec<Option<(Retried, Vec<C64>)>> = (0..block.len()).map(|_| None).collect();
+    for (j, outcome) in walk_chain(&routes, anchor, [&forwards, &backwards], 1) {
+        outcomes[j] = Some(outcome);
+    }
+    let mut outcomes: Vec<(Retried, Vec<C64>)> = outcomes.into_iter().flatten().collect();
+    rescue_lost_runs(&routes, &mut outcomes);
     let mut entries: Vec<Option<Entry>> = vec![None; block.len()];
-    for (j, (retried, _)) in walk_chain(&routes, anchor, [&forwards, &backwards], 1) {
+    for (j, (retried, _)) in outcomes.into_iter().enumerate() {
         let pose = &block[j];
         entries[j] = Some(subproblem_entry(
             seeded,

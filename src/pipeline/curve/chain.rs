@@ -2,7 +2,9 @@
 //! predecessors, and the rescue of poses that lost paths from complete neighbours.
 
 use super::*;
-use crate::pipeline::sweep::{ChainHistory, ChainRoutes, chains_over, solve_in_chain};
+use crate::pipeline::sweep::{
+    ChainHistory, ChainRoutes, Rescued, chains_over, lost_runs, rescue_run, solve_in_chain,
+};
 
 /// Stages 2–4 at one pose along the reference route: parameter homotopy from the seed
 /// along the complexified motion (`MotionPath`) for every sub-problem (in parallel),
@@ -101,9 +103,22 @@ pub(super) const POSES_PER_BLOCK: usize = 10;
 /// complete set, the seed route.
 pub(super) struct ProblemChain<'a> {
     pub context: SolveContext<'a>,
-    /// The window's poses (indexed by pose index).
+    /// Poses from pose index `offset` on.
     pub samples: &'a [SampledPose],
+    pub offset: usize,
     pub problem_index: usize,
+}
+
+impl ProblemChain<'_> {
+    /// Pose `pose` with its sample.
+    fn at(&self, pose: usize) -> (usize, SampledPose) {
+        (pose, self.samples[pose - self.offset])
+    }
+
+    /// Pose `pose`'s point of the motion.
+    fn point(&self, pose: usize) -> MotionPoint {
+        MotionPoint::target(self.context.motion, &self.samples[pose - self.offset])
+    }
 }
 
 impl ChainRoutes for ProblemChain<'_> {
@@ -111,17 +126,15 @@ impl ChainRoutes for ProblemChain<'_> {
     type Outcome = ProblemAtPose;
 
     fn seed_route(&self, pose: usize) -> ProblemAtPose {
-        let at = (pose, self.samples[pose]);
-        track_problem(self.context, at, self.problem_index, Route::Seed)
+        track_problem(self.context, self.at(pose), self.problem_index, Route::Seed)
     }
 
     fn neighbour_route(&self, pose: usize, previous: usize, set: &Self::Set) -> ProblemAtPose {
         let route = Route::Neighbour {
-            from: MotionPoint::target(self.context.motion, &self.samples[previous]),
+            from: self.point(previous),
             solutions: set,
         };
-        let at = (pose, self.samples[pose]);
-        track_problem(self.context, at, self.problem_index, route)
+        track_problem(self.context, self.at(pose), self.problem_index, route)
     }
 
     fn jump(&self, pose: usize, previous: usize, history: &[Self::Set]) -> Option<ProblemAtPose> {
@@ -129,9 +142,8 @@ impl ChainRoutes for ProblemChain<'_> {
             return None;
         }
         let sets: Vec<&[Vec<C64>]> = history.iter().map(|s| s.as_slice()).collect();
-        let from = MotionPoint::target(self.context.motion, &self.samples[previous]);
-        let at = (pose, self.samples[pose]);
-        jump_problem(self.context, at, self.problem_index, from, &sets)
+        let from = self.point(previous);
+        jump_problem(self.context, self.at(pose), self.problem_index, from, &sets)
     }
 
     fn complete_set(&self, outcome: &ProblemAtPose) -> Option<Self::Set> {
@@ -144,6 +156,10 @@ impl ChainRoutes for ProblemChain<'_> {
 
     fn tracked<'o>(&self, outcome: &'o mut ProblemAtPose) -> &'o mut usize {
         &mut outcome.entry.tracked
+    }
+
+    fn lost(&self, outcome: &ProblemAtPose) -> bool {
+        outcome.entry.failure.is_some()
     }
 }
 
@@ -209,6 +225,7 @@ pub(super) fn solve_chain(
             let routes = ProblemChain {
                 context,
                 samples,
+                offset: 0,
                 problem_index,
             };
             block
@@ -305,91 +322,29 @@ pub(super) fn rescue_from_neighbours(
     (offset, samples): (usize, &[SampledPose]),
     work: &mut [Vec<ProblemAtPose>],
 ) -> Vec<usize> {
-    let SolveContext { stage, motion, .. } = context;
     let n = samples.len();
-    let lost = |work: &[Vec<ProblemAtPose>], j: usize, p: usize| work[j][p].entry.failure.is_some();
+    let chain = |problem_index| ProblemChain {
+        context,
+        samples,
+        offset,
+        problem_index,
+    };
     // (sub-problem, first pose, last pose) of every run of failing poses.
-    let mut runs = Vec::new();
-    for p in 0..stage.problems.len() {
-        let mut j = 0;
-        while j < n {
-            if lost(work, j, p) {
-                let first = j;
-                while j + 1 < n && lost(work, j + 1, p) {
-                    j += 1;
-                }
-                runs.push((p, first, j));
-            }
-            j += 1;
-        }
-    }
-    let view: &[Vec<ProblemAtPose>] = work;
-    // Per run: the improved (pose, result) pairs and the paths tracked per pose.
-    type RunOutcome = (BTreeMap<usize, ProblemAtPose>, BTreeMap<usize, usize>);
-    let outcomes: Vec<(usize, RunOutcome)> = runs
-        .par_iter()
-        .map(|&(p, first, last)| {
-            let mut improved: BTreeMap<usize, ProblemAtPose> = BTreeMap::new();
-            let mut tracked: BTreeMap<usize, usize> = BTreeMap::new();
-            // Solves pose `to` from the complete set at pose `from`; keeps the result
-            // if it accounts for more paths than the best so far. Returns the
-            // complete set at `to`, if reached.
-            let mut step = |from: usize, to: usize, solutions: &[Vec<C64>]| {
-                let result = track_problem(
-                    context,
-                    (offset + to, samples[to]),
-                    p,
-                    Route::Neighbour {
-                        from: MotionPoint::target(motion, &samples[from]),
-                        solutions,
-                    },
-                );
-                *tracked.entry(to).or_default() += result.entry.tracked;
-                let best = improved
-                    .get(&to)
-                    .map_or(view[to][p].entry.accounted, |r| r.entry.accounted);
-                let complete = result.complete.clone();
-                if result.entry.accounted > best {
-                    improved.insert(to, result);
-                }
-                complete
-            };
-            // Forward from the pose before the run.
-            let mut reached = first;
-            if first > 0
-                && let Some(mut solutions) = view[first - 1][p].complete.clone()
-            {
-                while reached <= last {
-                    match step(reached - 1, reached, &solutions) {
-                        Some(next) => {
-                            solutions = next;
-                            reached += 1;
-                        }
-                        None => break,
-                    }
-                }
-            }
-            // Backward from the pose after the run, down to where forward stopped.
-            if reached <= last
-                && last + 1 < n
-                && let Some(mut solutions) = view[last + 1][p].complete.clone()
-            {
-                let mut j = last;
-                while j >= reached {
-                    match step(j + 1, j, &solutions) {
-                        Some(next) if j > reached => {
-                            solutions = next;
-                            j -= 1;
-                        }
-                        _ => break,
-                    }
-                }
-            }
-            (p, (improved, tracked))
+    let runs: Vec<(usize, (usize, usize))> = (0..context.stage.problems.len())
+        .flat_map(|p| {
+            let routes = chain(p);
+            lost_runs(n, |j| routes.lost(&work[j][p]))
+                .into_iter()
+                .map(move |run| (p, run))
         })
         .collect();
+    let view: &[Vec<ProblemAtPose>] = work;
+    let outcomes: Vec<(usize, Rescued<ProblemAtPose>)> = runs
+        .par_iter()
+        .map(|&(p, run)| (p, rescue_run(&chain(p), &|j| &view[j][p], (offset, n), run)))
+        .collect();
     let mut changed = Vec::new();
-    for (p, (improved, tracked)) in outcomes {
+    for (p, Rescued { improved, tracked }) in outcomes {
         for (j, count) in tracked {
             work[j][p].entry.tracked += count;
             changed.push(j);

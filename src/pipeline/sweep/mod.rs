@@ -20,7 +20,10 @@ pub(crate) use retry::*;
 pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
 pub use twin::ProjectiveTwin;
-pub(crate) use walk::{ChainHistory, ChainRoutes, solve_in_chain, walk_chain};
+pub(crate) use walk::{
+    ChainHistory, ChainRoutes, Rescued, lost_runs, rescue_lost_runs, rescue_run, solve_in_chain,
+    walk_chain,
+};
 
 /// A path (or group of paths) lost at some pose, reported instead of dropped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
