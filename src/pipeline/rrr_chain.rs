@@ -238,6 +238,36 @@ fn track_from_neighbour(
 mod tests {
     use super::*;
 
+    /// A stage whose seed has fewer solutions than the reconciled count (another
+    /// stage's seed reached more) completes its poses by the generic route; its seed
+    /// route alone cannot.
+    #[test]
+    fn a_short_seed_set_completes_its_poses_by_the_generic_route() {
+        use crate::mechanism::rrr::example_trajectory;
+        use crate::pipeline::rrr_curve::{configuration_at, default_rrr_start_solutions};
+        use crate::pipeline::rrr_seed::rrr_seed_stage;
+        let trajectory = example_trajectory();
+        let options = RrrCurveOptions::default();
+        let provider = &default_rrr_start_solutions;
+        let mut stage = rrr_seed_stage(&trajectory, &options, provider).unwrap();
+        let (_, k) = configuration_at(&trajectory, 3, 1.1).unwrap();
+        let target = target_parameters(&stage.frame, &k.to_array());
+        let seeded = &mut stage.problems[0];
+        let full = seeded.start_count;
+        assert_eq!(seeded.seed_solutions.len(), full);
+        // As if this stage's seed had missed one critical point the other stage found.
+        seeded.seed_solutions.remove(full / 2);
+        let seeded = &stage.problems[0];
+        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
+        assert_eq!(retried.accounted, full);
+        assert_eq!(retried.endpoints.len(), full);
+        // The seed route alone (the count not raised) reaches one fewer.
+        stage.problems[0].start_count = full - 1;
+        let seeded = &stage.problems[0];
+        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
+        assert_eq!(retried.endpoints.len(), full - 1);
+    }
+
     #[test]
     fn blocks_sit_at_multiples_of_the_chain_length() {
         assert_eq!(chain_blocks(&(0..10), 4, 10), vec![0..4, 4..8, 8..10]);

@@ -38,7 +38,7 @@ use super::rrr_seed::route;
 pub use super::rrr_seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
 pub use super::rrr_window::RrrCurveRun;
 use super::start_file::StartSolutions;
-use super::sweep::{Retried, TrackingPlan, track_with_retries};
+use super::sweep::{Retried, TrackingPlan, distinct_solutions, track_with_retries};
 use crate::C64;
 use crate::homotopy::TrackerOptions;
 use crate::mechanism::rrr::{
@@ -263,30 +263,52 @@ pub(crate) fn path_stream(index: usize, problem_index: usize) -> u64 {
 
 /// The seed's solutions tracked to the real pose's parameters `target` (straight, then
 /// detours; [`route`]); a conjugate pair half found is completed
-/// ([`RrrProblem::conjugate`]).
+/// ([`RrrProblem::conjugate`]). Where the seed has fewer solutions than the expected
+/// count (raised by the other seed stage's, `reconcile_seed_counts`), the generic
+/// route first: the start file's solutions tracked to `target` the same way.
 pub(crate) fn track_from_seed(
     seeded: &RrrSeededProblem,
     target: &[C64],
     stream: u64,
     options: &RrrCurveOptions,
 ) -> Retried {
-    track_with_retries(
-        seeded.problem.evaluator(),
-        &seeded.seed_solutions,
-        |attempt| {
-            route(
-                &seeded.seed_parameters,
-                target,
-                options.seed,
-                stream,
-                attempt,
-            )
-        },
-        options.retry_attempts,
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
-            .with_conjugate(Some(&RrrProblem::conjugate)),
-    )
+    let plan = TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
+        .with_conjugate(Some(&RrrProblem::conjugate));
+    let track = |(source, starts): (&[C64], &[Vec<C64>]), salt: u64| {
+        track_with_retries(
+            seeded.problem.evaluator(),
+            starts,
+            |attempt| route(source, target, options.seed, stream ^ salt, attempt),
+            options.retry_attempts,
+            plan,
+        )
+    };
+    let mut generic_tracked = 0;
+    if seeded.seed_solutions.len() < seeded.start_count {
+        // The other seed stage reached more critical points than this one's seed has
+        // (`reconcile_seed_counts`): the seed route cannot complete the pose, the
+        // generic route can. Complete on its own terms: every generic path accounted
+        // for and exactly the expected count of distinct finite endpoints.
+        let (source, starts) = &seeded.generic_start;
+        let generic = track((source, starts), GENERIC_ROUTE_SALT);
+        let endpoints = distinct_solutions(generic.endpoints, seeded.generic_count);
+        if generic.accounted == seeded.generic_count && endpoints.len() == seeded.start_count {
+            return Retried {
+                endpoints,
+                accounted: seeded.start_count,
+                ..generic
+            };
+        }
+        generic_tracked = generic.tracked;
+    }
+    let mut retried = track((&seeded.seed_parameters, &seeded.seed_solutions), 0);
+    retried.tracked += generic_tracked;
+    retried
 }
+
+/// Random stream tag of the generic route (`track_from_seed`), apart from the seed
+/// route's streams.
+const GENERIC_ROUTE_SALT: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The sub-problem's result at `k` from what tracking found there: real critical points
 /// (`max |Im x| ≤ tol·(1+‖x‖∞)`), `K′` mapped back to the caller's frame, the smallest

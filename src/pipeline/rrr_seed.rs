@@ -119,7 +119,11 @@ pub struct RrrSeededProblem {
     /// Number of paths tracked from the seed to every pose: the seed's distinct finite
     /// solutions. Below [`RrrSeededProblem::generic_count`] only when an independent seed
     /// point confirmed the count, or with a seed-stage failure reporting the shortfall.
+    /// Above the seed's count after [`reconcile_seed_counts`], when the other stage
+    /// reached more: the poses then take the generic route first.
     pub start_count: usize,
+    /// The start file's generic parameters and its solutions (the generic route).
+    pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
 }
 
 /// Makes the run's seed stage and the self-check's expect the same count per
@@ -127,9 +131,10 @@ pub struct RrrSeededProblem {
 /// confirms a count below the generic one by two of its own seed points agreeing, and
 /// two seed points can agree on too few; no parameter has more isolated critical
 /// points than a count some seed point reached, so the larger count refutes the
-/// smaller. A stage with fewer seed solutions than the reconciled count then reports
-/// the shortfall at its poses (its paths cannot account for more) instead of
-/// expecting too few.
+/// smaller. A stage with fewer seed solutions than the reconciled count then solves
+/// its poses by the generic route (the start file's solutions tracked to the pose,
+/// `track_from_seed`), and reports the shortfall where that does not reach the count,
+/// instead of expecting too few.
 pub fn reconcile_seed_counts(run: &mut RrrSeedStage, check: &mut RrrSeedStage) {
     for (a, b) in run.problems.iter_mut().zip(check.problems.iter_mut()) {
         debug_assert_eq!(a.problem.kind(), b.problem.kind());
@@ -307,12 +312,13 @@ pub fn rrr_seed_stage(
     let problems = prepared
         .into_iter()
         .zip(seeded)
-        .map(|((problem, _, _), at_seed)| RrrSeededProblem {
+        .map(|((problem, source, starts), at_seed)| RrrSeededProblem {
             problem,
             seed_parameters: at_seed.parameters,
             start_count: at_seed.solutions.len(),
             seed_solutions: at_seed.solutions,
             generic_count: at_seed.generic_count,
+            generic_start: (source, starts),
         })
         .collect();
     Ok(RrrSeedStage {
@@ -342,6 +348,7 @@ mod tests {
                     2
                 },
                 start_count: count,
+                generic_start: (Vec::new(), Vec::new()),
             })
             .collect();
         RrrSeedStage {
