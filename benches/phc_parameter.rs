@@ -103,7 +103,7 @@ fn main() {
         .filter(|s| s.id.subproblem == SubProblem::Singularity)
     {
         let system = seeded.problem.system();
-        let start = &seeded.seed_parameters;
+        let start = &seeded.at_seed.parameters;
         let target = pose_parameters(&stage, seeded, sample.pose);
         // singdist: the straight parameter segment, the curve's tracker settings.
         let solve_options = SolveOptions {
@@ -113,7 +113,7 @@ fn main() {
         let run = || {
             solve_parameter_homotopy(
                 seeded.problem.evaluator(),
-                &seeded.seed_solutions,
+                &seeded.at_seed.solutions,
                 start,
                 &target,
                 &solve_options,
@@ -152,7 +152,8 @@ fn main() {
             .variables()
             .to_vec();
         let starts: Vec<Vec<C64>> = seeded
-            .seed_solutions
+            .at_seed
+            .solutions
             .iter()
             .map(|x| {
                 order
@@ -233,7 +234,7 @@ fn main() {
              phc -p {} of {} endpoints with residual <= 1e-8, {} of them among singdist's, \
              in {:.3} s; phc/singdist = {:.1}",
             seeded.id.name(),
-            seeded.seed_solutions.len(),
+            seeded.at_seed.solutions.len(),
             our_points.len(),
             nonsingular,
             our_seconds,

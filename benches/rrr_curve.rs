@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use singdist::mechanism::rrr::example_trajectory;
-use singdist::pipeline::rrr_curve::{
+use singdist::pipeline::rrr::curve::{
     RrrCurveOptions, compute_rrr_curve, default_rrr_start_solutions,
 };
 

@@ -383,7 +383,7 @@ fn close_base_seed_counts(metric: &str, name: &str, options: &CurveOptions) -> (
         .iter()
         .find(|p| p.id.name() == name)
         .expect("the sub-problem");
-    (problem.start_count, problem.generic_count)
+    (problem.at_seed.start_count, problem.at_seed.generic_count)
 }
 
 /// A seed count must not be settled by two seed points that both lost paths and

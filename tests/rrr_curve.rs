@@ -6,7 +6,7 @@ use singdist::io::load_motion;
 use singdist::io::rrr::load_rrr_design;
 use singdist::mechanism::rpr::{Motion, Pose, PoseList};
 use singdist::mechanism::rrr::*;
-use singdist::pipeline::rrr_curve::*;
+use singdist::pipeline::rrr::curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 use std::f64::consts::PI;
 

@@ -39,7 +39,7 @@ fn example_crosses_a_leg_and_a_parallel_singularity() {
     let taus: Vec<f64> = (0..=720)
         .map(|j| 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / 721.0)
         .collect();
-    let roots = singdist::pipeline::rrr_curve::parallel_singular_parameters(&trajectory, &taus);
+    let roots = singdist::pipeline::rrr::curve::parallel_singular_parameters(&trajectory, &taus);
     println!("{roots:?}");
     assert_eq!(roots.len(), 2);
 }

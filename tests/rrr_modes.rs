@@ -3,7 +3,7 @@
 //! is solved; reach is checked on the whole motion, not only on a grid.
 use singdist::mechanism::rpr::{AnalyticMotion, Motion, MotionCoordinate};
 use singdist::mechanism::rrr::*;
-use singdist::pipeline::rrr_curve::*;
+use singdist::pipeline::rrr::curve::*;
 
 /// Leg 1 has `O_1 = (0, 0)`, links 0.9 + 0.9 = 1.8, and its platform joint at the
 /// operation point `(x(τ), 0)`, so `|C_1 − O_1| = x(τ)`; legs 2 and 3 stay well inside

@@ -3,7 +3,7 @@
 //! parameters are exactly the stored ones. Skips cleanly (with a message) when `phc` is
 //! not on PATH.
 use singdist::C64;
-use singdist::pipeline::rrr_ab_initio::rrr_start_solutions;
+use singdist::pipeline::rrr::ab_initio::rrr_start_solutions;
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
 use singdist::system::phc;
 use std::process::{Command, Stdio};

@@ -2,7 +2,7 @@
 //! distinctness, certificates) and their root counts re-measured from a second seed.
 use singdist::C64;
 use singdist::mechanism::rrr::{distance_sq, leg_polynomial, parallel_polynomial};
-use singdist::pipeline::rrr_ab_initio::*;
+use singdist::pipeline::rrr::ab_initio::*;
 use singdist::pipeline::start_file::StartSolutions;
 use singdist::problem::rrr::*;
 use singdist::system::Evaluator;

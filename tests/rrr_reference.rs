@@ -2,7 +2,7 @@
 //! problem ([`singdist::reference::rrr`]): at poses of several design classes each of
 //! the four distances is ≤ the best of 200 local solutions (+1e-9 relative).
 use singdist::mechanism::rrr::*;
-use singdist::pipeline::rrr_curve::*;
+use singdist::pipeline::rrr::curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 use singdist::reference::rrr::reference_distance;
 

@@ -3,7 +3,7 @@
 //! times `f`, with no lost paths and never more accounted paths than expected.
 use singdist::mechanism::rpr::{AnalyticMotion, Motion, MotionCoordinate};
 use singdist::mechanism::rrr::*;
-use singdist::pipeline::rrr_curve::*;
+use singdist::pipeline::rrr::curve::*;
 use singdist::problem::rrr::RrrSubProblem;
 
 mod rrr_support;
@@ -90,7 +90,7 @@ fn distances_scale_with_the_design() {
 #[test]
 fn seed_counts_never_exceed_the_generic_count() {
     use singdist::C64;
-    use singdist::pipeline::rrr_seed::{distinct_solutions, seed_count_confirmed};
+    use singdist::pipeline::rrr::seed::{distinct_solutions, seed_count_confirmed};
     let point = |v: f64| vec![C64::new(v, 0.5), C64::new(-v, 0.0)];
     // Three distinct points, one repeated to rounding, one beyond the limit.
     let endpoints = vec![

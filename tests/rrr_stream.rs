@@ -3,7 +3,7 @@
 //! whole motion), and the streamed CSV is complete with no partial file left.
 
 use singdist::mechanism::rrr::example_trajectory;
-use singdist::pipeline::rrr_curve::*;
+use singdist::pipeline::rrr::curve::*;
 use std::process::Command;
 
 #[test]

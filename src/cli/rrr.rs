@@ -27,10 +27,10 @@ use singdist::mechanism::rrr::{
 };
 use singdist::pipeline::ab_initio_stage::AbInitioProblem;
 use singdist::pipeline::curve::window_ranges;
-use singdist::pipeline::rrr_ab_initio::{
+use singdist::pipeline::rrr::ab_initio::{
     RrrAbInitioOptions, compute_rrr_start_solutions, trace_certificate,
 };
-use singdist::pipeline::rrr_curve::{
+use singdist::pipeline::rrr::curve::{
     RrrCurveOptions, RrrCurveResult, RrrCurveRun, RrrPathFailure, RrrPoseResult, compute_rrr_curve,
     configurations_at, default_rrr_start_solutions, parallel_singular_parameters,
 };
@@ -91,7 +91,7 @@ pub struct RrrAbInitioArgs {
     #[arg(long, value_name = "DIR")]
     out_dir: Option<PathBuf>,
     /// Seed of the source point and the monodromy loops.
-    #[arg(long, value_name = "S", default_value_t = singdist::pipeline::rrr_ab_initio::RRR_DEFAULT_SEED)]
+    #[arg(long, value_name = "S", default_value_t = singdist::pipeline::rrr::ab_initio::RRR_DEFAULT_SEED)]
     seed: u64,
     /// Only these problems (`parallel`, `leg1`, `leg2`, `leg3`); default all four.
     #[arg(long, value_name = "NAME", num_args = 1..)]
@@ -468,7 +468,7 @@ fn plot(path: &Path, result: &RrrCurveResult) -> Result<()> {
     }
     let t0 = result.poses[0].tau;
     let t1 = result.poses[result.poses.len() - 1].tau;
-    type Getter = fn(&singdist::pipeline::rrr_curve::RrrPoseResult) -> Option<f64>;
+    type Getter = fn(&singdist::pipeline::rrr::curve::RrrPoseResult) -> Option<f64>;
     let curve = |label: &str, get: Getter| {
         let mut segments = vec![Vec::new()];
         for p in &result.poses {

@@ -13,7 +13,7 @@ use clap::Args;
 use singdist::io::rrr_draw::{RRR_SUBPROBLEMS, RrrScene};
 use singdist::io::scene::{MechanismScene, scene_extent};
 use singdist::mechanism::rpr::{Motion, PoseList};
-use singdist::pipeline::rrr_curve::{
+use singdist::pipeline::rrr::curve::{
     RrrCurveOptions, compute_rrr_curve_at, default_rrr_start_solutions,
 };
 

@@ -19,7 +19,7 @@ use super::svg::{SeriesStyle, escape, metric_style, px, short, stroke_attributes
 use crate::mechanism::rpr::Design;
 use crate::mechanism::rrr::RrrConfiguration;
 use crate::pipeline::curve::CurveResult;
-use crate::pipeline::rrr_curve::{RrrCurveResult, RrrPoseResult};
+use crate::pipeline::rrr::curve::{RrrCurveResult, RrrPoseResult};
 use serde::Serialize;
 use std::fmt::Write;
 

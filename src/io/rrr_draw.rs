@@ -25,7 +25,7 @@ use super::scene::{
 };
 use super::svg::{SeriesStyle, escape, px, series_style, short};
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrConfiguration};
-use crate::pipeline::rrr_curve::RrrPoseResult;
+use crate::pipeline::rrr::curve::RrrPoseResult;
 use std::fmt::Write;
 
 /// The sub-problems in drawing order, with their legend names.

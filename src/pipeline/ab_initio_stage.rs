@@ -17,7 +17,7 @@
 //! A mechanism enters the stage through [`AbInitioProblem`]: its system, names,
 //! expected generic count and stage settings (the trace-test slice unknowns are part of
 //! its default [`AbInitioOptions`]). The 3-RPR ([`super::ab_initio`]) and the 3-RRR
-//! ([`super::rrr_ab_initio`]) are the two instances.
+//! ([`super::rrr::ab_initio`]) are the two instances.
 
 use super::start_file::{Certificate, StartSolutions, StoredMeasures};
 use super::start_pair::{StartPair, StartPairError, find_start_pair};

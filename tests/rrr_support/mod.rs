@@ -4,7 +4,7 @@
 
 use singdist::mechanism::rpr::{Motion, MotionCoordinate};
 use singdist::mechanism::rrr::*;
-use singdist::pipeline::rrr_curve::{
+use singdist::pipeline::rrr::curve::{
     RrrCurveOptions, RrrCurveResult, compute_rrr_curve_at, default_rrr_start_solutions,
 };
 

@@ -43,7 +43,7 @@ impl PendingCertificate {
                 (&seeded.design, k),
                 stage.normalization.frame(),
                 &endpoints,
-                seeded.generic_count,
+                seeded.at_seed.generic_count,
             );
             *state = Pending::Done(certificate);
         }

@@ -299,13 +299,13 @@ pub(super) fn jump_problem(
     tracked += which.len();
     let complete = paths.iter().all(simple_endpoint)
         && !crossings(&paths).contains(&true)
-        && paths.len() == seeded.start_count;
+        && paths.len() == seeded.at_seed.start_count;
     if !complete {
         return None;
     }
     let endpoints: Vec<Vec<C64>> = paths.into_iter().map(|p| p.solution).collect();
     let at = (&parameters[..], &k);
-    let count = (seeded.start_count, None, tracked);
+    let count = (seeded.at_seed.start_count, None, tracked);
     Some(problem_at_pose(
         stage, seeded, endpoints, at, count, options,
     ))

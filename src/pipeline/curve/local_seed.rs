@@ -113,7 +113,8 @@ pub(super) fn rescue_by_local_seed(
             for problem in &mut stage.problems {
                 let sub = problem.id.subproblem.name();
                 if let Some(run) = run_metric.and_then(|m| m.subproblems.get(sub)) {
-                    problem.start_count = problem.start_count.max(run.expected_paths);
+                    problem.at_seed.start_count =
+                        problem.at_seed.start_count.max(run.expected_paths);
                 }
             }
             settle_seed_failures(&stage.problems, &mut stage.failures);
@@ -157,7 +158,7 @@ pub(super) fn seed_count_at(
         return None;
     }
     let seeded = stage.problems.iter().find(|p| p.id == id)?;
-    Some(seeded.start_count)
+    Some(seeded.at_seed.start_count)
 }
 
 #[cfg(test)]

@@ -297,7 +297,8 @@ fn normalized_parameters(
 
 /// Parameters of `seeded`'s system at the real `pose` (in its labelling), in the stage's
 /// normalised frame: the target of the seed → pose homotopy (`p = (N(K(pose)), shape
-/// constants)`, the seed's being [`SeededProblem::seed_parameters`]).
+/// constants)`, the seed's being
+/// [`SeedSolutions::parameters`](crate::pipeline::sweep::SeedSolutions::parameters)).
 pub fn pose_parameters(stage: &SeedStage, seeded: &SeededProblem, pose: Pose) -> Vec<C64> {
     let design = &seeded.design;
     let k = design.configuration(pose).to_array();
@@ -647,7 +648,7 @@ fn track_problem(
     let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
     let design = &seeded.design;
     let (starts, origin, salt) = match route {
-        Route::Seed => (seeded.seed_solutions.as_slice(), seeded.seed.point, 0),
+        Route::Seed => (seeded.at_seed.solutions.as_slice(), seeded.seed.point, 0),
         Route::Neighbour { from, solutions } => (solutions, from, 8),
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
@@ -701,18 +702,19 @@ fn track_problem(
     // ill-conditioned, one point reached by both routes can differ by more than the
     // same-point tolerance and would hide a missed one.)
     let generic_complete = |generic: &Retried| {
-        generic.accounted == seeded.generic_count && generic.endpoints.len() == seeded.start_count
+        generic.accounted == seeded.at_seed.generic_count
+            && generic.endpoints.len() == seeded.at_seed.start_count
     };
     // Where the seed has fewer solutions than the expected count (a seed count refuted
     // at a real pose, see `probe_seed_counts`), the seed route cannot complete a pose:
     // the generic route first.
     let mut generic = None;
     let mut generic_tracked = 0;
-    if seed_route && seeded.seed_solutions.len() < seeded.start_count {
+    if seed_route && seeded.at_seed.solutions.len() < seeded.at_seed.start_count {
         let from_generic = generic_route(seeded, &parameters, stream, options);
         if generic_complete(&from_generic) {
             let at = (&parameters[..], &k);
-            let counts = (seeded.start_count, None, from_generic.tracked);
+            let counts = (seeded.at_seed.start_count, None, from_generic.tracked);
             return problem_at_pose(stage, seeded, from_generic.endpoints, at, counts, options);
         }
         generic_tracked = from_generic.tracked;
@@ -727,7 +729,7 @@ fn track_problem(
         let tracked = retried.tracked + from_generic.tracked;
         if generic_complete(&from_generic) {
             retried = Retried {
-                accounted: seeded.start_count,
+                accounted: seeded.at_seed.start_count,
                 tracked,
                 reasons: BTreeMap::new(),
                 ..from_generic
@@ -745,7 +747,7 @@ fn track_problem(
         reasons,
         ..
     } = retried;
-    let (endpoints, best, tracked, reasons) = if best < seeded.start_count && seed_route {
+    let (endpoints, best, tracked, reasons) = if best < seeded.at_seed.start_count && seed_route {
         let (generic, tracked) = match generic {
             // Already tracked (and counted) when the seed route handed over.
             Some(generic) => (generic, tracked),
@@ -758,7 +760,7 @@ fn track_problem(
         if generic_complete(&generic) {
             (
                 generic.endpoints,
-                seeded.start_count,
+                seeded.at_seed.start_count,
                 tracked,
                 BTreeMap::new(),
             )
@@ -768,26 +770,30 @@ fn track_problem(
     } else {
         (endpoints, best, tracked, reasons)
     };
-    let (endpoints, best, reasons) = if best < seeded.start_count {
+    let (endpoints, best, reasons) = if best < seeded.at_seed.start_count {
         // At a real pose the critical points are real or come in conjugate pairs (on
         // two platform anchors 10⁻⁴ apart `rigid/rigid` poses ended with 85 of 88
         // distinct points: an odd count, one of them without its partner).
         let mut endpoints = endpoints;
         let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
-        let added = with_conjugates(&conjugate, &mut endpoints, seeded.start_count);
-        if endpoints.len() == seeded.start_count {
-            (endpoints, seeded.start_count, BTreeMap::new())
+        let added = with_conjugates(&conjugate, &mut endpoints, seeded.at_seed.start_count);
+        if endpoints.len() == seeded.at_seed.start_count {
+            (endpoints, seeded.at_seed.start_count, BTreeMap::new())
         } else {
-            (endpoints, (best + added).min(seeded.start_count), reasons)
+            (
+                endpoints,
+                (best + added).min(seeded.at_seed.start_count),
+                reasons,
+            )
         }
     } else {
         (endpoints, best, reasons)
     };
-    let failure = (best < seeded.start_count).then(|| PathFailure {
+    let failure = (best < seeded.at_seed.start_count).then(|| PathFailure {
         pose_index: Some(index),
         tau: Some(sample.tau),
         problem: seeded.id.name(),
-        expected: seeded.start_count,
+        expected: seeded.at_seed.start_count,
         accounted: best,
         reasons,
     });
@@ -816,7 +822,7 @@ fn generic_route(
     stream: u64,
     options: &CurveOptions,
 ) -> Retried {
-    let (source, starts) = &seeded.generic_start;
+    let (source, starts) = &seeded.at_seed.generic_start;
     // The target pose is real (see `TrackingPlan::conjugate`).
     let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
     let retried = track_with_retries(
@@ -844,7 +850,7 @@ fn generic_route(
             .with_conjugate(Some(&conjugate)),
     );
     Retried {
-        endpoints: distinct_solutions(retried.endpoints, seeded.generic_count),
+        endpoints: distinct_solutions(retried.endpoints, seeded.at_seed.generic_count),
         ..retried
     }
 }
@@ -894,7 +900,7 @@ fn problem_at_pose(
     let certificate = options
         .certify
         .then(|| PendingCertificate::new(endpoints.clone(), *k));
-    let complete = (endpoints.len() == seeded.start_count).then_some(endpoints);
+    let complete = (endpoints.len() == seeded.at_seed.start_count).then_some(endpoints);
     ProblemAtPose {
         entry: PoseEntry {
             candidates: list,
@@ -946,7 +952,7 @@ fn assemble_pose(
             seeded.id.subproblem,
             entry.candidates,
             entry.accounted,
-            seeded.start_count,
+            seeded.at_seed.start_count,
         ));
     }
     for (&id, system) in stage.closed_form.iter().zip(&stage.closed_form_systems) {

@@ -3,7 +3,9 @@
 use super::*;
 use crate::metric::Part;
 use crate::pipeline::family::Family;
-use crate::pipeline::sweep::{ProjectiveTwin, SeedPolicy, seed_family, split_seeded};
+use crate::pipeline::sweep::{
+    ProjectiveTwin, SeedPolicy, SeedSolutions, seed_family, split_seeded,
+};
 use crate::problem::{equilateral, pedal};
 use crate::system::CompiledSystem;
 
@@ -23,25 +25,15 @@ pub struct SeededProblem {
     /// independent one where the common one's finite count could not be confirmed
     /// (the seed stage of [`crate::pipeline::sweep`]).
     pub seed: SeedPoint,
-    /// Seed parameters `p* = (K*, shape constants)` in the normalised frame.
-    pub seed_parameters: Vec<C64>,
-    /// Distinct simple finite solutions at the seed, at most [`SeededProblem::generic_count`].
-    pub seed_solutions: Vec<Vec<C64>>,
-    /// The generic number of finite critical points of the family (the start file's
-    /// count): no parameter of the family has more isolated ones.
-    pub generic_count: usize,
-    /// Number of paths tracked from the seed to every pose: the seed's finite
-    /// solutions. Fewer than [`SeededProblem::generic_count`] only where an
-    /// independent seed point confirmed the same count, or the projective twin
-    /// ([`ChartTwin`]) put every missing path on its hyperplane at infinity (the others are at infinity
-    /// for this design's fixed rigid shapes, e.g. the leg-collapse points of Kapilavai
-    /// and Nawratil, Thm 3 case 4 when base and platform have an equal corresponding
-    /// angle), or where the shortfall is reported as a seed-stage [`PathFailure`].
-    pub start_count: usize,
-    /// The start file's generic parameter point and its solutions (the start of the
-    /// user homotopy): the origin of the generic route, a pose's last resort where the
-    /// seed route loses paths.
-    pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+    /// Its solutions at the seed (`p* = (K*, shape constants)` in the normalised
+    /// frame) and its counts. The count is below the generic one only where an
+    /// independent seed point confirmed it, or the projective twin ([`ChartTwin`])
+    /// put every missing path on its hyperplane at infinity (the others are at
+    /// infinity for this design's fixed rigid shapes, e.g. the leg-collapse points of
+    /// Kapilavai and Nawratil, Thm 3 case 4 when base and platform have an equal
+    /// corresponding angle), or where the shortfall is reported as a seed-stage
+    /// [`PathFailure`].
+    pub at_seed: SeedSolutions,
     /// The same sub-problem with multipliers in a random chart, where paths that end
     /// at infinity or are lost are checked once more ([`CurveOptions::twin_check`]).
     pub twin: Option<ChartTwin>,
@@ -424,19 +416,18 @@ pub(super) fn seed_stage_with_probes(
         .into_iter()
         .zip(seeded)
         .map(
-            |((id, (problem, twin), (design, labels), source, starts), at_seed)| SeededProblem {
-                affine: std::sync::OnceLock::new(),
-                id,
-                problem,
-                twin,
-                design,
-                labels,
-                seed: at_seed.seed,
-                seed_parameters: at_seed.parameters,
-                start_count: at_seed.solutions.len(),
-                seed_solutions: at_seed.solutions,
-                generic_count: at_seed.generic_count,
-                generic_start: (source, starts),
+            |((id, (problem, twin), (design, labels), source, starts), seeded)| {
+                let (seed, at_seed) = SeedSolutions::new(seeded, (source, starts));
+                SeededProblem {
+                    affine: std::sync::OnceLock::new(),
+                    id,
+                    problem,
+                    twin,
+                    design,
+                    labels,
+                    seed,
+                    at_seed,
+                }
             },
         )
         .collect();
@@ -508,8 +499,8 @@ pub(super) fn probe_seed_counts(
         .par_iter()
         .enumerate()
         .map(|(index, seeded)| {
-            if seeded.start_count >= seeded.generic_count {
-                return (seeded.start_count, 0, None);
+            if seeded.at_seed.start_count >= seeded.at_seed.generic_count {
+                return (seeded.at_seed.start_count, 0, None);
             }
             let (accounted, distinct, tracked) = match known.get(&seeded.id.name()) {
                 Some(&(accounted, distinct)) => (accounted, distinct, 0),
@@ -523,11 +514,12 @@ pub(super) fn probe_seed_counts(
                     (probe.accounted, probe.endpoints.len(), probe.tracked)
                 }
             };
-            let refuted = accounted == seeded.generic_count && distinct > seeded.start_count;
+            let refuted =
+                accounted == seeded.at_seed.generic_count && distinct > seeded.at_seed.start_count;
             let count = if refuted {
                 distinct
             } else {
-                seeded.start_count
+                seeded.at_seed.start_count
             };
             (count, tracked, Some((accounted, distinct)))
         })
@@ -535,7 +527,7 @@ pub(super) fn probe_seed_counts(
     let mut tracked = 0;
     let mut found = BTreeMap::new();
     for (seeded, (count, paths, probe)) in problems.iter_mut().zip(probes) {
-        seeded.start_count = count;
+        seeded.at_seed.start_count = count;
         tracked += paths;
         if let Some(probe) = probe {
             found.insert(seeded.id.name(), probe);
@@ -555,9 +547,9 @@ pub(super) fn probe_seed_counts(
 pub(super) fn settle_seed_failures(problems: &[SeededProblem], failures: &mut Vec<PathFailure>) {
     failures.retain(|f| {
         f.pose_index.is_some()
-            || !problems
-                .iter()
-                .any(|p| p.id.name() == f.problem && p.start_count == p.generic_count)
+            || !problems.iter().any(|p| {
+                p.id.name() == f.problem && p.at_seed.start_count == p.at_seed.generic_count
+            })
     });
 }
 
@@ -588,20 +580,22 @@ pub(super) fn reconcile_seed_counts(
         .par_iter()
         .map(|problem| {
             let other = check.problems.iter().find(|p| p.id == problem.id)?;
-            let mut count = problem.start_count.max(other.start_count);
-            if problem.start_count != other.start_count && count < problem.generic_count {
+            let mut count = problem.at_seed.start_count.max(other.at_seed.start_count);
+            if problem.at_seed.start_count != other.at_seed.start_count
+                && count < problem.at_seed.generic_count
+            {
                 count = count.max(probe_at_pose(problem.id).unwrap_or(0));
             }
-            Some(count.min(problem.generic_count))
+            Some(count.min(problem.at_seed.generic_count))
         })
         .collect();
     for (problem, count) in run.problems.iter_mut().zip(counts) {
         let Some(count) = count else {
             continue;
         };
-        problem.start_count = count;
+        problem.at_seed.start_count = count;
         if let Some(other) = check.problems.iter_mut().find(|p| p.id == problem.id) {
-            other.start_count = count;
+            other.at_seed.start_count = count;
         }
     }
     for stage in [run, check] {

@@ -119,10 +119,10 @@ fn plate_plate_stage() -> (Motion, CurveOptions, SeedStage, usize) {
 #[test]
 fn a_seed_count_that_the_generic_route_refutes_is_raised() {
     let (motion, options, mut stage, index) = plate_plate_stage();
-    let generic = stage.problems[index].generic_count;
-    assert_eq!(stage.problems[index].start_count, generic);
-    stage.problems[index].seed_solutions.pop();
-    stage.problems[index].start_count = generic - 1;
+    let generic = stage.problems[index].at_seed.generic_count;
+    assert_eq!(stage.problems[index].at_seed.start_count, generic);
+    stage.problems[index].at_seed.solutions.pop();
+    stage.problems[index].at_seed.start_count = generic - 1;
     let first = motion.pose(motion.tau_range()[0]).expect("pose");
     let normalization = stage.normalization;
     let (tracked, probes) = probe_seed_counts(
@@ -132,21 +132,24 @@ fn a_seed_count_that_the_generic_route_refutes_is_raised() {
         &BTreeMap::new(),
     );
     assert!(tracked >= generic, "{tracked}");
-    assert_eq!(stage.problems[index].start_count, generic);
+    assert_eq!(stage.problems[index].at_seed.start_count, generic);
     // The route's result is kept, and a stage given it (the self-check's) takes it
     // instead of tracking the route again, to the same count.
     assert_eq!(
         probes.get("plate/plate:singularity").map(|p| p.1),
         Some(generic)
     );
-    stage.problems[index].start_count = generic - 1;
+    stage.problems[index].at_seed.start_count = generic - 1;
     let (again, _) = probe_seed_counts(
         &mut stage.problems,
         (first, normalization),
         &options,
         &probes,
     );
-    assert_eq!((again, stage.problems[index].start_count), (0, generic));
+    assert_eq!(
+        (again, stage.problems[index].at_seed.start_count),
+        (0, generic)
+    );
     // The seed's shortfall, had the seed stage reported it, decides nothing now: that
     // failure goes; a pose's own failure and another sub-problem's seed failure stay.
     let failure = |problem: &str, pose_index: Option<usize>| PathFailure {
@@ -207,7 +210,7 @@ fn the_bent_generic_route_reaches_the_same_set_along_another_path() {
         ..options.clone()
     };
     let bent = generic_route(seeded, &parameters, 7, &bent_options);
-    let generic = seeded.generic_count;
+    let generic = seeded.at_seed.generic_count;
     for run in [&straight, &bent] {
         assert_eq!((run.accounted, run.endpoints.len()), (generic, 50));
     }

@@ -99,10 +99,9 @@ impl<'a> CurveRun<'a> {
                 .iter()
                 .copied()
                 .filter(|&metric| {
-                    stage
-                        .problems
-                        .iter()
-                        .any(|p| p.id.metric == metric && p.start_count < p.generic_count)
+                    stage.problems.iter().any(|p| {
+                        p.id.metric == metric && p.at_seed.start_count < p.at_seed.generic_count
+                    })
                 })
                 .collect();
             if !short.is_empty() {

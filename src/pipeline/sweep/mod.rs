@@ -17,7 +17,7 @@ mod walk;
 pub use chains::FAR_POSE_STEP;
 pub(crate) use chains::{chain_anchor, chains_over};
 pub(crate) use retry::*;
-pub use seed::{SeedPolicy, Seeded, distinct_solutions, seed_count_confirmed};
+pub use seed::{SeedPolicy, SeedSolutions, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
 pub use twin::ProjectiveTwin;
 pub(crate) use walk::{

@@ -82,6 +82,46 @@ pub struct Seeded<S> {
     pub tracked: usize,
 }
 
+/// A sub-problem at its seed as every pose's route sees it, for any mechanism: the
+/// seed's solutions, the counts the poses are held to, and the generic start (the
+/// origin of the generic route).
+#[derive(Clone, Debug)]
+pub struct SeedSolutions {
+    /// Seed parameters (the mechanism's normalised frame).
+    pub parameters: Vec<C64>,
+    /// Distinct simple finite solutions at the seed, at most
+    /// [`SeedSolutions::generic_count`].
+    pub solutions: Vec<Vec<C64>>,
+    /// The generic number of finite isolated solutions of the family (the start
+    /// file's count): no parameter of the family has more.
+    pub generic_count: usize,
+    /// Number of paths every pose must account for: the seed's distinct finite
+    /// solutions. Below [`SeedSolutions::generic_count`] only where an independent seed
+    /// point (or the projective twin) confirmed the count, or with a seed-stage
+    /// [`PathFailure`] reporting the shortfall; above the seed's own count after the
+    /// run's and the check's stages were reconciled (another stage reached more), and
+    /// then a pose takes the generic route first.
+    pub start_count: usize,
+    /// The start file's generic parameter point and its solutions (the start of the
+    /// seed stage, and of the generic route to a pose).
+    pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+}
+
+impl SeedSolutions {
+    /// The seed stage's result for one problem with its generic start: the count to
+    /// hold the poses to is the seed's count.
+    pub fn new<S>(seeded: Seeded<S>, generic_start: (Vec<C64>, Vec<Vec<C64>>)) -> (S, Self) {
+        let at_seed = SeedSolutions {
+            parameters: seeded.parameters,
+            start_count: seeded.solutions.len(),
+            solutions: seeded.solutions,
+            generic_count: seeded.generic_count,
+            generic_start,
+        };
+        (seeded.seed, at_seed)
+    }
+}
+
 /// The distinct points of `endpoints`, at most `limit` of them (a parameter homotopy
 /// starts from simple points, and no parameter has more than the generic count).
 pub fn distinct_solutions(endpoints: Vec<Vec<C64>>, limit: usize) -> Vec<Vec<C64>> {

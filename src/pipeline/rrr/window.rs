@@ -6,18 +6,18 @@
 //! can write a window and drop it: memory is bounded by one window, not by the number
 //! of poses.
 
-use super::curve::SelfCheck;
-use super::rrr_ab_initio::RrrAbInitioError;
-use super::rrr_chain::{ChainPose, block_anchor, chain_blocks, solve_chain};
-use super::rrr_curve::{
+use super::ab_initio::RrrAbInitioError;
+use super::chain::{ChainPose, block_anchor, chain_blocks, solve_chain};
+use super::curve::{
     Entry, RrrCurveError, RrrCurveOptions, RrrCurveResult, RrrPathFailure, RrrPoseResult,
     configuration_at, parallel_singular_parameters, signed,
 };
-use super::rrr_seed::{RrrSeedStage, reconcile_seed_counts, rrr_seed_stage};
-use super::rrr_self_check::{check_options, check_window};
-use super::start_file::StartSolutions;
-use super::sweep::chains_over;
+use super::seed::{RrrSeedStage, reconcile_seed_counts, rrr_seed_stage};
+use super::self_check::{check_options, check_window};
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory, parallel_polynomial};
+use crate::pipeline::curve::SelfCheck;
+use crate::pipeline::start_file::StartSolutions;
+use crate::pipeline::sweep::chains_over;
 use crate::problem::rrr::RrrProblem;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -70,7 +70,7 @@ impl<'a> RrrCurveRun<'a> {
         let short = stage
             .problems
             .iter()
-            .any(|p| p.start_count < p.generic_count);
+            .any(|p| p.at_seed.start_count < p.at_seed.generic_count);
         let check = if options.self_check || short {
             let check_options = check_options(options);
             let mut check_stage = rrr_seed_stage(trajectory, &check_options, provider)?;
@@ -100,8 +100,8 @@ impl<'a> RrrCurveRun<'a> {
     }
 
     /// The poses `range` (indices into the run's τ values): the chains of their blocks
-    /// ([`super::rrr_chain`]) for every sub-problem in parallel, then the window's
-    /// self-check ([`super::rrr_self_check`]).
+    /// ([`super::chain`]) for every sub-problem in parallel, then the window's
+    /// self-check ([`super::self_check`]).
     pub fn solve_window(&self, range: std::ops::Range<usize>) -> Result<RrrWindow, RrrCurveError> {
         let (stage, options) = (&self.stage, self.options);
         let blocks = chain_blocks(&range, options.chain_length, self.taus.len());
@@ -212,7 +212,7 @@ impl<'a> RrrCurveRun<'a> {
         &self,
         index: usize,
         (tau, pose, k): (f64, [f64; 3], &[f64; CONFIGURATION_LEN]),
-        subproblems: BTreeMap<String, super::rrr_curve::RrrSubproblemResult>,
+        subproblems: BTreeMap<String, super::curve::RrrSubproblemResult>,
         failures: Vec<RrrPathFailure>,
         paths_tracked: usize,
     ) -> RrrPoseResult {
@@ -273,7 +273,7 @@ impl<'a> RrrCurveRun<'a> {
             start_counts: stage
                 .problems
                 .iter()
-                .map(|p| (p.problem.kind().short_name(), p.start_count))
+                .map(|p| (p.problem.kind().short_name(), p.at_seed.start_count))
                 .collect(),
             parallel_singular_parameters: parallel_singular_parameters(self.trajectory, self.taus),
             leg_singular_parameters: self.trajectory.leg_crossings().clone(),

@@ -1,10 +1,10 @@
 //! Ab-initio stage for the 3-RRR sub-problems of docs/theory.md §10 (Kapilavai and
 //! Nawratil, §6.3): all finite critical points of `∇Λ = 0` at a random complex source
 //! configuration, certified by a trace test, stored in `supplementary/start/rrr-*.json`
-//! (the JSON format of [`super::start_file`], `metric` = `rrr-all-deformable`).
+//! (the JSON format of [`crate::pipeline::start_file`], `metric` = `rrr-all-deformable`).
 //!
-//! The [`AbInitioProblem`] instance of [`super::ab_initio_stage`] for an [`RrrProblem`]
-//! (the method of the 3-RPR, [`super::ab_initio`]). No generic count is known in advance: the counts were measured with two seeds (see the
+//! The [`AbInitioProblem`] instance of [`crate::pipeline::ab_initio_stage`] for an [`RrrProblem`]
+//! (the method of the 3-RPR, [`crate::pipeline::ab_initio`]). No generic count is known in advance: the counts were measured with two seeds (see the
 //! tests and `systems/rrr_example_README.md`), and `certificate.passed` is set only when
 //! the trace test passed.
 //!
@@ -17,13 +17,13 @@
 //! test never finished that way); in the projection to `(K′, μ)` the branches end at finite
 //! points, and the witness set of the parallel problem has 134 points (residual ≈ 5e-15).
 
-use super::ab_initio_stage::{self, AbInitioOptions, AbInitioProblem, Polish};
-use super::start_file::{Certificate, StartSolutions};
 use crate::homotopy::MonodromyOptions;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
+use crate::pipeline::ab_initio_stage::{self, AbInitioOptions, AbInitioProblem, Polish};
+use crate::pipeline::start_file::{Certificate, StartSolutions};
 use crate::problem::rrr::{RRR_METRIC_NAME, RrrProblem, RrrSubProblem};
 
-pub use super::ab_initio_stage::TRACE_ATTEMPTS;
+pub use crate::pipeline::ab_initio_stage::TRACE_ATTEMPTS;
 
 /// Default seed of the 3-RRR ab-initio stage (the stored files were made with it).
 pub const RRR_DEFAULT_SEED: u64 = 20_260_201;

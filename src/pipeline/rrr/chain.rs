@@ -1,12 +1,12 @@
 //! Stage 2 of the 3-RRR curve along chains of poses, as for the 3-RPR
-//! ([`super::curve::CurveOptions::chain_length`]): the poses are cut into blocks of
+//! ([`crate::pipeline::curve::CurveOptions::chain_length`]): the poses are cut into blocks of
 //! [`RrrCurveOptions::chain_length`] consecutive poses (at fixed pose indices, so
 //! that neither the thread count nor the window a caller asks for changes a result).
 //! Each block is split into chains by the sweep engine's scheduler
 //! (`chains_over`, shared with the 3-RPR): in the order of τ for an
 //! analytic motion, in nearest-neighbour order for a pose list (60 scattered poses of
 //! the example's circle: 0.99 s in the given order, 0.46 s ordered, the same distances
-//! to 10⁻¹⁴), cut where the next pose is more than [`super::sweep::FAR_POSE_STEP`]
+//! to 10⁻¹⁴), cut where the next pose is more than [`crate::pipeline::sweep::FAR_POSE_STEP`]
 //! away in the run's normalised frame. In each chain one pose, the *anchor*, is solved
 //! from the seed (the pose nearest `Re τ*`, the shortest seed route; the chain's first
 //! pose for pose lists), and the others forwards and backwards from it, each
@@ -30,17 +30,17 @@
 //! *Coefficient-parameter polynomial continuation*, Appl. Math. Comput. 29, 1989); the
 //! seed route remains the reference where that fails.
 
-use super::rrr_curve::{
+use super::curve::{
     Entry, RrrCurveOptions, path_stream, subproblem_entry, target_parameters, track_from_seed,
 };
-use super::rrr_seed::{RrrFrame, RrrSeededProblem};
-use super::sweep::{
-    ChainRoutes, Retried, TrackingPlan, chain_anchor, rescue_lost_runs, track_with_retries,
-    walk_chain,
-};
+use super::seed::{RrrFrame, RrrSeededProblem};
 use crate::C64;
 use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::CONFIGURATION_LEN;
+use crate::pipeline::sweep::{
+    ChainRoutes, Retried, TrackingPlan, chain_anchor, rescue_lost_runs, track_with_retries,
+    walk_chain,
+};
 use crate::problem::rrr::RrrProblem;
 use crate::random;
 
@@ -73,7 +73,7 @@ pub(crate) fn chain_blocks(
         .collect()
 }
 
-/// The anchor of `block` ([`super::sweep::chain_anchor`]): the pose nearest `Re τ*`
+/// The anchor of `block` ([`crate::pipeline::sweep::chain_anchor`]): the pose nearest `Re τ*`
 /// (analytic motions), else the first.
 pub(crate) fn block_anchor(block: &[ChainPose], tau_star: Option<C64>) -> usize {
     chain_anchor(block.iter().map(|p| p.tau), tau_star.map(|t| t.re))
@@ -128,7 +128,7 @@ impl ChainRoutes for ProblemChain<'_> {
     }
 
     fn complete_set(&self, (retried, target): &Self::Outcome) -> Option<CompleteSet> {
-        let count = self.seeded.start_count;
+        let count = self.seeded.at_seed.start_count;
         (retried.accounted == count && retried.endpoints.len() == count).then(|| CompleteSet {
             parameters: target.clone(),
             solutions: retried.endpoints.clone(),
@@ -144,7 +144,7 @@ impl ChainRoutes for ProblemChain<'_> {
     }
 
     fn lost(&self, (retried, _): &Self::Outcome) -> bool {
-        retried.accounted < self.seeded.start_count
+        retried.accounted < self.seeded.at_seed.start_count
     }
 }
 
@@ -244,8 +244,8 @@ mod tests {
     #[test]
     fn a_short_seed_set_completes_its_poses_by_the_generic_route() {
         use crate::mechanism::rrr::example_trajectory;
-        use crate::pipeline::rrr_curve::{configuration_at, default_rrr_start_solutions};
-        use crate::pipeline::rrr_seed::rrr_seed_stage;
+        use crate::pipeline::rrr::curve::{configuration_at, default_rrr_start_solutions};
+        use crate::pipeline::rrr::seed::rrr_seed_stage;
         let trajectory = example_trajectory();
         let options = RrrCurveOptions::default();
         let provider = &default_rrr_start_solutions;
@@ -253,16 +253,16 @@ mod tests {
         let (_, k) = configuration_at(&trajectory, 3, 1.1).unwrap();
         let target = target_parameters(&stage.frame, &k.to_array());
         let seeded = &mut stage.problems[0];
-        let full = seeded.start_count;
-        assert_eq!(seeded.seed_solutions.len(), full);
+        let full = seeded.at_seed.start_count;
+        assert_eq!(seeded.at_seed.solutions.len(), full);
         // As if this stage's seed had missed one critical point the other stage found.
-        seeded.seed_solutions.remove(full / 2);
+        seeded.at_seed.solutions.remove(full / 2);
         let seeded = &stage.problems[0];
         let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
         assert_eq!(retried.accounted, full);
         assert_eq!(retried.endpoints.len(), full);
         // The seed route alone (the count not raised) reaches one fewer.
-        stage.problems[0].start_count = full - 1;
+        stage.problems[0].at_seed.start_count = full - 1;
         let seeded = &stage.problems[0];
         let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
         assert_eq!(retried.endpoints.len(), full - 1);

@@ -5,8 +5,8 @@
 //! singularities, each with the all-deformable metric of docs/theory.md §10. Stages, as
 //! for the 3-RPR (docs/theory.md §8):
 //!
-//! 1. **Seed** (user homotopy, Kapilavai and Nawratil, Eqs. 65–66; [`super::rrr_seed`]):
-//!    the generic start solutions ([`super::rrr_ab_initio`]) are tracked to `K*`, the
+//! 1. **Seed** (user homotopy, Kapilavai and Nawratil, Eqs. 65–66; [`super::seed`]):
+//!    the generic start solutions ([`super::ab_initio`]) are tracked to `K*`, the
 //!    trajectory's configuration at a random complex `τ*` plus a small random complex
 //!    perturbation, in the run's normalised frame ([`RrrFrame`]: centroid and RMS radius
 //!    of the first configuration), so that a design and its scaled copy are solved alike.
@@ -15,10 +15,10 @@
 //! 2. **Parameter homotopy** (Kapilavai and Nawratil, §5.3): seed solutions → the real
 //!    (normalised) configuration of one pose per block of
 //!    [`RrrCurveOptions::chain_length`] poses, and from there pose to pose along the block
-//!    ([`super::rrr_chain`]); every (block, sub-problem) pair in parallel (rayon). Blocks
+//!    ([`super::chain`]); every (block, sub-problem) pair in parallel (rayon). Blocks
 //!    sit at fixed pose indices and each path is a pure function of its inputs, so
 //!    results depend neither on the thread count nor on the windows a caller asks for.
-//! 3. **No silent losses** (the 3-RPR machinery, [`super::curve`]): a (pose,
+//! 3. **No silent losses** (the 3-RPR machinery, [`crate::pipeline::curve`]): a (pose,
 //!    sub-problem) with failed paths re-tracks them with conservative settings, then
 //!    every path along polylines through a random complex detour point near the target
 //!    ([`crate::homotopy::PolylinePath`]); finite endpoints of all attempts are merged. A path counts as
@@ -32,18 +32,18 @@
 //!    the leg determinant); the overall singularity distance is the smallest |value| of
 //!    the four (Kapilavai and Nawratil, Remark 11).
 
-use super::bisection::bisect_sign_change;
-use super::rrr_ab_initio::{RrrAbInitioError, rrr_start_solutions};
-use super::rrr_seed::route;
-pub use super::rrr_seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
-pub use super::rrr_window::RrrCurveRun;
-use super::start_file::StartSolutions;
-use super::sweep::{Retried, TrackingPlan, distinct_solutions, track_with_retries};
+use super::ab_initio::{RrrAbInitioError, rrr_start_solutions};
+use super::seed::route;
+pub use super::seed::{RrrFrame, RrrSeedStage, RrrSeededProblem, rrr_seed_stage};
+pub use super::window::RrrCurveRun;
 use crate::C64;
 use crate::homotopy::TrackerOptions;
 use crate::mechanism::rrr::{
     CONFIGURATION_LEN, RrrConfiguration, RrrTrajectory, distance, parallel_polynomial,
 };
+use crate::pipeline::bisection::bisect_sign_change;
+use crate::pipeline::start_file::StartSolutions;
+use crate::pipeline::sweep::{Retried, TrackingPlan, distinct_solutions, track_with_retries};
 use crate::problem::rrr::{RrrProblem, RrrProblemError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -99,13 +99,13 @@ pub struct RrrCurveOptions {
     pub seed_retry_attempts: usize,
     /// A critical point is real when `max |Im x| ≤ real_tolerance · (1 + ‖x‖∞)`.
     pub real_tolerance: f64,
-    /// Poses per chain ([`super::rrr_chain`]): one pose of every block of
+    /// Poses per chain ([`super::chain`]): one pose of every block of
     /// `chain_length` consecutive poses is solved from the seed, the others from their
     /// neighbours' complete solution sets; `1` solves every pose from the seed.
     #[serde(default = "default_chain_length")]
     pub chain_length: usize,
     /// Re-solve the first and last pose and each sub-problem's closest pose of every
-    /// window from an independent seed stage ([`super::rrr_self_check`]); a closer
+    /// window from an independent seed stage ([`super::self_check`]); a closer
     /// singular configuration found there replaces the run's and is reported.
     #[serde(default = "default_self_check")]
     pub self_check: bool,
@@ -149,9 +149,9 @@ fn default_seed_retry_attempts() -> usize {
 }
 
 /// Paths lost at some pose (or at the seed), reported instead of dropped: the 3-RPR
-/// record ([`super::curve::PathFailure`]); `problem` is e.g. `rrr:leg2`, `accounted` the
+/// record ([`crate::pipeline::curve::PathFailure`]); `problem` is e.g. `rrr:leg2`, `accounted` the
 /// paths with a finite endpoint or classified at infinity.
-pub type RrrPathFailure = super::curve::PathFailure;
+pub type RrrPathFailure = crate::pipeline::curve::PathFailure;
 
 /// One sub-problem at one pose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -231,7 +231,7 @@ pub struct RrrCurveResult {
     pub leg_singular_parameters: [Vec<f64>; 3],
     /// What the self-check compared (`None` without it).
     #[serde(skip_serializing_if = "Option::is_none", default)]
-    pub self_check: Option<super::curve::SelfCheck>,
+    pub self_check: Option<crate::pipeline::curve::SelfCheck>,
     /// Every pose, in order.
     pub poses: Vec<RrrPoseResult>,
     /// Every path failure (seed stage and poses).
@@ -284,24 +284,26 @@ pub(crate) fn track_from_seed(
         )
     };
     let mut generic_tracked = 0;
-    if seeded.seed_solutions.len() < seeded.start_count {
+    if seeded.at_seed.solutions.len() < seeded.at_seed.start_count {
         // The other seed stage reached more critical points than this one's seed has
         // (`reconcile_seed_counts`): the seed route cannot complete the pose, the
         // generic route can. Complete on its own terms: every generic path accounted
         // for and exactly the expected count of distinct finite endpoints.
-        let (source, starts) = &seeded.generic_start;
+        let (source, starts) = &seeded.at_seed.generic_start;
         let generic = track((source, starts), GENERIC_ROUTE_SALT);
-        let endpoints = distinct_solutions(generic.endpoints, seeded.generic_count);
-        if generic.accounted == seeded.generic_count && endpoints.len() == seeded.start_count {
+        let endpoints = distinct_solutions(generic.endpoints, seeded.at_seed.generic_count);
+        if generic.accounted == seeded.at_seed.generic_count
+            && endpoints.len() == seeded.at_seed.start_count
+        {
             return Retried {
                 endpoints,
-                accounted: seeded.start_count,
+                accounted: seeded.at_seed.start_count,
                 ..generic
             };
         }
         generic_tracked = generic.tracked;
     }
-    let mut retried = track((&seeded.seed_parameters, &seeded.seed_solutions), 0);
+    let mut retried = track((&seeded.at_seed.parameters, &seeded.at_seed.solutions), 0);
     retried.tracked += generic_tracked;
     retried
 }
@@ -330,18 +332,18 @@ pub(crate) fn subproblem_entry(
     } = retried;
     let accounted = *accounted;
     let kind = seeded.problem.kind();
-    let failure = (accounted < seeded.start_count).then(|| RrrPathFailure {
+    let failure = (accounted < seeded.at_seed.start_count).then(|| RrrPathFailure {
         pose_index: Some(index),
         tau: Some(tau),
         problem: kind.name(),
-        expected: seeded.start_count,
+        expected: seeded.at_seed.start_count,
         accounted,
         reasons: reasons.clone(),
     });
     let mut best_candidate: Option<(f64, [f64; CONFIGURATION_LEN])> = None;
     let mut real = 0;
     for x in endpoints {
-        if !super::postprocess::is_real(x, options.real_tolerance) {
+        if !crate::pipeline::postprocess::is_real(x, options.real_tolerance) {
             continue;
         }
         real += 1;
@@ -360,7 +362,7 @@ pub(crate) fn subproblem_entry(
             real_critical_points: real,
             finite_endpoints: endpoints.len(),
             accounted_paths: accounted,
-            expected_endpoints: seeded.start_count,
+            expected_endpoints: seeded.at_seed.start_count,
         },
         failure,
         tracked: *tracked,

@@ -1,4 +1,4 @@
-//! The 3-RRR run's own check, as for the 3-RPR ([`super::curve::SelfCheck`]): a few
+//! The 3-RRR run's own check, as for the 3-RPR ([`crate::pipeline::curve::SelfCheck`]): a few
 //! poses of every window solved again by an independent route.
 //!
 //! A path that jumps onto another one's track, or a seed count two seed points agree
@@ -10,10 +10,10 @@
 //! and a [`RrrPathFailure`] `…:self-check` (exit code 3), since the poses that were not
 //! checked may have missed it too.
 
-use super::curve::{SELF_CHECK_TOLERANCE, SelfCheck, check_seed, checked_poses};
-use super::rrr_chain::{ChainPose, solve_chain};
-use super::rrr_curve::{RrrCurveOptions, RrrPathFailure, RrrPoseResult};
-use super::rrr_seed::RrrSeedStage;
+use super::chain::{ChainPose, solve_chain};
+use super::curve::{RrrCurveOptions, RrrPathFailure, RrrPoseResult};
+use super::seed::RrrSeedStage;
+use crate::pipeline::curve::{SELF_CHECK_TOLERANCE, SelfCheck, check_seed, checked_poses};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -118,9 +118,9 @@ pub(crate) fn check_window(
 mod tests {
     use super::*;
     use crate::mechanism::rrr::example_trajectory;
-    use crate::pipeline::rrr_curve::default_rrr_start_solutions;
-    use crate::pipeline::rrr_curve::{compute_rrr_curve_at, configuration_at};
-    use crate::pipeline::rrr_seed::rrr_seed_stage;
+    use crate::pipeline::rrr::curve::default_rrr_start_solutions;
+    use crate::pipeline::rrr::curve::{compute_rrr_curve_at, configuration_at};
+    use crate::pipeline::rrr::seed::rrr_seed_stage;
 
     /// A run that missed the closest critical point of one sub-problem at its last
     /// pose: the check finds it, reports it and puts the true distance back.

@@ -24,15 +24,15 @@
 //!   (another `τ*` and perturbation, reached along another route) finds exactly as many,
 //!   otherwise the shortfall is a seed-stage failure.
 
-use super::family::{Family, frame_scale};
-use super::rrr_ab_initio::RrrAbInitioError;
-use super::rrr_curve::{RrrCurveError, RrrCurveOptions, RrrPathFailure};
-use super::start_file::StartSolutions;
-use super::sweep::{SeedPolicy, detour_point, seed_family, split_seeded};
-pub use super::sweep::{distinct_solutions, seed_count_confirmed};
+use super::ab_initio::RrrAbInitioError;
+use super::curve::{RrrCurveError, RrrCurveOptions, RrrPathFailure};
 use crate::C64;
 use crate::homotopy::PolylinePath;
 use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory};
+use crate::pipeline::family::{Family, frame_scale};
+use crate::pipeline::start_file::StartSolutions;
+use crate::pipeline::sweep::{SeedPolicy, SeedSolutions, detour_point, seed_family, split_seeded};
+pub use crate::pipeline::sweep::{distinct_solutions, seed_count_confirmed};
 use crate::problem::rrr::{RrrProblem, RrrSubProblem};
 use crate::random;
 use crate::system::CompiledSystem;
@@ -109,21 +109,8 @@ fn first_configuration(
 pub struct RrrSeededProblem {
     /// The compiled system.
     pub problem: RrrProblem,
-    /// Seed parameters `K*` (normalised frame).
-    pub seed_parameters: Vec<C64>,
-    /// Distinct finite solutions at the seed, at most [`RrrSeededProblem::generic_count`].
-    pub seed_solutions: Vec<Vec<C64>>,
-    /// The generic number of finite critical points (the start file's count): no
-    /// parameter of the family has more isolated ones.
-    pub generic_count: usize,
-    /// Number of paths tracked from the seed to every pose: the seed's distinct finite
-    /// solutions. Below [`RrrSeededProblem::generic_count`] only when an independent seed
-    /// point confirmed the count, or with a seed-stage failure reporting the shortfall.
-    /// Above the seed's count after [`reconcile_seed_counts`], when the other stage
-    /// reached more: the poses then take the generic route first.
-    pub start_count: usize,
-    /// The start file's generic parameters and its solutions (the generic route).
-    pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+    /// Its solutions at the seed (`K*` in the normalised frame) and its counts.
+    pub at_seed: SeedSolutions,
 }
 
 /// Makes the run's seed stage and the self-check's expect the same count per
@@ -138,9 +125,13 @@ pub struct RrrSeededProblem {
 pub fn reconcile_seed_counts(run: &mut RrrSeedStage, check: &mut RrrSeedStage) {
     for (a, b) in run.problems.iter_mut().zip(check.problems.iter_mut()) {
         debug_assert_eq!(a.problem.kind(), b.problem.kind());
-        let count = a.start_count.max(b.start_count).min(a.generic_count);
-        a.start_count = count;
-        b.start_count = count;
+        let count = a
+            .at_seed
+            .start_count
+            .max(b.at_seed.start_count)
+            .min(a.at_seed.generic_count);
+        a.at_seed.start_count = count;
+        b.at_seed.start_count = count;
     }
 }
 
@@ -312,13 +303,9 @@ pub fn rrr_seed_stage(
     let problems = prepared
         .into_iter()
         .zip(seeded)
-        .map(|((problem, source, starts), at_seed)| RrrSeededProblem {
+        .map(|((problem, source, starts), seeded)| RrrSeededProblem {
             problem,
-            seed_parameters: at_seed.parameters,
-            start_count: at_seed.solutions.len(),
-            seed_solutions: at_seed.solutions,
-            generic_count: at_seed.generic_count,
-            generic_start: (source, starts),
+            at_seed: SeedSolutions::new(seeded, (source, starts)).1,
         })
         .collect();
     Ok(RrrSeedStage {
@@ -340,15 +327,17 @@ mod tests {
             .zip(counts)
             .map(|(&kind, &count)| RrrSeededProblem {
                 problem: RrrProblem::new(kind).unwrap(),
-                seed_parameters: Vec::new(),
-                seed_solutions: vec![Vec::new(); count],
-                generic_count: if kind == RrrSubProblem::Parallel {
-                    50
-                } else {
-                    2
+                at_seed: SeedSolutions {
+                    parameters: Vec::new(),
+                    solutions: vec![Vec::new(); count],
+                    generic_count: if kind == RrrSubProblem::Parallel {
+                        50
+                    } else {
+                        2
+                    },
+                    start_count: count,
+                    generic_start: (Vec::new(), Vec::new()),
                 },
-                start_count: count,
-                generic_start: (Vec::new(), Vec::new()),
             })
             .collect();
         RrrSeedStage {
@@ -367,9 +356,9 @@ mod tests {
         let (mut run, mut check) = (stage(&[48, 2, 1, 2]), stage(&[50, 2, 2, 1]));
         reconcile_seed_counts(&mut run, &mut check);
         for s in [&run, &check] {
-            let counts: Vec<usize> = s.problems.iter().map(|p| p.start_count).collect();
+            let counts: Vec<usize> = s.problems.iter().map(|p| p.at_seed.start_count).collect();
             assert_eq!(counts, vec![50, 2, 2, 2]);
         }
-        assert_eq!(run.problems[0].seed_solutions.len(), 48);
+        assert_eq!(run.problems[0].at_seed.solutions.len(), 48);
     }
 }
