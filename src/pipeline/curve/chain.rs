@@ -150,6 +150,10 @@ impl ChainRoutes for ProblemChain<'_> {
         outcome.complete.clone()
     }
 
+    fn is_complete(&self, outcome: &ProblemAtPose) -> bool {
+        outcome.complete.is_some()
+    }
+
     fn accounted(&self, outcome: &ProblemAtPose) -> usize {
         outcome.entry.accounted
     }

@@ -127,12 +127,17 @@ impl ChainRoutes for ProblemChain<'_> {
         (retried, target)
     }
 
-    fn complete_set(&self, (retried, target): &Self::Outcome) -> Option<CompleteSet> {
-        let count = self.seeded.at_seed.start_count;
-        (retried.accounted == count && retried.endpoints.len() == count).then(|| CompleteSet {
+    fn complete_set(&self, outcome: &Self::Outcome) -> Option<CompleteSet> {
+        let (retried, target) = outcome;
+        self.is_complete(outcome).then(|| CompleteSet {
             parameters: target.clone(),
             solutions: retried.endpoints.clone(),
         })
+    }
+
+    fn is_complete(&self, (retried, _): &Self::Outcome) -> bool {
+        let count = self.seeded.at_seed.start_count;
+        retried.accounted == count && retried.endpoints.len() == count
     }
 
     fn accounted(&self, (retried, _): &Self::Outcome) -> usize {

@@ -50,8 +50,12 @@ pub(crate) trait ChainRoutes {
         None
     }
 
-    /// The complete set of `outcome`, if it is complete.
+    /// The complete set of `outcome`, if it is complete (a copy: the next pose starts
+    /// from it).
     fn complete_set(&self, outcome: &Self::Outcome) -> Option<Self::Set>;
+
+    /// Whether `outcome` is complete, without copying its set.
+    fn is_complete(&self, outcome: &Self::Outcome) -> bool;
 
     /// Paths `outcome` accounts for (finite or at infinity).
     fn accounted(&self, outcome: &Self::Outcome) -> usize;
@@ -124,7 +128,7 @@ pub(crate) fn solve_in_chain<R: ChainRoutes>(
                 .first()
                 .map(|set| routes.neighbour_route(pose, previous, set));
             match neighbour {
-                Some(result) if routes.complete_set(&result).is_some() => (result, true),
+                Some(result) if routes.is_complete(&result) => (result, true),
                 neighbour => {
                     let mut result = routes.seed_route(pose);
                     if let Some(mut neighbour) = neighbour {
@@ -327,7 +331,11 @@ mod tests {
         }
 
         fn complete_set(&self, outcome: &Outcome) -> Option<usize> {
-            (outcome.0 == 4).then_some(outcome.3)
+            self.is_complete(outcome).then_some(outcome.3)
+        }
+
+        fn is_complete(&self, outcome: &Outcome) -> bool {
+            outcome.0 == 4
         }
 
         fn accounted(&self, outcome: &Outcome) -> usize {
