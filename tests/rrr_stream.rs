@@ -15,9 +15,9 @@ fn windows_equal_the_whole_curve() {
         .expect("curve");
     let run =
         RrrCurveRun::new(&trajectory, &taus, &options, &default_rrr_start_solutions).expect("run");
-    let first = run.solve_window(0..4).expect("window 0");
+    let first = run.solve_range(0..4, &|_| {}).expect("window 0");
     assert_eq!(first.poses.len(), 4);
-    let second = run.solve_window(4..7).expect("window 1");
+    let second = run.solve_range(4..7, &|_| {}).expect("window 1");
     let mut poses = first.poses.clone();
     poses.extend(second.poses.clone());
     assert_eq!(poses, whole.poses);
@@ -52,7 +52,10 @@ fn windows_cutting_chains_equal_the_whole_curve() {
         RrrCurveRun::new(&trajectory, &taus, &options, &default_rrr_start_solutions).expect("run");
     let mut poses = Vec::new();
     for range in [0..2, 2..5, 5..7] {
-        let window = run.solve_window(range.clone()).expect("window").poses;
+        let window = run
+            .solve_range(range.clone(), &|_| {})
+            .expect("window")
+            .poses;
         assert_eq!(
             window.iter().map(|p| p.index).collect::<Vec<_>>(),
             range.collect::<Vec<_>>()

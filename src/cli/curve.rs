@@ -257,7 +257,7 @@ pub fn run(args: CurveArgs) -> Result<Outcome> {
         let first = log.as_ref().map_or(0, |l| l.totals.windows);
         let mut table_totals = (header.seed_paths_tracked, header.seed_failures.clone());
         for w in first..header.windows {
-            let window = run.solve_window(w, &on_pose);
+            let window = run.solve_window(w, &on_pose)?;
             if let Some(file) = &mut log
                 && let Err(error) = file.write_window(&window)
             {

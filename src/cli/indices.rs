@@ -326,7 +326,7 @@ fn stream_table(
         });
         sink.start(Some(facts))?;
         for w in 0..header.windows {
-            let window = run.solve_window(w, &on_pose);
+            let window = run.solve_window(w, &on_pose)?;
             let mut rows = index_rows(run.window_range(w));
             for (row, pose) in rows.iter_mut().zip(window.poses) {
                 // Both come from `sample_motion`: the same τ and pose, bit for bit.

@@ -322,7 +322,7 @@ fn stream_curve(
             let mut failures = run.seed_failures().to_vec();
             let mut paths_tracked = run.seed_paths_tracked();
             for range in window_ranges(taus.len(), WINDOW_POSES) {
-                let poses = run.solve_window(range)?.poses;
+                let poses = run.solve_range(range, &|_| {})?.poses;
                 let text = match &args.motion_run.output.out {
                     Some(_) => csv_rows(&poses, run.seed_failures())?,
                     None => table_rows(&poses),

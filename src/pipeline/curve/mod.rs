@@ -126,19 +126,20 @@ mod self_check;
 mod window;
 pub use super::sweep::FAR_POSE_STEP;
 pub use crate::pipeline::sweep::PathFailure;
+pub use crate::pipeline::sweep::window_ranges;
 use crate::pipeline::sweep::{
     ProjectiveTwin, Retried, TrackingPlan, crossings, detour_point, distinct_solutions,
     same_endpoint, simple_endpoint, track_with_retries, with_conjugates,
 };
+pub use crate::pipeline::sweep::{SELF_CHECK_TOLERANCE, SelfCheck};
+pub(crate) use crate::pipeline::sweep::{check_seed, checked_poses};
 use certificates::*;
 pub use chain::solve_pose;
 use chain::*;
 use jump::*;
 pub use options::*;
 pub use seed::*;
-pub use self_check::{SELF_CHECK_TOLERANCE, SelfCheck};
-pub(crate) use self_check::{check_seed, checked_poses};
-pub use window::{CurveHeader, CurveRun, CurveWindow, collect_curve, window_ranges};
+pub use window::{CurveFamily, CurveHeader, CurveRun, CurveWindow, collect_curve};
 
 /// Errors of the curve pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -1035,7 +1036,7 @@ pub fn compute_curve(
     let header = run.header();
     let windows = (0..header.windows)
         .map(|w| run.solve_window(w, on_pose))
-        .collect();
+        .collect::<Result<Vec<_>, _>>()?;
     Ok(collect_curve(header, windows))
 }
 

@@ -1,10 +1,13 @@
-//! A curve solved window by window: the seed stage (and the self-check's) once, then
+//! The 3-RPR curve as an instance of the sweep engine ([`CurveFamily`], a
+//! [`SweptFamily`]; the run is a [`Sweep`] of it), solved window by window: the seed
+//! stage (and the self-check's) once, then
 //! consecutive windows of [`CurveOptions::window_poses`] poses, each final before the
 //! next starts, so that a caller can write a window's results and drop them. Memory is
 //! bounded by one window, not by the number of poses; a run can start at any window
 //! (to resume an interrupted one) and gets the same results there.
 
 use super::*;
+use crate::pipeline::sweep::{PoseRange, Sweep, SweepWindow, SweptFamily, merge_windows};
 
 /// What a run knows after its seed stage, before any pose: the part of
 /// [`CurveResult`] that does not depend on the poses.
@@ -29,42 +32,24 @@ pub struct CurveHeader {
 }
 
 /// One window's final results.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CurveWindow {
-    /// Index of the window.
-    pub index: usize,
-    /// Its poses, in order.
-    pub poses: Vec<PoseResult>,
-    /// Critical points continued at its poses (its share of
-    /// [`CurveResult::paths_tracked`]).
-    pub paths_tracked: usize,
-    /// Its self-check (first, last and each metric's closest pose of the window).
-    pub self_check: Option<SelfCheck>,
-}
+pub type CurveWindow = SweepWindow<PoseResult>;
 
-/// The pose index ranges `[first, last)` of the windows of `n` poses, `window_poses`
-/// each (the last one shorter).
-pub fn window_ranges(n: usize, window_poses: usize) -> Vec<std::ops::Range<usize>> {
-    let size = window_poses.max(1);
-    (0..n.div_ceil(size))
-        .map(|w| w * size..((w + 1) * size).min(n))
-        .collect()
-}
-
-/// A curve being computed window by window (see the module documentation).
-pub struct CurveRun<'a> {
+/// A 3-RPR curve as the sweep engine sees it ([`SweptFamily`]): the design, the
+/// motion, the metrics, the options, the sampled poses and the start-solution
+/// provider.
+pub struct CurveFamily<'a> {
     design: &'a Design,
     motion: &'a Motion,
     metrics: &'a [Metric],
     options: &'a CurveOptions,
     samples: Vec<SampledPose>,
-    windows: Vec<std::ops::Range<usize>>,
-    stage: SeedStage,
-    check: Option<(SeedStage, CurveOptions)>,
     provider: StartProvider<'a>,
 }
 
-impl<'a> CurveRun<'a> {
+/// A 3-RPR curve being computed window by window (see the module documentation).
+pub type CurveRun<'a> = Sweep<CurveFamily<'a>>;
+
+impl<'a> Sweep<CurveFamily<'a>> {
     /// Samples the motion and runs the seed stage (and the self-check's).
     pub fn new(
         (design, motion, metrics): (&'a Design, &'a Motion, &'a [Metric]),
@@ -79,96 +64,106 @@ impl<'a> CurveRun<'a> {
             });
         }
         let samples = sample_motion(motion, poses)?;
-        let mut stage = seed_stage(design, motion, metrics, options, provider)?;
-        let first = samples.first().map(|s| s.pose);
-        let probe = |id: ProblemId| {
-            first.and_then(|pose| local_seed::seed_count_at(design, pose, id, options, provider))
-        };
-        let check = if options.self_check {
-            let context = (design, motion, metrics);
-            let (mut check_stage, check_options) =
-                self_check::check_stage(context, options, provider, &stage.probes)?;
-            reconcile_seed_counts(&mut stage, &mut check_stage, probe);
-            Some((check_stage, check_options))
-        } else {
-            // Without the self-check a count below the generic one is still checked by
-            // the self-check's independent seed stage, for those metrics alone: two
-            // seed points of one stage can agree on too few (see
-            // `reconcile_seed_counts`), and nothing else would notice.
-            let short: Vec<Metric> = metrics
-                .iter()
-                .copied()
-                .filter(|&metric| {
-                    stage.problems.iter().any(|p| {
-                        p.id.metric == metric && p.at_seed.start_count < p.at_seed.generic_count
-                    })
-                })
-                .collect();
-            if !short.is_empty() {
-                let context = (design, motion, &short[..]);
-                let (mut count_stage, _) =
-                    self_check::check_stage(context, options, provider, &stage.probes)?;
-                reconcile_seed_counts(&mut stage, &mut count_stage, probe);
-            }
-            None
-        };
-        Ok(CurveRun {
+        let family = CurveFamily {
             design,
             motion,
             metrics,
             options,
-            windows: window_ranges(samples.len(), options.window_poses),
             samples,
-            stage,
-            check,
             provider,
-        })
+        };
+        Sweep::start(family, options.window_poses, options.self_check)
     }
 
     /// The run's pose-independent results.
     pub fn header(&self) -> CurveHeader {
+        let (family, stage) = (self.family(), self.stage());
         CurveHeader {
-            metric_names: self.metrics.iter().map(Metric::name).collect(),
-            seed: self.options.seed,
-            tau_star: match self.stage.seed.point {
+            metric_names: family.metrics.iter().map(Metric::name).collect(),
+            seed: family.options.seed,
+            tau_star: match stage.seed.point {
                 MotionPoint::Tau(t) => Some([t.re, t.im]),
                 MotionPoint::Pose(_) => None,
             },
-            not_applicable: self.stage.not_applicable.clone(),
-            seed_failures: self.stage.failures.clone(),
-            seed_paths_tracked: self.stage.paths_tracked,
-            poses: self.samples.len(),
-            windows: self.windows.len(),
+            not_applicable: stage.not_applicable.clone(),
+            seed_failures: stage.failures.clone(),
+            seed_paths_tracked: stage.paths_tracked,
+            poses: family.samples.len(),
+            windows: self.windows().len(),
         }
     }
 
     /// The sampled poses of the run.
     pub fn samples(&self) -> &[SampledPose] {
-        &self.samples
+        &self.family().samples
+    }
+}
+
+impl SweptFamily for CurveFamily<'_> {
+    type Stage = SeedStage;
+    type Check = (SeedStage, CurveOptions);
+    type Pose = PoseResult;
+    type Error = PipelineError;
+
+    fn pose_count(&self) -> usize {
+        self.samples.len()
     }
 
-    /// The pose range of window `index`.
-    pub fn window_range(&self, index: usize) -> std::ops::Range<usize> {
-        self.windows[index].clone()
-    }
-
-    /// Solves window `index` completely: its chains in parallel (stage 2), the rescue
-    /// of its poses that lost paths from complete neighbours in the window (stage 3b),
-    /// then from a seed stage at the pose itself (stage 3c), its self-check. `on_pose`
-    /// is called as poses complete (progress).
-    pub fn solve_window(
-        &self,
-        index: usize,
-        on_pose: &(dyn Fn(&PoseResult) + Sync),
-    ) -> CurveWindow {
-        let range = self.windows[index].clone();
-        let (stage, design, motion, metrics, options) = (
-            &self.stage,
+    fn seed_stage(&self) -> Result<SeedStage, PipelineError> {
+        seed_stage(
             self.design,
             self.motion,
             self.metrics,
             self.options,
-        );
+            self.provider,
+        )
+    }
+
+    /// Every metric's stage, or only those of the metrics with a sub-problem whose
+    /// seed count is below its generic count.
+    fn check_stage(
+        &self,
+        stage: &SeedStage,
+        all: bool,
+    ) -> Result<Option<(SeedStage, CurveOptions)>, PipelineError> {
+        let metrics: Vec<Metric> = self
+            .metrics
+            .iter()
+            .copied()
+            .filter(|&metric| {
+                all || stage.problems.iter().any(|p| {
+                    p.id.metric == metric && p.at_seed.start_count < p.at_seed.generic_count
+                })
+            })
+            .collect();
+        if metrics.is_empty() {
+            return Ok(None);
+        }
+        let context = (self.design, self.motion, &metrics[..]);
+        self_check::check_stage(context, self.options, self.provider, &stage.probes).map(Some)
+    }
+
+    /// The 3-RPR reconciliation of the seed counts, probing a disputed count at the
+    /// first pose.
+    fn reconcile(&self, stage: &mut SeedStage, (check, _): &mut (SeedStage, CurveOptions)) {
+        let first = self.samples.first().map(|s| s.pose);
+        let (design, options, provider) = (self.design, self.options, self.provider);
+        let probe = |id: ProblemId| {
+            first.and_then(|pose| local_seed::seed_count_at(design, pose, id, options, provider))
+        };
+        reconcile_seed_counts(stage, check, probe);
+    }
+
+    /// The poses' chains in parallel (stage 2), the rescue of the poses that lost
+    /// paths from complete neighbours in the range (stage 3b), then from a seed stage
+    /// at the pose itself (stage 3c).
+    fn solve_poses(
+        &self,
+        stage: &SeedStage,
+        PoseRange { range, on_pose }: PoseRange<'_, PoseResult>,
+    ) -> Result<Vec<PoseResult>, PipelineError> {
+        let (design, motion, metrics, options) =
+            (self.design, self.motion, self.metrics, self.options);
         let context = SolveContext {
             stage,
             motion,
@@ -216,40 +211,35 @@ impl<'a> CurveRun<'a> {
         {
             on_pose(&results[local]);
         }
-        let self_check = self.check.as_ref().map(|(check_stage, check_options)| {
-            self_check::check_poses(
-                (check_stage, check_options),
-                (design, motion, metrics),
-                samples,
-                &mut results,
-            )
-        });
-        CurveWindow {
-            index,
-            paths_tracked: results.iter().map(|r| r.paths_tracked).sum(),
-            poses: results,
-            self_check,
-        }
+        Ok(results)
+    }
+
+    fn check_poses(
+        &self,
+        _stage: &SeedStage,
+        (check_stage, check_options): &(SeedStage, CurveOptions),
+        poses: &mut [PoseResult],
+    ) -> Result<SelfCheck, PipelineError> {
+        Ok(self_check::check_poses(
+            (check_stage, check_options),
+            (self.design, self.motion, self.metrics),
+            &self.samples,
+            poses,
+        ))
+    }
+
+    fn paths_tracked(pose: &PoseResult) -> usize {
+        pose.paths_tracked
     }
 }
 
 /// The whole curve of `header` from its windows in order.
 pub fn collect_curve(header: CurveHeader, windows: Vec<CurveWindow>) -> CurveResult {
     let mut failures = header.seed_failures.clone();
-    let mut paths_tracked = header.seed_paths_tracked;
-    let mut self_check: Option<SelfCheck> = None;
-    let mut poses = Vec::with_capacity(header.poses);
-    for window in windows {
-        paths_tracked += window.paths_tracked;
-        if let Some(check) = &window.self_check {
-            match &mut self_check {
-                Some(total) => total.merge(check),
-                None => self_check = Some(check.clone()),
-            }
-        }
+    for window in &windows {
         failures.extend(window.poses.iter().flat_map(|r| r.failures.iter().cloned()));
-        poses.extend(window.poses);
     }
+    let (poses, self_check, paths_tracked) = merge_windows(windows);
     CurveResult {
         metric_names: header.metric_names,
         seed: header.seed,
@@ -257,7 +247,7 @@ pub fn collect_curve(header: CurveHeader, windows: Vec<CurveWindow>) -> CurveRes
         not_applicable: header.not_applicable,
         poses,
         failures,
-        paths_tracked,
+        paths_tracked: header.seed_paths_tracked + paths_tracked,
         self_check,
     }
 }

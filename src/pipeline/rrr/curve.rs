@@ -471,7 +471,7 @@ pub fn compute_rrr_curve_at(
     provider: &(dyn Fn(&RrrProblem) -> Result<StartSolutions, RrrAbInitioError> + Sync),
 ) -> Result<RrrCurveResult, RrrCurveError> {
     let run = RrrCurveRun::new(trajectory, taus, options, provider)?;
-    let window = run.solve_window(0..taus.len())?;
+    let window = run.solve_range(0..taus.len(), &|_| {})?;
     Ok(run.collect(vec![window]))
 }
 

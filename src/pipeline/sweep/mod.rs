@@ -1,5 +1,7 @@
-//! The sweep engine shared by every mechanism: given a parametrised family over a
-//! motion ([`super::family::Family`]), it tracks the family's start set to a seed
+//! The sweep engine shared by every mechanism: one driver for a curve ([`Sweep`] over
+//! a [`SweptFamily`]: seed stage, self-check stage, windows), one chain walk and
+//! rescue, and, given a parametrised family over a motion ([`super::family::Family`]),
+//! the seed stage that tracks the family's start set to a seed
 //! point (the user homotopy of Kapilavai and Nawratil, *Singularity distance
 //! computations for 3-RPR manipulators using extrinsic metrics*, Eqs. 65–66) with the
 //! robust path-group tracking and its accounting (`track_with_retries`): re-runs,
@@ -10,13 +12,18 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 mod chains;
+mod check;
 mod retry;
+mod run;
 mod seed;
 mod twin;
 mod walk;
 pub use chains::FAR_POSE_STEP;
 pub(crate) use chains::{chain_anchor, chains_over};
+pub use check::{SELF_CHECK_TOLERANCE, SelfCheck};
+pub(crate) use check::{check_seed, checked_poses};
 pub(crate) use retry::*;
+pub use run::{PoseRange, Sweep, SweepWindow, SweptFamily, merge_windows, window_ranges};
 pub use seed::{SeedPolicy, SeedSolutions, Seeded, distinct_solutions, seed_count_confirmed};
 pub(crate) use seed::{seed_family, split_seeded};
 pub use twin::ProjectiveTwin;
