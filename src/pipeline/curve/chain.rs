@@ -167,9 +167,6 @@ impl ChainRoutes for ProblemChain<'_> {
     }
 }
 
-/// Solution sets kept per sub-problem for [`extrapolate`].
-pub(super) const JUMP_HISTORY: usize = 3;
-
 /// The pose of `poses` where a chain starts from the seed: the one nearest `Re τ*`
 /// (the shortest seed route: on the built-in example the `rigid/rigid` seed route to
 /// the motion's first pose took 13 × as long as to the pose nearest `Re τ*`), or the

@@ -1,179 +1,15 @@
-//! Newton continuation between consecutive poses of a chain: extrapolated critical
-//! points corrected by Newton's method, sub-steps, and pose-to-pose paths for what
-//! that leaves unaccounted for.
+//! Newton continuation between consecutive poses of a 3-RPR chain: the sweep
+//! engine's Newton jump ([`jump_set`]) along the routes of the 3-RPR's motion.
 
 use super::*;
-
-/// A known value of one critical point along the motion: `(s, x)`, `s` in units of
-/// the pose spacing from the latest solved pose (`0`; earlier poses at `−1`, `−2`,
-/// sub-steps towards the next pose at `0 < s < 1`).
-pub(super) type Node<'a> = (f64, &'a [C64]);
-
-/// The polynomial through the latest (up to three) nodes (`nodes[0]` the latest), at
-/// `s` (Lagrange form); for nodes at `0, −1, −2` and `s = 1`: `3x₀ − 3x₁ + x₂`.
-pub(super) fn extrapolate(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
-    let nodes = &nodes[..nodes.len().min(3)];
-    for o in out.iter_mut() {
-        *o = C64::new(0.0, 0.0);
-    }
-    for (k, &(sk, xk)) in nodes.iter().enumerate() {
-        let weight = nodes
-            .iter()
-            .enumerate()
-            .filter(|&(l, _)| l != k)
-            .fold(1.0, |w, (_, &(sl, _))| w * (s - sl) / (sk - sl));
-        for (o, x) in out.iter_mut().zip(xk) {
-            *o += x * weight;
-        }
-    }
-}
-
-/// Per coordinate, the Möbius function `(p + q s)/(1 + r s)` through the latest three
-/// nodes (`p + q s_k − r s_k x_k = x_k`, Cramer's rule), at `s`. Exact for a
-/// coordinate with a simple pole in τ, like the far-out critical points that pass near
-/// infinity between poses; the polynomial ([`extrapolate`]) where the fit is
-/// degenerate.
-pub(super) fn extrapolate_moebius(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
-    let [(s0, x0), (s1, x1), (s2, x2), ..] = *nodes else {
-        return extrapolate(nodes, s, out);
-    };
-    extrapolate(nodes, s, out);
-    let one = C64::new(1.0, 0.0);
-    let det3 = |m: [[C64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    for (i, o) in out.iter_mut().enumerate() {
-        let rows = [(s0, x0[i]), (s1, x1[i]), (s2, x2[i])];
-        let matrix = rows.map(|(sk, xk)| [one, C64::new(sk, 0.0), -xk * sk]);
-        let rhs = rows.map(|(_, xk)| xk);
-        let det = det3(matrix);
-        let column = |c: usize| {
-            let mut m = matrix;
-            for (row, value) in m.iter_mut().zip(rhs) {
-                row[c] = value;
-            }
-            det3(m) / det
-        };
-        let (p, q, r) = (column(0), column(1), column(2));
-        let value = (p + q * s) / (one + r * s);
-        if value.re.is_finite() && value.im.is_finite() {
-            *o = value;
-        }
-    }
-}
-
-/// A prediction of a critical point at `s` from its known values ([`Node`]).
-pub(super) type Predictor = fn(&[Node<'_>], f64, &mut [C64]);
-
-/// The predictions [`jump_problem`] tries in turn, given `depth` known values: the
-/// polynomial extrapolation, then the Möbius one, then the latest value. (Measured on
-/// the built-in example: the Möbius and constant retries cut the critical points
-/// left to pose-to-pose paths from 1,252 to 841.)
-pub(super) fn predictors(depth: usize) -> &'static [Predictor] {
-    fn latest(nodes: &[Node<'_>], s: f64, out: &mut [C64]) {
-        extrapolate(&nodes[..1], s, out);
-    }
-    match depth {
-        0 | 1 => &[extrapolate],
-        2 => &[extrapolate, latest],
-        _ => &[extrapolate, extrapolate_moebius, latest],
-    }
-}
-
-/// Newton's method at `s` ([`Tracker::correct_at`]) from each prediction in turn;
-/// the first limit that is a simple endpoint, else the last attempt.
-pub(super) fn correct_predicted<H: Homotopy + ?Sized>(
-    tracker: &mut Tracker<'_, H>,
-    nodes: &[Node<'_>],
-    s: f64,
-    prediction: &mut [C64],
-    path_index: usize,
-) -> PathResult {
-    let mut result = None;
-    for predict in predictors(nodes.len()) {
-        predict(nodes, s, prediction);
-        let limit = tracker.correct_at(prediction, s, path_index);
-        let simple = simple_endpoint(&limit);
-        result = Some(limit);
-        if simple {
-            break;
-        }
-    }
-    result.expect("at least one predictor")
-}
-
-/// Smallest sub-step (in pose spacings) of [`substep_to_pose`].
-pub(super) const MIN_SUBSTEP: f64 = 1.0 / 16.0;
-
-/// Newton continuation of one critical point from the latest pose (`s = 0`) to the
-/// next (`s = 1`) along the straight real route (`homotopy` at `t = s`): sub-steps
-/// from `½` down to [`MIN_SUBSTEP`] pose spacings, each predicted from the latest
-/// three known values ([`correct_predicted`]), halved when Newton's method fails,
-/// doubled when it succeeds. `None` if a sub-step would fall below the minimum.
-pub(super) fn substep_to_pose<H: Homotopy + ?Sized>(
-    tracker: &mut Tracker<'_, H>,
-    history: &[&[C64]],
-    path_index: usize,
-) -> Option<PathResult> {
-    let mut nodes: Vec<(f64, Vec<C64>)> = history
-        .iter()
-        .enumerate()
-        .map(|(k, x)| (-(k as f64), x.to_vec()))
-        .collect();
-    let mut prediction = vec![C64::new(0.0, 0.0); history[0].len()];
-    let (mut s, mut h): (f64, f64) = (0.0, 0.5);
-    loop {
-        let target = (s + h).min(1.0);
-        let known: Vec<Node<'_>> = nodes.iter().map(|(s, x)| (*s, x.as_slice())).collect();
-        let result = correct_predicted(tracker, &known, target, &mut prediction, path_index);
-        if simple_endpoint(&result) {
-            if target >= 1.0 {
-                return Some(result);
-            }
-            nodes.insert(0, (target, result.solution));
-            nodes.truncate(3);
-            s = target;
-            h *= 2.0;
-        } else {
-            h *= 0.5;
-            if h < MIN_SUBSTEP {
-                return None;
-            }
-        }
-    }
-}
-
-/// For every point of a solution set at a real parameter, the index of its complex
-/// conjugate in the set ([`LagrangeProblem::conjugate`]; itself for a real point), or
-/// `None` if the conjugate is not in the set or the pairing is not mutual.
-pub(super) fn conjugate_partners(
-    problem: &LagrangeProblem,
-    set: &[Vec<C64>],
-) -> Vec<Option<usize>> {
-    let found: Vec<Option<usize>> = set
-        .iter()
-        .map(|x| {
-            let conjugate = problem.conjugate(x);
-            set.iter().position(|y| same_endpoint(y, &conjugate))
-        })
-        .collect();
-    (0..set.len())
-        .map(|i| found[i].filter(|&j| found[j] == Some(i)))
-        .collect()
-}
+use crate::pipeline::sweep::{JumpRoutes, jump_set};
 
 /// Solves one sub-problem at pose `index` from the complete solution sets of the
-/// preceding poses (`history`, latest first, each in the same order) without tracking:
-/// every critical point is extrapolated ([`extrapolate`]) and corrected by Newton's
-/// method at the pose ([`Tracker::correct_at`]). Of each complex conjugate pair only
-/// one is continued and the other is its conjugate ([`conjugate_partners`]; the poses
-/// are real). Which critical point a Newton sequence converges to is not controlled,
-/// but the set is checked: the number of nonsingular solutions is at most the generic
-/// one, so `start_count` distinct nonsingular limits are all the critical points.
-/// Limits that fail or coincide are re-tracked from the latest pose (short paths
-/// through a random complex midpoint); `None` when the set is still incomplete.
+/// preceding poses (`history`, latest first, each in the same order) by the sweep
+/// engine's Newton jump ([`jump_set`]): Newton's method at the pose from extrapolated
+/// critical points, the pose-to-pose route (through a random complex midpoint along
+/// the motion) and Newton sub-steps along the straight real route for what it leaves;
+/// `None` when the set is still incomplete.
 pub(super) fn jump_problem(
     context: SolveContext<'_>,
     (index, sample): (usize, SampledPose),
@@ -186,7 +22,6 @@ pub(super) fn jump_problem(
         motion,
         options,
     } = context;
-    let latest = *history.first()?;
     let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
     let design = &seeded.design;
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
@@ -200,37 +35,6 @@ pub(super) fn jump_problem(
         parameters[12..].to_vec(),
     );
     let homotopy = PathParameterHomotopy::new(seeded.problem.evaluator(), path);
-    // At a real pose the critical points come in complex conjugate pairs (and real
-    // ones): only one of each pair is continued, its partner is the conjugate.
-    let partner = conjugate_partners(&seeded.problem, latest);
-    let representatives: Vec<usize> = (0..latest.len())
-        .filter(|&i| partner[i].is_none_or(|j| j >= i))
-        .collect();
-    const CHUNK: usize = 16;
-    let mut reps: Vec<PathResult> = representatives
-        .par_chunks(CHUNK)
-        .map(|chunk| {
-            let mut tracker = Tracker::new(&homotopy, options.neighbour_tracker.clone());
-            let mut prediction = vec![C64::new(0.0, 0.0); homotopy.dimension()];
-            chunk
-                .iter()
-                .map(|&i| {
-                    // At most JUMP_HISTORY known values, on the stack.
-                    let mut nodes: [Node<'_>; JUMP_HISTORY] = [(0.0, &[]); JUMP_HISTORY];
-                    let depth = history.len().min(JUMP_HISTORY);
-                    for (k, (node, set)) in nodes.iter_mut().zip(history).enumerate() {
-                        *node = (-(k as f64), set[i].as_slice());
-                    }
-                    let nodes = &nodes[..depth];
-                    correct_predicted(&mut tracker, nodes, 1.0, &mut prediction, i)
-                })
-                .collect::<Vec<_>>()
-        })
-        .flatten()
-        .collect();
-    let mut tracked = reps.len();
-    // Newton limits that failed or coincide: continued in sub-steps along the straight
-    // real route, else tracked (short paths through the complex midpoint).
     let straight = PathParameterHomotopy::new(
         seeded.problem.evaluator(),
         MotionPath::new(
@@ -242,68 +46,14 @@ pub(super) fn jump_problem(
             parameters[12..].to_vec(),
         ),
     );
-    let redo = |which: &[usize], substeps: bool| -> Vec<PathResult> {
-        which
-            .par_chunks(4)
-            .map(|chunk| {
-                let mut newton = Tracker::new(&straight, options.neighbour_tracker.clone());
-                let mut paths = Tracker::new(&homotopy, options.neighbour_tracker.clone());
-                chunk
-                    .iter()
-                    .map(|&i| {
-                        let known: Vec<&[C64]> =
-                            history.iter().map(|set| set[i].as_slice()).collect();
-                        substeps
-                            .then(|| substep_to_pose(&mut newton, &known, i))
-                            .flatten()
-                            .unwrap_or_else(|| paths.track_between(&latest[i], 0.0, 1.0, i))
-                    })
-                    .collect::<Vec<_>>()
-            })
-            .flatten()
-            .collect()
+    let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
+    let routes = JumpRoutes {
+        neighbour: &homotopy,
+        straight: &straight,
+        tracker: &options.neighbour_tracker,
+        conjugate: &conjugate,
     };
-    let crossed = crossings(&reps);
-    let which: Vec<usize> = (0..reps.len())
-        .filter(|&r| !simple_endpoint(&reps[r]) || crossed[r])
-        .collect();
-    let indices: Vec<usize> = which.iter().map(|&r| reps[r].path_index).collect();
-    for (r, result) in which.iter().zip(redo(&indices, true)) {
-        reps[*r] = result;
-    }
-    tracked += which.len();
-    let mut paths: Vec<Option<PathResult>> = vec![None; latest.len()];
-    for result in reps {
-        let i = result.path_index;
-        if let Some(j) = partner[i].filter(|&j| j != i) {
-            let mut conjugate = result.clone();
-            conjugate.solution = seeded.problem.conjugate(&result.solution);
-            conjugate.path_index = j;
-            paths[j] = Some(conjugate);
-        }
-        paths[i] = Some(result);
-    }
-    let mut paths = paths.into_iter().collect::<Option<Vec<PathResult>>>()?;
-    // A pair whose continuation became real (two real critical points), or a path
-    // crossing between pairs: those critical points are tracked one by one, by paths
-    // through the complex midpoint only. Newton sub-steps along the real route cannot
-    // separate them: the iterates from a point and from its conjugate stay conjugate,
-    // so a pair that turned real between the poses lands twice on one real point.
-    let crossed = crossings(&paths);
-    let which: Vec<usize> = (0..paths.len())
-        .filter(|&i| !simple_endpoint(&paths[i]) || crossed[i])
-        .collect();
-    for (&i, result) in which.iter().zip(redo(&which, false)) {
-        paths[i] = result;
-    }
-    tracked += which.len();
-    let complete = paths.iter().all(simple_endpoint)
-        && !crossings(&paths).contains(&true)
-        && paths.len() == seeded.at_seed.start_count;
-    if !complete {
-        return None;
-    }
-    let endpoints: Vec<Vec<C64>> = paths.into_iter().map(|p| p.solution).collect();
+    let (endpoints, tracked) = jump_set(routes, history, seeded.at_seed.start_count)?;
     let at = (&parameters[..], &k);
     let count = (seeded.at_seed.start_count, None, tracked);
     Some(problem_at_pose(

@@ -100,10 +100,7 @@ struct PoseEntry {
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::certify::distance::{self as certification, SubproblemCertificate};
-use crate::homotopy::{
-    Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PolylinePath, Tracker,
-    TrackerOptions,
-};
+use crate::homotopy::{ParameterPath, PathParameterHomotopy, PolylinePath, TrackerOptions};
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
 use crate::problem::{
@@ -128,8 +125,8 @@ pub use super::sweep::FAR_POSE_STEP;
 pub use crate::pipeline::sweep::PathFailure;
 pub use crate::pipeline::sweep::window_ranges;
 use crate::pipeline::sweep::{
-    ProjectiveTwin, Retried, TrackingPlan, crossings, detour_point, distinct_solutions,
-    same_endpoint, simple_endpoint, track_with_retries, with_conjugates,
+    JUMP_HISTORY, ProjectiveTwin, Retried, TrackingPlan, detour_point, distinct_solutions,
+    track_with_retries, with_conjugates,
 };
 pub use crate::pipeline::sweep::{SELF_CHECK_TOLERANCE, SelfCheck};
 pub(crate) use crate::pipeline::sweep::{check_seed, checked_poses};

@@ -1,49 +1,6 @@
 use super::*;
 use crate::mechanism::rpr::{example_design, example_motion};
 
-/// The predictors are exact on their model functions at any nodes: a quadratic
-/// per coordinate for [`extrapolate`], a Möbius function (a simple pole at
-/// `s = 2.5` and `s = −4`) for [`extrapolate_moebius`], which the quadratic misses.
-#[test]
-fn predictors_reproduce_their_model_functions() {
-    let quadratic = |s: f64| {
-        [
-            C64::new(1.0 - 2.0 * s + 0.5 * s * s, s),
-            C64::new(3.0, -s * s),
-        ]
-    };
-    let moebius = |s: f64| {
-        [
-            C64::new(2.0 + 3.0 * s, 1.0) / (1.0 - 0.4 * s),
-            C64::new(-1.0, 0.5 * s) / C64::new(1.0 + 0.25 * s, 0.1 * s),
-        ]
-    };
-    type Predictor = fn(&[Node<'_>], f64, &mut [C64]);
-    // The prediction at `s` from the model's values at the nodes `at`.
-    let predict = |predictor: Predictor, model: &dyn Fn(f64) -> [C64; 2], at: [f64; 3], s| {
-        let owned: Vec<(f64, Vec<C64>)> = at.iter().map(|&t| (t, model(t).to_vec())).collect();
-        let nodes: Vec<Node<'_>> = owned.iter().map(|(t, v)| (*t, &v[..])).collect();
-        let mut out = [C64::new(0.0, 0.0); 2];
-        predictor(&nodes, s, &mut out);
-        out
-    };
-    let error =
-        |out: [C64; 2], exact: [C64; 2]| (out[0] - exact[0]).norm().max((out[1] - exact[1]).norm());
-    for at in [[0.0, -1.0, -2.0], [0.5, 0.0, -1.0], [0.75, 0.5, 0.0]] {
-        for s in [1.0, 0.875] {
-            let out = predict(extrapolate, &quadratic, at, s);
-            assert!(error(out, quadratic(s)) < 1e-12, "{out:?} at {s}");
-            let out = predict(extrapolate_moebius, &moebius, at, s);
-            assert!(error(out, moebius(s)) < 1e-10, "{out:?} at {s}");
-            let out = predict(extrapolate, &moebius, at, s);
-            assert!(
-                (out[0] - moebius(s)[0]).norm() > 1e-3,
-                "the quadratic should miss the pole"
-            );
-        }
-    }
-}
-
 /// `MotionPath::point_and_velocity` is the derivative of `MotionPath::point`
 /// (central differences in complex t), on every segment of a detoured path.
 #[test]

@@ -13,6 +13,7 @@ use std::collections::BTreeMap;
 
 mod chains;
 mod check;
+mod jump;
 mod retry;
 mod run;
 mod seed;
@@ -22,6 +23,7 @@ pub use chains::FAR_POSE_STEP;
 pub(crate) use chains::{chain_anchor, chains_over};
 pub use check::{SELF_CHECK_TOLERANCE, SelfCheck};
 pub(crate) use check::{check_seed, checked_poses};
+pub(crate) use jump::{JUMP_HISTORY, JumpRoutes, jump_set};
 pub(crate) use retry::*;
 pub use run::{PoseRange, Sweep, SweepWindow, SweptFamily, merge_windows, window_ranges};
 pub use seed::{SeedPolicy, SeedSolutions, Seeded, distinct_solutions, seed_count_confirmed};
