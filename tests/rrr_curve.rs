@@ -341,12 +341,12 @@ fn assert_same_critical_points(a: &RrrCurveResult, b: &RrrCurveResult) {
     }
 }
 
-/// Results do not depend on the number of worker threads (every path is a pure function
-/// of its inputs and seeded streams).
-/// Chained poses (each from its neighbour's critical points) and poses solved from the
-/// seed find the same critical points, on the three design classes of
-/// `rrr_support::trajectories`: equal counts, distances equal to 1e-9 relative, and the
-/// chained run loses no path.
+/// Chained poses (each from its neighbour's critical points, by pose-to-pose paths or
+/// by Newton jumps: critical points extrapolated from the preceding poses and
+/// corrected at the pose) and poses solved from the seed find the same critical
+/// points, on the three design classes of `rrr_support::trajectories`: equal counts,
+/// distances equal to 1e-9 relative, and the chained runs lose no path; the jumps
+/// track fewer paths (they do replace paths).
 #[test]
 fn chained_poses_equal_poses_from_the_seed() {
     for trajectory in rrr_support::trajectories() {
@@ -354,17 +354,27 @@ fn chained_poses_equal_poses_from_the_seed() {
         let taus: Vec<f64> = (0..24)
             .map(|j| lo + (hi - lo) * (j as f64 + 0.5) / 24.0)
             .collect();
-        let solve = |chain_length| {
+        let solve = |chain_length, jump| {
             let options = RrrCurveOptions {
                 chain_length,
+                jump,
                 ..RrrCurveOptions::default()
             };
             compute_rrr_curve_at(&trajectory, &taus, &options, &default_rrr_start_solutions)
                 .expect("curve")
         };
-        let (from_seed, chained) = (solve(1), solve(8));
-        assert_no_lost_paths(&chained);
-        assert_same_critical_points(&from_seed, &chained);
+        let from_seed = solve(1, false);
+        let (paths, jumps) = (solve(8, false), solve(8, true));
+        for chained in [&paths, &jumps] {
+            assert_no_lost_paths(chained);
+            assert_same_critical_points(&from_seed, chained);
+        }
+        assert!(
+            jumps.paths_tracked < paths.paths_tracked,
+            "{} paths with jumps, {} without",
+            jumps.paths_tracked,
+            paths.paths_tracked
+        );
     }
 }
 
@@ -400,6 +410,8 @@ fn scattered_pose_lists_chain_in_nearest_neighbour_order() {
     assert_same_critical_points(&from_seed, &chained);
 }
 
+/// Results do not depend on the number of worker threads (every path is a pure function
+/// of its inputs and seeded streams).
 #[test]
 fn results_are_identical_for_one_and_two_threads() {
     let trajectory = example_trajectory();

@@ -10,11 +10,15 @@
 //! away in the run's normalised frame. In each chain one pose, the *anchor*, is solved
 //! from the seed (the pose nearest `Re τ*`, the shortest seed route; the chain's first
 //! pose for pose lists), and the others forwards and backwards from it, each
-//! sub-problem from its predecessor's solutions by the sweep engine's chain walk
-//! (`walk_chain`, the rule the 3-RPR's chains follow too; the 3-RRR has no Newton
-//! jumps):
+//! sub-problem from its predecessors' solutions by the sweep engine's chain walk
+//! (`walk_chain`, the rule the 3-RPR's chains follow too):
 //!
-//! - the predecessor's distinct finite critical points are tracked along two
+//! - with [`RrrCurveOptions::jump`], first by the sweep engine's Newton jump
+//!   (`jump_set`): each critical point of the latest three complete sets extrapolated
+//!   to the pose and corrected there by Newton's method, one per complex conjugate
+//!   pair, Newton sub-steps along the straight segment and paths for what that
+//!   leaves; kept only when the set is complete;
+//! - otherwise the predecessor's distinct finite critical points are tracked along two
 //!   segments through a random complex midpoint `(p + q)/2 + ε·ξ` of the two
 //!   configurations (`ε` half their largest coordinate difference, `ξ` standard complex
 //!   normal): between two real configurations the straight segment may meet a real
@@ -35,11 +39,11 @@ use super::curve::{
 };
 use super::seed::{RrrFrame, RrrSeededProblem};
 use crate::C64;
-use crate::homotopy::PolylinePath;
+use crate::homotopy::{PathParameterHomotopy, PolylinePath};
 use crate::mechanism::rrr::CONFIGURATION_LEN;
 use crate::pipeline::sweep::{
-    ChainRoutes, Retried, TrackingPlan, chain_anchor, rescue_lost_runs, track_with_retries,
-    walk_chain,
+    ChainRoutes, JUMP_HISTORY, JumpRoutes, Retried, TrackingPlan, chain_anchor, jump_set,
+    rescue_lost_runs, track_with_retries, walk_chain,
 };
 use crate::problem::rrr::RrrProblem;
 use crate::random;
@@ -88,8 +92,8 @@ struct CompleteSet {
 }
 
 /// One sub-problem along a block of the 3-RRR curve, as the sweep engine's chain walk
-/// ([`walk_chain`]) sees it: pose-to-pose paths from the latest complete set, the seed
-/// route (no Newton jumps).
+/// ([`walk_chain`]) sees it: Newton jumps from the latest complete sets (with
+/// [`RrrCurveOptions::jump`]), pose-to-pose paths from the latest one, the seed route.
 struct ProblemChain<'a> {
     seeded: &'a RrrSeededProblem,
     frame: &'a RrrFrame,
@@ -125,6 +129,15 @@ impl ChainRoutes for ProblemChain<'_> {
         let (target, stream) = self.target(j);
         let retried = track_from_neighbour(self.seeded, set, &target, stream, self.options);
         (retried, target)
+    }
+
+    fn jump(&self, j: usize, _previous: usize, history: &[CompleteSet]) -> Option<Self::Outcome> {
+        if !self.options.jump {
+            return None;
+        }
+        let (target, stream) = self.target(j);
+        let retried = jump_to(self.seeded, history, &target, stream, self.options)?;
+        Some((retried, target))
     }
 
     fn complete_set(&self, outcome: &Self::Outcome) -> Option<CompleteSet> {
@@ -172,7 +185,8 @@ pub(crate) fn solve_chain(
     let forwards: Vec<usize> = (anchor + 1..block.len()).collect();
     let backwards: Vec<usize> = (0..anchor).rev().collect();
     let mut outcomes: Vec<Option<(Retried, Vec<C64>)>> = (0..block.len()).map(|_| None).collect();
-    for (j, outcome) in walk_chain(&routes, anchor, [&forwards, &backwards], 1) {
+    let keep = if options.jump { JUMP_HISTORY } else { 1 };
+    for (j, outcome) in walk_chain(&routes, anchor, [&forwards, &backwards], keep) {
         outcomes[j] = Some(outcome);
     }
     let mut outcomes: Vec<(Retried, Vec<C64>)> = outcomes.into_iter().flatten().collect();
@@ -196,21 +210,11 @@ pub(crate) fn solve_chain(
 /// `0 ..= retry_attempts`).
 const NEIGHBOUR_SALT: u64 = 8;
 
-/// `set`'s solutions tracked to `target` along two segments through a random complex
-/// midpoint (module documentation), without detours: where this route does not
-/// complete the pose, the seed route does.
-fn track_from_neighbour(
-    seeded: &RrrSeededProblem,
-    set: &CompleteSet,
-    target: &[C64],
-    stream: u64,
-    options: &RrrCurveOptions,
-) -> Retried {
-    let mut rng = random::stream(
-        options.seed,
-        stream.wrapping_mul(16).wrapping_add(NEIGHBOUR_SALT),
-    );
-    let from = &set.parameters;
+/// The pose-to-pose route from the parameters `from` to `target`: two segments through
+/// the random complex midpoint `(p + q)/2 + ε·ξ` (module documentation) of stream
+/// `stream`.
+fn neighbour_path(from: &[C64], target: &[C64], stream: u64, seed: u64) -> PolylinePath {
+    let mut rng = random::stream(seed, stream.wrapping_mul(16).wrapping_add(NEIGHBOUR_SALT));
     let spread = from
         .iter()
         .zip(target)
@@ -222,7 +226,59 @@ fn track_from_neighbour(
         .zip(target)
         .map(|(a, b)| (a + b) * 0.5 + random::complex_normal(&mut rng) * epsilon)
         .collect();
-    let path = PolylinePath::new(vec![from.clone(), midpoint, target.to_vec()]);
+    PolylinePath::new(vec![from.to_vec(), midpoint, target.to_vec()])
+}
+
+/// The sweep engine's Newton jump ([`jump_set`]) to `target` from the complete sets
+/// `history` (latest first, consecutive poses of the chain): Newton's method at the
+/// pose from extrapolated critical points, Newton sub-steps along the straight segment
+/// from the latest pose and the pose-to-pose route for what it leaves. `None` when the
+/// set it finds is not complete.
+fn jump_to(
+    seeded: &RrrSeededProblem,
+    history: &[CompleteSet],
+    target: &[C64],
+    stream: u64,
+    options: &RrrCurveOptions,
+) -> Option<Retried> {
+    let from = &history.first()?.parameters;
+    let evaluator = seeded.problem.evaluator();
+    let neighbour = PathParameterHomotopy::new(
+        evaluator,
+        neighbour_path(from, target, stream, options.seed),
+    );
+    let straight = PolylinePath::new(vec![from.clone(), target.to_vec()]);
+    let straight = PathParameterHomotopy::new(evaluator, straight);
+    let routes = JumpRoutes {
+        neighbour: &neighbour,
+        straight: &straight,
+        tracker: &options.neighbour_tracker,
+        conjugate: &RrrProblem::conjugate,
+    };
+    let sets: Vec<&[Vec<C64>]> = history.iter().map(|set| set.solutions.as_slice()).collect();
+    let count = seeded.at_seed.start_count;
+    let (endpoints, tracked) = jump_set(routes, &sets, count)?;
+    Some(Retried {
+        endpoints,
+        accounted: count,
+        tracked,
+        reasons: Default::default(),
+        confirmed_by_twin: false,
+        handed_over: false,
+    })
+}
+
+/// `set`'s solutions tracked to `target` along two segments through a random complex
+/// midpoint (module documentation), without detours: where this route does not
+/// complete the pose, the seed route does.
+fn track_from_neighbour(
+    seeded: &RrrSeededProblem,
+    set: &CompleteSet,
+    target: &[C64],
+    stream: u64,
+    options: &RrrCurveOptions,
+) -> Retried {
+    let path = neighbour_path(&set.parameters, target, stream, options.seed);
     let plan = TrackingPlan {
         // Between two generic real poses every critical point is finite and
         // nonsingular: no endgame; paths that fail, cross or diverge are re-run with it.

@@ -114,6 +114,13 @@ pub struct RrrCurveOptions {
     /// 1.44 × faster than the default preset).
     #[serde(default = "default_neighbour_tracker")]
     pub neighbour_tracker: TrackerOptions,
+    /// Within a chain, solve a pose first by Newton's method from critical points
+    /// extrapolated from the preceding poses, one per complex conjugate pair, without
+    /// tracking (the sweep engine's Newton jump, as for the 3-RPR); pose-to-pose paths
+    /// only for what that leaves unaccounted for. `false`: every pose from its
+    /// neighbour along paths.
+    #[serde(default = "default_jump")]
+    pub jump: bool,
 }
 
 impl Default for RrrCurveOptions {
@@ -128,8 +135,13 @@ impl Default for RrrCurveOptions {
             chain_length: default_chain_length(),
             self_check: default_self_check(),
             neighbour_tracker: default_neighbour_tracker(),
+            jump: default_jump(),
         }
     }
+}
+
+fn default_jump() -> bool {
+    false
 }
 
 fn default_self_check() -> bool {
