@@ -1,6 +1,7 @@
 //! 3-RRR distance curves of the built-in example (docs/theory.md §10): 90 poses, four
 //! sub-problems (parallel 50 paths, legs 2 paths each), on 2 threads, embedded start files:
-//! the default (chains of 20 poses and the self-check), every pose from the seed, and the
+//! the default (chains of 20 poses with Newton jumps, and the self-check), the chains
+//! without Newton jumps (pose-to-pose paths only), every pose from the seed, and the
 //! default without the self-check. Prints paths/s of one run of each before its criterion
 //! measurement.
 
@@ -18,10 +19,17 @@ fn bench_rrr_curve(c: &mut Criterion) {
     let pool = thread_pool(2);
     let mut group = c.benchmark_group("rrr_curve");
     group.sample_size(10);
-    // The default (chains of 20 poses, self-check), every pose from the seed, and the
-    // default without its self-check.
+    // The default (chains of 20 poses with jumps, self-check), the chains without jumps,
+    // every pose from the seed, and the default without its self-check.
     let variants = [
         ("example_90_poses", RrrCurveOptions::default()),
+        (
+            "example_90_poses_no_jumps",
+            RrrCurveOptions {
+                jump: false,
+                ..RrrCurveOptions::default()
+            },
+        ),
         (
             "example_90_poses_seed_route",
             RrrCurveOptions {
