@@ -343,8 +343,8 @@ fn assert_same_critical_points(a: &RrrCurveResult, b: &RrrCurveResult) {
 
 /// Chained poses (each from its neighbour's critical points, by pose-to-pose paths or
 /// by Newton jumps: critical points extrapolated from the preceding poses and
-/// corrected at the pose) and poses solved from the seed find the same critical
-/// points, on the three design classes of `rrr_support::trajectories`: equal counts,
+/// corrected at the pose) and poses solved from the seed (along the complexified
+/// motion) find the same critical points, on the three design classes of `rrr_support::trajectories`: equal counts,
 /// distances equal to 1e-9 relative, and the chained runs lose no path; the jumps
 /// track fewer paths (they do replace paths).
 #[test]
@@ -358,6 +358,9 @@ fn chained_poses_equal_poses_from_the_seed() {
             let options = RrrCurveOptions {
                 chain_length,
                 jump,
+                // Every pose from the seed along the motion; chained poses take the
+                // straight seed route.
+                motion_route: chain_length == 1,
                 ..RrrCurveOptions::default()
             };
             compute_rrr_curve_at(&trajectory, &taus, &options, &default_rrr_start_solutions)

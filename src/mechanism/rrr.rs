@@ -583,6 +583,63 @@ impl RrrDesign {
         }
         out
     }
+
+    /// [`configuration_complex`](Self::configuration_complex) along a branch: the
+    /// signed elbow heights `g_i = σ_i h_i` (`B = O + k d + g (d_y, −d_x)`) are the
+    /// square roots of `h_i² = b²/L² − k²` nearest `reference`, so that a caller can
+    /// follow one branch continuously along a complex motion. With the pose's
+    /// derivative `velocity` (`dx, dy, dφ` per unit of the motion parameter) also
+    /// returns the configuration's derivative (`k′ = −(b² − c²) L²′/(2L⁴)`,
+    /// `(h²)′ = −b² L²′/L⁴ − 2k k′`, `g′ = (h²)′/(2g)`), and the heights `g`.
+    pub fn configuration_complex_on_branch(
+        &self,
+        [x, y, phi]: [C64; 3],
+        [vx, vy, vphi]: [C64; 3],
+        reference: &[C64; 3],
+    ) -> ([C64; CONFIGURATION_LEN], [C64; CONFIGURATION_LEN], [C64; 3]) {
+        let (s, c) = (phi.sin(), phi.cos());
+        let zero = C64::new(0.0, 0.0);
+        let (mut out, mut velocity, mut heights) = (
+            [zero; CONFIGURATION_LEN],
+            [zero; CONFIGURATION_LEN],
+            [zero; 3],
+        );
+        for leg in 0..3 {
+            let o = self.base[leg];
+            let q = self.platform[leg];
+            let cx = x + c * q.x - s * q.y;
+            let cy = y + s * q.x + c * q.y;
+            let vcx = vx + vphi * (-s * q.x - c * q.y);
+            let vcy = vy + vphi * (c * q.x - s * q.y);
+            let (dx, dy) = (cx - o.x, cy - o.y);
+            let l2 = dx * dx + dy * dy;
+            let vl2 = (dx * vcx + dy * vcy) * 2.0;
+            let (b, cl) = (self.proximal[leg], self.distal[leg]);
+            let k = (l2 + b * b - cl * cl) / (l2 * 2.0);
+            let vk = -vl2 * (b * b - cl * cl) / (l2 * l2 * 2.0);
+            let h2 = C64::new(b * b, 0.0) / l2 - k * k;
+            let vh2 = -vl2 * (b * b) / (l2 * l2) - k * vk * 2.0;
+            let root = h2.sqrt();
+            let g = if (root - reference[leg]).norm() <= (root + reference[leg]).norm() {
+                root
+            } else {
+                -root
+            };
+            let vg = vh2 / (g * 2.0);
+            heights[leg] = g;
+            out[2 * leg] = C64::new(o.x, 0.0);
+            out[2 * leg + 1] = C64::new(o.y, 0.0);
+            out[6 + 2 * leg] = o.x + k * dx + g * dy;
+            out[6 + 2 * leg + 1] = o.y + k * dy - g * dx;
+            out[12 + 2 * leg] = cx;
+            out[12 + 2 * leg + 1] = cy;
+            velocity[6 + 2 * leg] = vk * dx + k * vcx + vg * dy + g * vcy;
+            velocity[6 + 2 * leg + 1] = vk * dy + k * vcy - vg * dx - g * vcx;
+            velocity[12 + 2 * leg] = vcx;
+            velocity[12 + 2 * leg + 1] = vcy;
+        }
+        (out, velocity, heights)
+    }
 }
 
 // ---------------------------------------------------------------------------------

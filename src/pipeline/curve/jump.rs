@@ -17,12 +17,12 @@ pub(super) fn jump_problem(
     from: MotionPoint,
     history: &[&[Vec<C64>]],
 ) -> Option<ProblemAtPose> {
+    let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
     let SolveContext {
         stage,
         motion,
         options,
     } = context;
-    let (seeded, k, target, parameters) = context.problem_at(problem_index, &sample);
     let design = &seeded.design;
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let rng = random::stream(options.seed, stream.wrapping_mul(16) + 8);

@@ -37,10 +37,11 @@
 use super::curve::{
     Entry, RrrCurveOptions, path_stream, subproblem_entry, target_parameters, track_from_seed,
 };
+use super::motion_route::MotionRoute;
 use super::seed::{RrrFrame, RrrSeededProblem};
 use crate::C64;
 use crate::homotopy::{PathParameterHomotopy, PolylinePath};
-use crate::mechanism::rrr::CONFIGURATION_LEN;
+use crate::mechanism::rrr::{CONFIGURATION_LEN, RrrTrajectory};
 use crate::pipeline::sweep::{
     ChainRoutes, JUMP_HISTORY, JumpRoutes, Retried, TrackingPlan, chain_anchor, jump_set,
     rescue_lost_runs, track_with_retries, walk_chain,
@@ -95,6 +96,7 @@ struct CompleteSet {
 /// ([`walk_chain`]) sees it: Newton jumps from the latest complete sets (with
 /// [`RrrCurveOptions::jump`]), pose-to-pose paths from the latest one, the seed route.
 struct ProblemChain<'a> {
+    trajectory: &'a RrrTrajectory,
     seeded: &'a RrrSeededProblem,
     frame: &'a RrrFrame,
     block: &'a [ChainPose],
@@ -113,16 +115,32 @@ impl ProblemChain<'_> {
     }
 }
 
+impl<'a> ProblemChain<'a> {
+    /// The seed → pose route along the motion to pose `j` (parameters `target`), where
+    /// the options ask for it and it exists ([`MotionRoute::new`]).
+    fn motion_route(&self, j: usize, target: &[C64]) -> Option<MotionRoute<'a>> {
+        if !self.options.motion_route {
+            return None;
+        }
+        let source = (self.seeded.tau_star?, &self.seeded.at_seed.parameters[..]);
+        MotionRoute::new(
+            self.trajectory,
+            *self.frame,
+            source,
+            (self.block[j].tau, target),
+        )
+    }
+}
+
 impl ChainRoutes for ProblemChain<'_> {
     type Set = CompleteSet;
     type Outcome = (Retried, Vec<C64>);
 
     fn seed_route(&self, j: usize) -> Self::Outcome {
         let (target, stream) = self.target(j);
-        (
-            track_from_seed(self.seeded, &target, stream, self.options),
-            target,
-        )
+        let along = self.motion_route(j, &target);
+        let retried = track_from_seed(self.seeded, &target, stream, self.options, along.as_ref());
+        (retried, target)
     }
 
     fn neighbour_route(&self, j: usize, _previous: usize, set: &CompleteSet) -> Self::Outcome {
@@ -168,6 +186,7 @@ impl ChainRoutes for ProblemChain<'_> {
 
 /// One sub-problem at every pose of `block` (module documentation), in block order.
 pub(crate) fn solve_chain(
+    trajectory: &RrrTrajectory,
     seeded: &RrrSeededProblem,
     frame: &RrrFrame,
     block: &[ChainPose],
@@ -176,6 +195,7 @@ pub(crate) fn solve_chain(
     options: &RrrCurveOptions,
 ) -> Vec<Entry> {
     let routes = ProblemChain {
+        trajectory,
         seeded,
         frame,
         block,
@@ -319,13 +339,13 @@ mod tests {
         // As if this stage's seed had missed one critical point the other stage found.
         seeded.at_seed.solutions.remove(full / 2);
         let seeded = &stage.problems[0];
-        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
+        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options, None);
         assert_eq!(retried.accounted, full);
         assert_eq!(retried.endpoints.len(), full);
         // The seed route alone (the count not raised) reaches one fewer.
         stage.problems[0].at_seed.start_count = full - 1;
         let seeded = &stage.problems[0];
-        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options);
+        let retried = track_from_seed(seeded, &target, path_stream(3, 0), &options, None);
         assert_eq!(retried.endpoints.len(), full - 1);
     }
 

@@ -7,6 +7,7 @@
 pub mod ab_initio;
 pub mod chain;
 pub mod curve;
+mod motion_route;
 pub mod seed;
 pub mod self_check;
 pub mod window;

@@ -111,6 +111,8 @@ pub struct RrrSeededProblem {
     pub problem: RrrProblem,
     /// Its solutions at the seed (`K*` in the normalised frame) and its counts.
     pub at_seed: SeedSolutions,
+    /// The complex motion parameter `τ*` of its seed point (`None` for pose lists).
+    pub tau_star: Option<C64>,
 }
 
 /// Makes the run's seed stage and the self-check's expect the same count per
@@ -214,7 +216,7 @@ struct SeedFamily<'a> {
 }
 
 impl Family for SeedFamily<'_> {
-    type Seed = ();
+    type Seed = Option<C64>;
 
     fn problems(&self) -> usize {
         self.prepared.len()
@@ -233,8 +235,9 @@ impl Family for SeedFamily<'_> {
         (source, starts)
     }
 
-    fn seed(&self, _problem: usize, point: usize) -> ((), Vec<C64>) {
-        ((), self.seeds[point].1.clone())
+    fn seed(&self, _problem: usize, point: usize) -> (Option<C64>, Vec<C64>) {
+        let (tau, k) = &self.seeds[point];
+        (*tau, k.clone())
     }
 
     fn moving_parameters(&self) -> usize {
@@ -303,9 +306,13 @@ pub fn rrr_seed_stage(
     let problems = prepared
         .into_iter()
         .zip(seeded)
-        .map(|((problem, source, starts), seeded)| RrrSeededProblem {
-            problem,
-            at_seed: SeedSolutions::new(seeded, (source, starts)).1,
+        .map(|((problem, source, starts), seeded)| {
+            let (tau_star, at_seed) = SeedSolutions::new(seeded, (source, starts));
+            RrrSeededProblem {
+                problem,
+                at_seed,
+                tau_star,
+            }
         })
         .collect();
     Ok(RrrSeedStage {
@@ -338,6 +345,7 @@ mod tests {
                     start_count: count,
                     generic_start: (Vec::new(), Vec::new()),
                 },
+                tau_star: None,
             })
             .collect();
         RrrSeedStage {

@@ -13,6 +13,7 @@
 use super::chain::{ChainPose, solve_chain};
 use super::curve::{RrrCurveOptions, RrrPathFailure, RrrPoseResult};
 use super::seed::RrrSeedStage;
+use crate::mechanism::rrr::RrrTrajectory;
 use crate::pipeline::curve::{SELF_CHECK_TOLERANCE, SelfCheck, check_seed, checked_poses};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -48,7 +49,7 @@ fn poses_to_check(results: &[RrrPoseResult]) -> Vec<usize> {
 /// caller assembles again. `length_scale` sets the absolute floor `10⁻¹² · length_scale`
 /// under which distances differ by rounding only.
 pub(crate) fn check_window(
-    (stage, options): (&RrrSeedStage, &RrrCurveOptions),
+    (trajectory, stage, options): (&RrrTrajectory, &RrrSeedStage, &RrrCurveOptions),
     poses: &[ChainPose],
     results: &mut [RrrPoseResult],
     length_scale: f64,
@@ -64,7 +65,8 @@ pub(crate) fn check_window(
         .map(|&(at, p)| {
             let pose = [poses[at]];
             let seeded = &stage.problems[p];
-            let entry = solve_chain(seeded, &stage.frame, &pose, 0, p, options).remove(0);
+            let frame = &stage.frame;
+            let entry = solve_chain(trajectory, seeded, frame, &pose, 0, p, options).remove(0);
             (at, seeded.problem.kind(), entry.result)
         })
         .collect();
@@ -152,7 +154,7 @@ mod tests {
             .collect();
         let check_options = check_options(&options);
         let stage = rrr_seed_stage(&trajectory, &check_options, provider).unwrap();
-        let checked = (&stage, &check_options);
+        let checked = (&trajectory, &stage, &check_options);
         let (check, changed) = check_window(checked, &poses, &mut result.poses, 1.0);
         assert_eq!(check.disagreements, 1, "{check:?}");
         assert_eq!(changed, vec![5]);

@@ -189,7 +189,16 @@ impl SweptFamily for RrrCurveFamily<'_> {
             .par_iter()
             .map(|&(c, p)| {
                 let (_, poses, anchor) = &chains[c];
-                solve_chain(&stage.problems[p], &stage.frame, poses, *anchor, p, options)
+                let seeded = &stage.problems[p];
+                solve_chain(
+                    self.trajectory,
+                    seeded,
+                    &stage.frame,
+                    poses,
+                    *anchor,
+                    p,
+                    options,
+                )
             })
             .collect();
         let mut solved = solved.into_iter();
@@ -240,7 +249,7 @@ impl SweptFamily for RrrCurveFamily<'_> {
             .map(|r| self.chain_pose(r.index))
             .collect::<Result<Vec<_>, _>>()?;
         let poses: Vec<ChainPose> = window_poses.iter().map(|(_, at)| *at).collect();
-        let checked = (&check.0, &check.1);
+        let checked = (self.trajectory, &check.0, &check.1);
         let (summary, changed) = check_window(checked, &poses, results, stage.frame.scale());
         for i in changed {
             let (pose, at) = &window_poses[i];
