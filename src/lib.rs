@@ -93,6 +93,15 @@
 //! - **Morgan, Sommese and Wampler 1991**: A. P. Morgan, A. J. Sommese, C. W. Wampler,
 //!   "Computing singular solutions to nonlinear analytic systems", Numerische Mathematik 58
 //!   (1991) 669–684 (the Cauchy endgame).
+//! - **Wampler 1994**: C. W. Wampler, "An efficient start system for multi-homogeneous
+//!   polynomial continuation", Numerische Mathematik 66 (1994) 517–523 (searching variable
+//!   groupings for the least multi-homogeneous Bézout number).
+//! - **Griewank and Osborne 1983**: A. Griewank, M. R. Osborne, "Analysis of Newton's method
+//!   at irregular singularities", SIAM Journal on Numerical Analysis 20 (4) (1983) 747–773 (the
+//!   linear convergence that tells a point at infinity of the Fritz John chart).
+//! - **Hairer, Nørsett and Wanner**: E. Hairer, S. P. Nørsett, G. Wanner, "Solving ordinary
+//!   differential equations I: nonstiff problems", 2nd ed., Springer, 1993 (the step-size
+//!   controller of the path tracker).
 //! - **Sommese and Wampler**: A. J. Sommese, C. W. Wampler, "The numerical solution of systems
 //!   of polynomials arising in engineering and science", World Scientific, 2005.
 //! - **Duff et al. 2019**: T. Duff, C. Hill, A. Jensen, K. Lee, A. Leykin, J. Sommars, "Solving
