@@ -360,18 +360,13 @@ impl<'a> TrackingPlan<'a> {
 ///    side ([`Tracker::track_via`]); an endpoint counts only if it is finite and
 ///    distinct from every endpoint found (an endpoint of any route is a solution at
 ///    the target, but which one a path reaches may depend on the route);
-/// 3. with a projective twin (`plan.twin`), tracks the reference route's paths at
-///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]) — an
-///    independent formulation of the same critical points, and the cheaper step where
-///    the reference route loses a few paths near singular points of the constraint
-///    set: on a base with two anchors 10⁻⁴ apart it classifies the lost paths of a
-///    seed → pose route that whole detours do not (`plate/rigid`, 8 scattered poses:
-///    18.0 s with the detours first, 13.7 s with the twin first, the same distances);
-/// 4. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
+/// 3. tracks every path along the detours `path(1)`, … `path(attempts)`, merging the
 ///    distinct finite endpoints, until [`STAGNANT_DETOURS`] whole detours in a row add
 ///    no endpoint and account for no more paths (on designs whose base is congruent
 ///    with or similar to the platform, the `rigid/rigid` seed stage sends 64 of 88 paths
 ///    to infinity and a few of them stay unclassified on every detour);
+/// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
+///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
 /// 5. gives the lost paths the twin did not classify a last, long re-run.
 ///
 /// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
@@ -507,6 +502,46 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     } else {
         Vec::new()
     };
+    // Whole detours in a row that found no new endpoint and accounted for no more
+    // paths: after STAGNANT_DETOURS of them the rest are not tracked.
+    let mut stagnant = 0;
+    for attempt in 1..=attempts {
+        if best >= expected || stagnant >= STAGNANT_DETOURS {
+            break;
+        }
+        let detour = PathParameterHomotopy::new(system, path(attempt));
+        if (attempt == 1 || !whole_detours) && !missing.is_empty() && missing.len() < starts.len() {
+            // First only those on the detour: any distinct finite endpoint they reach
+            // is a critical point the reference route missed (e.g. 2 of the example's
+            // 80 `rigid/rigid` seed → pose-0 paths, which pass through a pole on the
+            // way). The whole detour only if they do not complete the set (and the
+            // plan asks for whole detours).
+            let found = track_all(&detour, &missing, tracker, endgame);
+            tracked += missing.len();
+            merge(&mut endpoints, finite_solutions(&found));
+            complete_conjugates(&mut endpoints);
+            best = best.max(endpoints.len() + at_infinity);
+            if best >= expected || !whole_detours {
+                continue;
+            }
+        }
+        let paths = track_all(&detour, starts, tracker, endgame);
+        tracked += starts.len();
+        let (endpoints_before, best_before) = (endpoints.len(), best);
+        best = best.max(accounted(&paths));
+        at_infinity = at_infinity.max(count_at_infinity(&paths));
+        merge(&mut endpoints, finite_solutions(&paths));
+        complete_conjugates(&mut endpoints);
+        // The union of the attempts' distinct finite endpoints, plus the most paths
+        // any one attempt classified at infinity, may account for more than any
+        // single attempt.
+        best = best.max(endpoints.len() + at_infinity);
+        if endpoints.len() == endpoints_before && best == best_before {
+            stagnant += 1;
+        } else {
+            stagnant = 0;
+        }
+    }
     let mut confirmed_by_twin = false;
     // Paths the twin classified (finite, or on its hyperplane at infinity): the last
     // chance below is for the others.
@@ -562,46 +597,6 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             best = best.max(endpoints.len() + at_infinity);
             confirmed_by_twin = endpoints.len() + check.at_infinity.len() >= expected
                 && classified == unsettled.len();
-        }
-    }
-    // Whole detours in a row that found no new endpoint and accounted for no more
-    // paths: after STAGNANT_DETOURS of them the rest are not tracked.
-    let mut stagnant = 0;
-    for attempt in 1..=attempts {
-        if best >= expected || stagnant >= STAGNANT_DETOURS {
-            break;
-        }
-        let detour = PathParameterHomotopy::new(system, path(attempt));
-        if (attempt == 1 || !whole_detours) && !missing.is_empty() && missing.len() < starts.len() {
-            // First only those on the detour: any distinct finite endpoint they reach
-            // is a critical point the reference route missed (e.g. 2 of the example's
-            // 80 `rigid/rigid` seed → pose-0 paths, which pass through a pole on the
-            // way). The whole detour only if they do not complete the set (and the
-            // plan asks for whole detours).
-            let found = track_all(&detour, &missing, tracker, endgame);
-            tracked += missing.len();
-            merge(&mut endpoints, finite_solutions(&found));
-            complete_conjugates(&mut endpoints);
-            best = best.max(endpoints.len() + at_infinity);
-            if best >= expected || !whole_detours {
-                continue;
-            }
-        }
-        let paths = track_all(&detour, starts, tracker, endgame);
-        tracked += starts.len();
-        let (endpoints_before, best_before) = (endpoints.len(), best);
-        best = best.max(accounted(&paths));
-        at_infinity = at_infinity.max(count_at_infinity(&paths));
-        merge(&mut endpoints, finite_solutions(&paths));
-        complete_conjugates(&mut endpoints);
-        // The union of the attempts' distinct finite endpoints, plus the most paths
-        // any one attempt classified at infinity, may account for more than any
-        // single attempt.
-        best = best.max(endpoints.len() + at_infinity);
-        if endpoints.len() == endpoints_before && best == best_before {
-            stagnant += 1;
-        } else {
-            stagnant = 0;
         }
     }
     if best < expected {
