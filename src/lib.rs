@@ -115,6 +115,16 @@
 //! - **Huber and Verschelde**: B. Huber, J. Verschelde, "Polyhedral end games for polynomial
 //!   continuation", Numerical Algorithms 18 (1998) 91–108 (the power-series test for paths
 //!   to infinity).
+//! - **Verschelde, Verlinden and Cools 1994**: J. Verschelde, P. Verlinden, R. Cools,
+//!   "Homotopies exploiting Newton polytopes for solving sparse polynomial systems", SIAM
+//!   Journal on Numerical Analysis 31 (3) (1994) 915–930 (the relation table and pruning of
+//!   the mixed-cell search).
+//! - **Li 2003**: T. Y. Li, "Numerical solution of polynomial systems by homotopy
+//!   continuation methods", Handbook of Numerical Analysis XI, North-Holland, 2003 (polyhedral
+//!   homotopies, binomial start systems, the mixed-cell search).
+//! - **Telen, Van Barel and Verschelde 2020**: S. Telen, M. Van Barel, J. Verschelde, "A
+//!   robust numerical path tracking algorithm for polynomial homotopy continuation", SIAM
+//!   Journal on Scientific Computing 42 (6) (2020) A3610–A3637 (pole estimates along a path).
 //! - **Bates, Hauenstein, Sommese and Wampler**: D. J. Bates, J. D. Hauenstein, A. J. Sommese,
 //!   C. W. Wampler, "Adaptive multiprecision path tracking", SIAM Journal on Numerical
 //!   Analysis 46 (2) (2008) 722–746.
