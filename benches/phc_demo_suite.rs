@@ -6,8 +6,11 @@
 //!
 //! ```text
 //! cargo bench --bench phc_demo_suite -- [--dir DIR] [--max-degree N] [--timeout S]
-//!     [--only NAME,NAME] [--seed SEED] [--singdist PATH] [--start START]
+//!     [--only NAME,NAME] [--seed SEED] [--singdist PATH] [--start START] [--keep DIR]
 //! ```
+//!
+//! `--keep DIR` writes the converted files (`NAME.input` for singdist, `NAME.phc` for
+//! PHCpack) and both solvers' outputs to `DIR` and keeps them there.
 //!
 //! `START` (or the environment variable `SINGDIST_START`) is passed to
 //! `singdist solve --start` (`total-degree`, `multi-homogeneous`, `auto`,
@@ -50,6 +53,7 @@ struct Arguments {
     seed: Option<u64>,
     singdist: PathBuf,
     start: Option<String>,
+    keep: Option<PathBuf>,
 }
 
 fn arguments() -> Arguments {
@@ -61,6 +65,7 @@ fn arguments() -> Arguments {
         seed: None,
         singdist: PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/release/singdist"),
         start: std::env::var("SINGDIST_START").ok(),
+        keep: None,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -76,6 +81,7 @@ fn arguments() -> Arguments {
             "--seed" => a.seed = Some(value().parse().expect("--seed: integer")),
             "--singdist" => a.singdist = PathBuf::from(value()),
             "--start" => a.start = Some(value()),
+            "--keep" => a.keep = Some(PathBuf::from(value())),
             "--bench" => {}
             other => panic!("unknown argument {other}"),
         }
@@ -381,7 +387,9 @@ fn main() {
     };
     let mut files: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
     files.sort();
-    let work = std::env::temp_dir().join(format!("phc_demo_suite.{}", std::process::id()));
+    let work = args.keep.clone().unwrap_or_else(|| {
+        std::env::temp_dir().join(format!("phc_demo_suite.{}", std::process::id()))
+    });
     std::fs::create_dir_all(&work).expect("create the work directory");
     println!(
         "{:<12} {:>6} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>8}",
@@ -431,7 +439,9 @@ fn main() {
         println!("{:<12} {:>6} {}", row.name, row.bezout, row.line);
         rows.push(row);
     }
-    let _ = std::fs::remove_dir_all(&work);
+    if args.keep.is_none() {
+        let _ = std::fs::remove_dir_all(&work);
+    }
     let count = |v: &str| rows.iter().filter(|r| r.verdict == v).count();
     println!(
         "\n{} systems: agree {} (+{} where singdist's reported nonsingular count differs from its refined distinct count), only singdist right {}, only phc right {}, neither {}, timeout/error {}",

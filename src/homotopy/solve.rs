@@ -103,6 +103,7 @@ impl Default for SolveOptions {
                 endgame: EndgameOptions {
                     growth_before_divergence: true,
                     settle_on_direct_endpoint: true,
+                    settle_on_stalled_estimate: true,
                     ..EndgameOptions::default()
                 },
                 ..TrackerOptions::default()
@@ -398,6 +399,8 @@ where
         options.tracker.endgame.growth_before_divergence;
     conservative.endgame.settle_on_direct_endpoint =
         options.tracker.endgame.settle_on_direct_endpoint;
+    conservative.endgame.settle_on_stalled_estimate =
+        options.tracker.endgame.settle_on_stalled_estimate;
     if options.retry_failed {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
         let duplicated = duplicated_nonsingular(homotopy, &paths);

@@ -339,13 +339,21 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     }
 
     /// End of the endgame without converged estimates: the last Cauchy estimate if
-    /// there is one (singular, lower accuracy); else at infinity if the last
+    /// there is one with winding number above 1, or with winding number 1 below
+    /// `s = DEEP_RADIUS` where `settle_on_stalled_estimate` asks for it (classified by
+    /// [`Tracker::classify_estimate`]); else at infinity if the last
     /// valuations were negative and stable (agreeing at two successive radii: a slowly
     /// diverging path whose step size reached the resolution of `t` before it grew by
     /// [`MIN_COORDINATE_GROWTH`]) or a coordinate grown by that factor had negative
     /// valuations at the last two radii; else failure.
     pub(super) fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
-        if have_estimate && self.winding > 1 && {
+        // With winding number 1 only deep in the endgame and where the options ask
+        // for it (`settle_on_stalled_estimate`).
+        let settle = self.winding > 1
+            || (self.options.endgame.settle_on_stalled_estimate
+                && (C64::new(1.0, 0.0) - self.t).norm() <= DEEP_RADIUS
+                && self.stalled_at_singular_point());
+        if have_estimate && settle && {
             self.state
                 .estimate
                 .copy_from_slice(&self.state.previous_estimate);
@@ -357,6 +365,19 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         } else {
             PathStatus::Failed(reason)
         }
+    }
+
+    /// Whether the Jacobian at the last Cauchy estimate (`previous_estimate`, `t = 1`)
+    /// is singular after equilibration ([`Tracker::equilibrated_condition_at`] above
+    /// `singular_condition`): the stalled endgame of [`Tracker::give_up`] ends there
+    /// only at a singular point, not at a badly scaled nonsingular root. Leaves `x` as
+    /// it was.
+    fn stalled_at_singular_point(&mut self) -> bool {
+        self.x_checkpoint.copy_from_slice(&self.x);
+        self.x.copy_from_slice(&self.state.previous_estimate);
+        let condition = self.equilibrated_condition_at(C64::new(1.0, 0.0));
+        self.x.copy_from_slice(&self.x_checkpoint);
+        condition > self.options.endgame.singular_condition
     }
 
     /// Whether the valuations of the last two Cauchy loops (`loop_valuations`, from the

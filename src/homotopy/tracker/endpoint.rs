@@ -108,6 +108,35 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         }
     }
 
+    /// Condition estimate of `∂H/∂x` at `(x, t)` after row and column equilibration
+    /// (each row, then each column, divided by its largest modulus): diagonal scalings
+    /// do not change the rank, so a singular Jacobian stays ill-conditioned, while a
+    /// nonsingular root whose coordinates or equations are badly scaled (PHCpack's
+    /// `comb3000` unscaled, coordinates down to 10⁻¹¹) comes out well conditioned.
+    pub(super) fn equilibrated_condition_at(&mut self, t: C64) -> f64 {
+        let n = self.n;
+        let e = &mut self.eval;
+        self.homotopy
+            .evaluate_with_jacobian(&self.x, t, &mut e.work, &mut e.h, &mut e.jac);
+        for row in e.jac.chunks_mut(n) {
+            let largest = row.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            if largest > 0.0 {
+                row.iter_mut().for_each(|v| *v /= largest);
+            }
+        }
+        for j in 0..n {
+            let largest = (0..n).fold(0.0f64, |m, i| m.max(e.jac[i * n + j].norm()));
+            if largest > 0.0 {
+                (0..n).for_each(|i| e.jac[i * n + j] /= largest);
+            }
+        }
+        if e.lu.factor(&e.jac) {
+            e.lu.condition_estimate()
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
     /// In double precision (unless the tracker is in extended mode) while the updates
     /// contract; where they stagnate above `10⁻¹³` relative (rounding noise of an

@@ -132,6 +132,18 @@ pub struct EndgameOptions {
     /// off in the presets.
     #[serde(default)]
     pub settle_on_direct_endpoint: bool,
+    /// Where the endgame stops (its step size too small, or its steps used up) at a
+    /// radius `s = |1 − t|` below `DEEP_RADIUS` (10⁻⁸), after Cauchy loops that closed
+    /// with winding number 1 on estimates that still moved (a path converging to a
+    /// positive-dimensional solution set, whose loops close after one turn at each
+    /// radius while the estimate drifts along the set), the path ends at the last
+    /// estimate if its residual is small: Newton's method refines it to a nonsingular
+    /// root if it converges there with a condition number below
+    /// `singular_condition` (a duplicate of another path's root is then reported as a
+    /// jumped path), else the endpoint is singular. PHCpack's `fourbar` lost two such
+    /// paths per run. On for `solve`, off in the presets.
+    #[serde(default)]
+    pub settle_on_stalled_estimate: bool,
     /// In a chart of projective space (a homotopy with a homogenising coordinate
     /// `x₀`): a valuation of `x₀` above `valuation_threshold` (`x₀ ~ s^v`, `v > 0`),
     /// stable over two successive radii, classifies the path at infinity without
@@ -234,6 +246,7 @@ impl Default for EndgameOptions {
             endpoint_residual: 1e-8,
             growth_before_divergence: false,
             settle_on_direct_endpoint: false,
+            settle_on_stalled_estimate: false,
             homogenizing_valuation_test: false,
         }
     }
@@ -381,7 +394,8 @@ mod tests {
     }
 
     /// Fields with serde defaults (the precision group, `growth_before_divergence`,
-    /// `settle_on_direct_endpoint`, `homogenizing_valuation_test`)
+    /// `settle_on_direct_endpoint`, `settle_on_stalled_estimate`,
+    /// `homogenizing_valuation_test`)
     /// may be left out, as before; the others are required.
     #[test]
     fn optional_fields_default_and_required_ones_are_required() {
@@ -394,6 +408,7 @@ mod tests {
             "max_extended_steps",
             "growth_before_divergence",
             "settle_on_direct_endpoint",
+            "settle_on_stalled_estimate",
             "homogenizing_valuation_test",
         ] {
             assert!(object.remove(key).is_some(), "{key}");
