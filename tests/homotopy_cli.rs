@@ -261,6 +261,22 @@ fn paths_to_a_positive_dimensional_set_settle_at_their_last_estimate() {
     }
 }
 
+/// PHCpack's `stewgou40` (a Stewart–Gough platform with 40 real postures): the
+/// default start takes the polyhedral system (1,536 paths against a total degree of
+/// 4,096). One root, of condition 4·10⁵, ended its path labelled singular and
+/// Newton's corrections stalled at 1.01·10⁻¹³ relative, just above the promotion's
+/// tolerance: it is nonsingular, and all 40 roots are reported so.
+#[test]
+fn a_root_whose_newton_corrections_stall_at_rounding_level_is_nonsingular() {
+    let value = solve_json(&[&demo_file("stewgou40"), "--threads", "2"]);
+    assert_eq!(value["start_system"]["name"], "polyhedral");
+    let summary = &value["summary"];
+    assert_eq!(summary["nonsingular"], 40, "{summary}");
+    assert_eq!(summary["singular"], 0, "{summary}");
+    assert_eq!(summary["failed"], 0, "{summary}");
+    assert_eq!(summary["real"], 40, "{summary}");
+}
+
 /// The distinct nonsingular roots of a `solve --json` output, checked in the scaled
 /// coordinates the output names (`y_j = 2^{−d_j} x_j`): each a nonsingular root of
 /// the scaled system (Newton's method converging, residual below `1e-9` of the largest

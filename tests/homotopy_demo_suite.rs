@@ -224,3 +224,23 @@ fn a_pole_passed_halfway_is_not_a_point_at_infinity() {
         }
     }
 }
+
+/// PHCpack's `butemb3` (mixed volume 247, 198 nonsingular roots) under the polyhedral
+/// homotopy with the default seed: two cell paths of the first lifting diverge (also
+/// when re-tracked), so two roots of the random-coefficient system `Q` were lost and
+/// with them two of the 198 roots. The cell paths of a fresh lifting of the same `Q`
+/// reach them: no stage-one path is lost and every root is found once.
+#[test]
+fn roots_of_q_lost_on_one_lifting_are_found_on_another() {
+    let system = load("butemb3");
+    let compiled = system.compile();
+    let supports = Supports::from_system(&system).unwrap();
+    let solved = solve_polyhedral(&compiled, &supports, &[], &SolveOptions::default()).unwrap();
+    let s = &solved.result.summary;
+    assert_eq!(solved.mixed_volume, 247);
+    assert_eq!(solved.start_failed, 0, "{s:?}");
+    assert_eq!(s.failed, 0, "{s:?}");
+    let roots = distinct_nonsingular_roots(&compiled, &solved.result.nonsingular_solutions());
+    assert_eq!(roots.len(), 198, "{s:?}");
+    assert_eq!(s.nonsingular, 198, "{s:?}");
+}

@@ -460,9 +460,22 @@ where
 /// (each correction about half the last) does not.
 const PROMOTION_ITERATIONS: usize = 10;
 
+/// Where Newton's corrections of a promotion stall at rounding noise instead of
+/// reaching [`DUPLICATE_NEWTON_TOLERANCE`] (PHCpack's `stewgou40`: a root of condition
+/// 4·10⁵, residual 7·10⁻¹⁶, corrections of 1.01·10⁻¹³ relative after 10 iterations),
+/// a last relative correction below this …
+const PROMOTION_NOISE: f64 = 1e-11;
+/// … at a condition number below this fraction of `direct_finish_condition` (10⁶)
+/// is convergence too. Near a double root the condition number is about the inverse
+/// of the distance `d` to it and the Newton corrections about `d/2`: below 10⁶ they
+/// are above 5·10⁻⁷, far above the noise bound.
+const PROMOTION_NOISE_CONDITION_FRACTION: f64 = 1e-2;
+
 /// Endpoints classified singular that Newton's method on `H(·, 1)` refines, within
 /// [`PROMOTION_ITERATIONS`], to a root with a condition number below the direct
-/// finish's bound (`direct_finish_condition`) are that nonsingular root: the endgame
+/// finish's bound (`direct_finish_condition`), or to rounding noise
+/// ([`PROMOTION_NOISE`]) at a condition number below 1 % of it, are that nonsingular
+/// root: the endgame
 /// stopped short of its quadratic convergence (a direct finish settled near a cluster
 /// of roots, e.g. PHCpack's `redcyc7`), or a Cauchy loop closed after turns no
 /// nonsingular root has (`fbrfive4`: 15 turns at a root of condition 3·10³). A double
@@ -488,7 +501,10 @@ fn promote_nonsingular_endpoints<H: Homotopy + ?Sized>(
                 DUPLICATE_NEWTON_TOLERANCE,
                 PROMOTION_ITERATIONS,
             );
-            if r.is_nonsingular(bound) {
+            let at_rounding_level = r.last_correction <= PROMOTION_NOISE
+                && r.residual.is_finite()
+                && r.condition <= bound * PROMOTION_NOISE_CONDITION_FRACTION;
+            if r.is_nonsingular(bound) || at_rounding_level {
                 p.status = PathStatus::Nonsingular;
                 p.solution = r.point;
                 p.residual = r.residual;

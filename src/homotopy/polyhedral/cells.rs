@@ -71,6 +71,9 @@ pub enum CellError {
     /// The enumeration needed more LP feasibility tests than it was allowed.
     #[error("the mixed-cell search passed its budget of {0} LP tests")]
     OverBudget(usize),
+    /// The cells found so far have a larger volume than the caller allowed.
+    #[error("the mixed volume exceeds {0}")]
+    OverVolume(u128),
 }
 
 /// One mixed cell.
@@ -115,6 +118,19 @@ pub fn mixed_cells_within(
     lifting: &[Vec<i64>],
     max_lp_tests: usize,
 ) -> Result<MixedSubdivision, CellError> {
+    mixed_cells_bounded(supports, lifting, max_lp_tests, u128::MAX)
+}
+
+/// [`mixed_cells_within`], giving up with [`CellError::OverVolume`] too once the
+/// cells found so far have a total volume above `max_volume` (a caller that takes the
+/// polyhedral start system only below some mixed volume need not finish the search:
+/// `katsura8`'s 242,050 LP tests, 0.39 s, decided nothing its first cells do not).
+pub fn mixed_cells_bounded(
+    supports: &Supports,
+    lifting: &[Vec<i64>],
+    max_lp_tests: usize,
+    max_volume: u128,
+) -> Result<MixedSubdivision, CellError> {
     let n = supports.num_variables();
     if supports.num_equations() != n {
         return Err(CellError::NotSquare {
@@ -138,6 +154,8 @@ pub fn mixed_cells_within(
         cells: Vec::new(),
         lp_tests: 0,
         max_lp_tests,
+        volume: 0,
+        max_volume,
         edges: Vec::new(),
         edge_offset: Vec::new(),
         words: 0,
@@ -236,6 +254,10 @@ struct Search<'a> {
     lp_tests: usize,
     /// [`CellError::OverBudget`] past this many LP tests.
     max_lp_tests: usize,
+    /// Total volume of `cells`.
+    volume: u128,
+    /// [`CellError::OverVolume`] past this total volume.
+    max_volume: u128,
     /// Lower edges of each support.
     edges: Vec<Vec<(usize, usize)>>,
     /// Global number of the first edge of each support.
@@ -535,12 +557,17 @@ impl Search<'_> {
                 gaps.push(g);
             }
         }
+        let volume = u64::try_from(d).map_err(|_| CellError::Overflow)?;
         self.cells.push(MixedCell {
             pairs: self.chosen.clone(),
             normal,
-            volume: u64::try_from(d).map_err(|_| CellError::Overflow)?,
+            volume,
             gaps,
         });
+        self.volume += u128::from(volume);
+        if self.volume > self.max_volume {
+            return Err(CellError::OverVolume(self.max_volume));
+        }
         Ok(())
     }
 }
@@ -639,6 +666,19 @@ mod tests {
             Err(CellError::OverBudget(full.lp_tests / 2))
         );
         assert_eq!(mixed_cells_within(&s, &lifting, full.lp_tests), Ok(full));
+    }
+
+    #[test]
+    fn a_search_past_its_volume_bound_gives_up() {
+        let s = dense_quadrics();
+        let lifting = random_lifting(&s, 1, 0, 1 << 12);
+        let full = mixed_cells(&s, &lifting).unwrap();
+        assert_eq!(full.mixed_volume, 4);
+        assert_eq!(
+            mixed_cells_bounded(&s, &lifting, usize::MAX, 3),
+            Err(CellError::OverVolume(3))
+        );
+        assert_eq!(mixed_cells_bounded(&s, &lifting, usize::MAX, 4), Ok(full));
     }
 
     #[test]

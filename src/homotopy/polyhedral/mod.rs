@@ -35,7 +35,9 @@ pub mod start;
 pub mod supports;
 
 pub use cell_homotopy::LOG_RANGE;
-pub use cells::{CellError, MixedCell, MixedSubdivision, mixed_cells, mixed_cells_within};
+pub use cells::{
+    CellError, MixedCell, MixedSubdivision, mixed_cells, mixed_cells_bounded, mixed_cells_within,
+};
 pub use start::{PolyhedralError, PolyhedralStartSystem};
 pub use supports::{Supports, random_lifting};
 
@@ -54,10 +56,15 @@ const MAX_PATHS: u128 = 1 << 32;
 const ENDGAME_SCALE: f64 = 0.1;
 
 /// LP feasibility tests the automatic start-system choice may spend on the mixed cells,
-/// per path of the start system they would replace (an LP test from scratch cost
-/// about 25 µs, a path some 100 predictor–corrector steps of 5 µs; the warm-started
-/// tests of [`cells`] cost some 5 µs, so the budget is conservative) …
-pub const AUTOMATIC_LP_TESTS_PER_PATH: usize = 20;
+/// per path of the start system they would replace. The warm-started tests of
+/// [`cells`] cost 0.4–4 µs each on PHCpack's demo systems (`eco8` 23,054 in 9 ms,
+/// `des18_3` 31,898 in 36 ms, `stewgou40` 118,765 in 472 ms), a total-degree path
+/// 0.3–3 ms. At 20 per path `des18_3`, `butemb3`, `ipp2` and `stewgou40` kept the
+/// total degree (0.92, 3.8, 1.05 and 18.7 s, against 0.23, 1.05, 0.46 and 4.6 s from
+/// their polyhedral start); they need 37, 37, 40 and 24. At 200 per path the
+/// searches the choice then discards (the katsura systems, whose mixed volume is the
+/// total degree) cost `katsura9` 0.18 → 0.25 s …
+pub const AUTOMATIC_LP_TESTS_PER_PATH: usize = 50;
 /// … and in addition to those.
 pub const AUTOMATIC_LP_TESTS: usize = 20_000;
 
@@ -74,7 +81,8 @@ pub fn polyhedral_if_fewer_paths(
         .unwrap_or(usize::MAX)
         .saturating_mul(AUTOMATIC_LP_TESTS_PER_PATH);
     let budget = AUTOMATIC_LP_TESTS.saturating_add(per_path);
-    let start = PolyhedralStartSystem::within_budget(supports, seed, budget).ok()?;
+    // A search whose cells pass half the paths cannot be taken: it stops there.
+    let start = PolyhedralStartSystem::within_bounds(supports, seed, budget, paths / 2).ok()?;
     (start.mixed_volume().saturating_mul(2) <= paths).then_some(start)
 }
 
@@ -173,8 +181,16 @@ struct StageOne {
     steps: usize,
 }
 
-/// Stage one: tracks the `count` cell-homotopy paths to the roots of `Q`.
-fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptions) -> StageOne {
+/// Fresh liftings of the same `Q` ([`PolyhedralStartSystem::relifted`]) whose cell
+/// paths stage one tracks where it lost roots of `Q`, until it has them all.
+const STAGE_ONE_RELIFTINGS: u64 = 2;
+
+/// The stage-one paths `indices` of `start` (cell homotopies to the roots of `Q`).
+fn track_cells(
+    start: &PolyhedralStartSystem,
+    indices: &[usize],
+    tracker_options: &TrackerOptions,
+) -> Vec<PathResult> {
     let n = start.supports().num_variables();
     let homotopies: Vec<_> = (0..start.subdivision().cells.len())
         .map(|c| start.cell_homotopy(c))
@@ -186,27 +202,34 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
         .iter()
         .map(|h| ENDGAME_SCALE / (LOG_RANGE * h.powers().iter().copied().fold(1.0, f64::max)))
         .collect();
-    let track = |indices: &[usize], tracker_options: &TrackerOptions| -> Vec<PathResult> {
-        indices
-            .par_iter()
-            .map_init(
-                || vec![C64::new(0.0, 0.0); n],
-                |y, &index| {
-                    let (c, _) = start.locate(index as u64);
-                    start.start_solution(index as u64, y);
-                    let mut cell_options = tracker_options.clone();
-                    cell_options.endgame.endgame_start =
-                        cell_options.endgame.endgame_start.min(endgame_start[c]);
-                    Tracker::new(&homotopies[c], cell_options).track(y, index)
-                },
-            )
-            .collect()
-    };
+    indices
+        .par_iter()
+        .map_init(
+            || vec![C64::new(0.0, 0.0); n],
+            |y, &index| {
+                let (c, _) = start.locate(index as u64);
+                start.start_solution(index as u64, y);
+                let mut cell_options = tracker_options.clone();
+                cell_options.endgame.endgame_start =
+                    cell_options.endgame.endgame_start.min(endgame_start[c]);
+                Tracker::new(&homotopies[c], cell_options).track(y, index)
+            },
+        )
+        .collect()
+}
+
+/// Tracks every stage-one path of `start` (`count` of them), re-tracking the failed
+/// and repeated ones with the conservative preset; returns the paths and the number
+/// re-tracked.
+fn track_stage_one(
+    start: &PolyhedralStartSystem,
+    count: usize,
+    options: &SolveOptions,
+) -> (Vec<PathResult>, usize) {
     let mut first = options.tracker.clone();
     first.endgame.growth_before_divergence = false;
     let all: Vec<usize> = (0..count).collect();
-    let mut paths = track(&all, &first);
-    let mut steps: usize = paths.iter().map(|p| p.steps).sum();
+    let mut paths = track_cells(start, &all, &first);
     let mut retracked = 0;
     if options.retry_failed {
         let groups = root_groups(start, &paths);
@@ -222,19 +245,32 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
             let mut conservative = TrackerOptions::conservative();
             conservative.step.max_steps = conservative.step.max_steps.max(first.step.max_steps);
             conservative.endgame.growth_before_divergence = false;
-            for redo in track(&suspicious, &conservative) {
-                steps += redo.steps;
+            for redo in track_cells(start, &suspicious, &conservative) {
                 let index = redo.path_index;
                 paths[index] = redo;
             }
         }
     }
+    (paths, retracked)
+}
+
+/// Stage one: tracks the `count` cell-homotopy paths to the roots of `Q`. `Q` has
+/// random coefficients, so its roots are nonsingular and exactly `count` (the mixed
+/// volume); where paths are lost (failed, or two on one root), the cell paths of up
+/// to [`STAGE_ONE_RELIFTINGS`] fresh liftings of the same `Q` are tracked too and
+/// their new distinct roots added, until all `count` are found. The paths still
+/// missing then are reported lost.
+fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptions) -> StageOne {
+    let (paths, mut retracked) = track_stage_one(start, count, options);
+    let mut steps: usize = paths.iter().map(|p| p.steps).sum();
     let groups = root_groups(start, &paths);
-    let mut roots = Vec::with_capacity(count);
+    // The distinct roots found (as paths, renumbered in order) and the lost paths.
+    let mut found: Vec<PathResult> = Vec::with_capacity(count);
     let mut lost = Vec::new();
     for (i, mut p) in paths.into_iter().enumerate() {
         if p.status == PathStatus::Nonsingular && groups[i] == Some(i) {
-            roots.push(p.solution);
+            p.path_index = found.len();
+            found.push(p);
         } else {
             if p.status == PathStatus::Nonsingular {
                 p.status = PathStatus::Failed(FailureReason::PathJumped);
@@ -245,8 +281,41 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
             lost.push(p);
         }
     }
+    for relifting in 1..=STAGE_ONE_RELIFTINGS {
+        if lost.is_empty() {
+            break;
+        }
+        let Ok(other) = start.relifted(relifting) else {
+            continue;
+        };
+        if other.mixed_volume() != start.mixed_volume() {
+            continue;
+        }
+        let (more, more_retracked) = track_stage_one(&other, count, options);
+        retracked += more_retracked;
+        steps += more.iter().map(|p| p.steps).sum::<usize>();
+        let known = found.len();
+        found.extend(
+            more.into_iter()
+                .filter(|p| p.status == PathStatus::Nonsingular)
+                .enumerate()
+                .map(|(k, mut p)| {
+                    p.path_index = known + k;
+                    p
+                }),
+        );
+        // Keep the first path of each root: the known ones, then the new ones.
+        let groups = root_groups(start, &found);
+        found.retain(|p| groups[p.path_index] == Some(p.path_index));
+        let new_roots = found.len() - known;
+        found.truncate(known + new_roots.min(lost.len()));
+        lost.drain(..new_roots.min(lost.len()));
+        for (k, p) in found.iter_mut().enumerate() {
+            p.path_index = k;
+        }
+    }
     StageOne {
-        roots,
+        roots: found.into_iter().map(|p| p.solution).collect(),
         lost,
         retracked,
         steps,

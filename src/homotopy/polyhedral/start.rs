@@ -10,7 +10,7 @@
 
 use super::binomial::{BinomialError, BinomialSystem};
 use super::cell_homotopy::CellHomotopy;
-use super::cells::{CellError, MixedSubdivision, mixed_cells_within};
+use super::cells::{CellError, MixedSubdivision, mixed_cells_bounded};
 use super::random_system::RandomCoefficientSystem;
 use super::supports::{Supports, random_lifting};
 use crate::C64;
@@ -52,6 +52,8 @@ pub struct PolyhedralStartSystem {
     /// Cumulative volumes: cell c owns paths `offsets[c]..offsets[c + 1]`.
     offsets: Vec<u64>,
     liftings_tried: u64,
+    /// The seed of the random choices (for [`PolyhedralStartSystem::relifted`]).
+    seed: u64,
 }
 
 impl PolyhedralStartSystem {
@@ -68,13 +70,58 @@ impl PolyhedralStartSystem {
         seed: u64,
         max_lp_tests: usize,
     ) -> Result<Self, PolyhedralError> {
+        Self::within_bounds(supports, seed, max_lp_tests, u128::MAX)
+    }
+
+    /// [`PolyhedralStartSystem::within_budget`], giving up with
+    /// [`CellError::OverVolume`] too once the mixed cells found have a total volume
+    /// above `max_volume`.
+    pub fn within_bounds(
+        supports: &Supports,
+        seed: u64,
+        max_lp_tests: usize,
+        max_volume: u128,
+    ) -> Result<Self, PolyhedralError> {
         let supports = supports.with_origin();
         let system = RandomCoefficientSystem::new(&supports, seed, COEFFICIENT_STREAM);
+        Self::lifted(
+            supports,
+            system,
+            seed,
+            LIFTING_STREAM,
+            (max_lp_tests, max_volume),
+        )
+    }
+
+    /// The same random-coefficient system `Q` with the mixed cells of a fresh random
+    /// lifting (lifting number `relifting`, from 1, of this seed): its cell homotopies
+    /// reach the same roots of `Q` along other paths, so roots of `Q` that the first
+    /// stage lost on one lifting can be found on another.
+    pub fn relifted(&self, relifting: u64) -> Result<Self, PolyhedralError> {
+        Self::lifted(
+            self.supports.clone(),
+            self.system.clone(),
+            self.seed,
+            LIFTING_STREAM + relifting * MAX_LIFTINGS,
+            (usize::MAX, u128::MAX),
+        )
+    }
+
+    /// The start system of `Q` = `system` on `supports` (the origin added) with the
+    /// first generic lifting of the seed's streams `first_stream`, `first_stream + 1`, …
+    /// within `(max_lp_tests, max_volume)` ([`mixed_cells_bounded`]).
+    fn lifted(
+        supports: Supports,
+        system: RandomCoefficientSystem,
+        seed: u64,
+        first_stream: u64,
+        (max_lp_tests, max_volume): (usize, u128),
+    ) -> Result<Self, PolyhedralError> {
         let mut attempt = 0;
         let subdivision = loop {
-            let lifting = random_lifting(&supports, seed, LIFTING_STREAM + attempt, LIFTING_RANGE);
+            let lifting = random_lifting(&supports, seed, first_stream + attempt, LIFTING_RANGE);
             attempt += 1;
-            match mixed_cells_within(&supports, &lifting, max_lp_tests) {
+            match mixed_cells_bounded(&supports, &lifting, max_lp_tests, max_volume) {
                 Err(CellError::NonGenericLifting) if attempt < MAX_LIFTINGS => continue,
                 other => break other?,
             }
@@ -108,6 +155,7 @@ impl PolyhedralStartSystem {
             binomials,
             offsets,
             liftings_tried: attempt,
+            seed,
         })
     }
 
