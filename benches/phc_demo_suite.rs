@@ -233,8 +233,9 @@ fn solve_one(args: &Arguments, name: &str, system: &System, input: &str, work: &
     // Roots are verified where the system is balanced: a badly scaled one (coordinates
     // of 10⁻¹¹, coefficients of 10⁻¹⁵) in its least-squares scaling, so that Newton's
     // convergence, the condition number and the same-root test are judged in
-    // coordinates of comparable size (the same for both solvers).
-    let scaling = Scaling::least_squares(system).filter(Scaling::worthwhile);
+    // coordinates of comparable size (the same for both solvers); a system whose
+    // equations differ widely in size with its equations normalised.
+    let scaling = Scaling::automatic(system);
     let compiled = match &scaling {
         Some(s) => s.apply(system).compile(),
         None => system.compile(),

@@ -277,6 +277,35 @@ fn a_root_whose_newton_corrections_stall_at_rounding_level_is_nonsingular() {
     assert_eq!(summary["real"], 40, "{summary}");
 }
 
+/// PHCpack's `rbpl24` (a parallel robot, 40 roots of which 24 real): its equations'
+/// sizes range from 6·10⁴ to 10¹⁴ while the coefficients within each equation are
+/// well balanced, so the least-squares scaling is not worth a change of coordinates.
+/// Unnormalised, the large equations dominate the homotopy from `t ≈ 0` and every
+/// path fails there (`--scaling never`, exit 3); the
+/// default normalises the equations alone and finds all 40, every one verified.
+#[test]
+fn equations_of_very_different_sizes_are_normalised() {
+    let file = demo_file("rbpl24");
+    let value = solve_json(&[&file, "--threads", "2"]);
+    let scaling = &value["scaling"];
+    assert!(
+        scaling["variable_exponents"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|d| d == 0),
+        "{scaling}"
+    );
+    let summary = &value["summary"];
+    assert_eq!(summary["failed"], 0, "{summary}");
+    assert_eq!(summary["nonsingular"], 40, "{summary}");
+    assert_eq!(summary["real"], 24, "{summary}");
+    let out = singdist(&["solve", &file, "--scaling", "never", "--json"]);
+    assert_eq!(out.status.code(), Some(3));
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(value["summary"]["nonsingular"], 0, "{}", value["summary"]);
+}
+
 /// The distinct nonsingular roots of a `solve --json` output, checked in the scaled
 /// coordinates the output names (`y_j = 2^{−d_j} x_j`): each a nonsingular root of
 /// the scaled system (Newton's method converging, residual below `1e-9` of the largest

@@ -62,8 +62,9 @@ pub struct SolveArgs {
     pub set: Vec<String>,
     /// Equation and variable scaling by powers of two (least squares on the logarithms
     /// of the coefficients): `auto` scales when the coefficients spread over more than
-    /// 2⁸ on average and the scaling halves that spread; solutions are always reported
-    /// in the file's variables.
+    /// 2⁸ on average and the scaling halves that spread, else normalises the equations
+    /// alone when their sizes differ by more than 2⁸; solutions are always reported in
+    /// the file's variables.
     #[arg(long, value_enum, default_value_t = ScalingArg::Auto)]
     pub scaling: ScalingArg,
 }
@@ -453,7 +454,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     let scaling = match args.scaling {
         ScalingArg::Never => None,
         ScalingArg::Always => Scaling::least_squares(&system),
-        ScalingArg::Auto => Scaling::least_squares(&system).filter(Scaling::worthwhile),
+        ScalingArg::Auto => Scaling::automatic(&system),
     };
     if args.scaling == ScalingArg::Always && scaling.is_none() {
         eprintln!(
@@ -642,16 +643,25 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             s.real
         );
         if let Some(s) = &scaling {
-            text.push_str(&format!(
-                "scaling       variables 2^[{}], coefficient spread {:.1} -> {:.1} binary orders\n",
-                s.variables
-                    .iter()
+            let exponents = |v: &[i32]| {
+                v.iter()
                     .map(|d| d.to_string())
                     .collect::<Vec<_>>()
-                    .join(", "),
-                s.rms_before,
-                s.rms_after
-            ));
+                    .join(", ")
+            };
+            if s.variables.iter().all(|&d| d == 0) {
+                text.push_str(&format!(
+                    "scaling       equations only, 2^[{}]\n",
+                    exponents(&s.equations)
+                ));
+            } else {
+                text.push_str(&format!(
+                    "scaling       variables 2^[{}], coefficient spread {:.1} -> {:.1} binary orders\n",
+                    exponents(&s.variables),
+                    s.rms_before,
+                    s.rms_after
+                ));
+            }
         }
         if let Some(r) = trace_residual {
             text.push_str(&format!("trace residual {r:.3e}\n"));

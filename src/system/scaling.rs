@@ -94,6 +94,64 @@ fn rms(terms: &[(usize, Vec<u32>, f64)], c: &[f64], d: &[f64]) -> f64 {
 }
 
 impl Scaling {
+    /// The scaling `solve --scaling auto` solves in: the least-squares one where it is
+    /// [`Scaling::worthwhile`], else the equation-only normalisation where the
+    /// equations are [`Scaling::unbalanced_equations`], else none.
+    pub fn automatic(system: &System) -> Option<Scaling> {
+        Scaling::least_squares(system)
+            .filter(Scaling::worthwhile)
+            .or_else(|| Scaling::equations_only(system).filter(Scaling::unbalanced_equations))
+    }
+
+    /// Equation-only normalisation of `system` (no parameters left, every equation
+    /// expandable): `c_i` the negated mean of equation `i`'s `log₂|a_{iα}|`, rounded,
+    /// and `d = 0`, so the roots and their coordinates are unchanged. `rms_before` and
+    /// `rms_after` are both the spread left within the equations.
+    pub fn equations_only(system: &System) -> Option<Scaling> {
+        if !system.parameters().is_empty() || system.homogenizing().is_some() {
+            return None;
+        }
+        let terms = log_terms(system)?;
+        let (m, n) = (system.num_equations(), system.variables().len());
+        let mut sums = vec![(0.0, 0usize); m];
+        for (i, _, log) in &terms {
+            sums[*i].0 += log;
+            sums[*i].1 += 1;
+        }
+        let equations: Vec<i32> = sums
+            .iter()
+            .map(|&(s, k)| {
+                if k > 0 {
+                    (-s / k as f64).round().clamp(-900.0, 900.0) as i32
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let c: Vec<f64> = equations.iter().map(|&e| e as f64).collect();
+        let spread = rms(&terms, &c, &vec![0.0; n]);
+        Some(Scaling {
+            equations,
+            variables: vec![0; n],
+            rms_before: spread,
+            rms_after: spread,
+        })
+    }
+
+    /// Whether the equations' sizes differ by more than `2^BADLY_SCALED_RMS`: their
+    /// normalising exponents span more than [`BADLY_SCALED_RMS`] binary orders. The
+    /// straight-line homotopy `γ(1 − t)G + tF` from a start system `G` of unit
+    /// coefficients then lets the large equations of `F` dominate from `t ≈ 0`
+    /// (PHCpack's `rbpl24`: equations from 6·10⁴ to 10¹⁴; every path failed at
+    /// `t = 0` and its 40 roots were missed).
+    pub fn unbalanced_equations(&self) -> bool {
+        let (lo, hi) = self
+            .equations
+            .iter()
+            .fold((i32::MAX, i32::MIN), |(lo, hi), &c| (lo.min(c), hi.max(c)));
+        !self.equations.is_empty() && f64::from(hi - lo) > BADLY_SCALED_RMS
+    }
+
     /// The least-squares scaling of `system` (no parameters left, every equation
     /// expandable, every scaled factor within 2^±900, `MAX_EXPONENT`); `None` otherwise.
     pub fn least_squares(system: &System) -> Option<Scaling> {
@@ -274,6 +332,43 @@ mod tests {
         .unwrap();
         let scaling = Scaling::least_squares(&system).unwrap();
         assert!(!scaling.worthwhile(), "{scaling:?}");
+    }
+
+    /// Equations of sizes 10¹² and 1, each balanced within: only the equations are
+    /// normalised (the roots keep their coordinates); a balanced system is not.
+    #[test]
+    fn unbalanced_equations_are_normalised_alone() {
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+        let system = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![c(1e12) * (&x * &x + &y * &y - c(2.0)), c(3.0) * &x - &y],
+        )
+        .unwrap();
+        let least_squares = Scaling::least_squares(&system).unwrap();
+        assert!(!least_squares.worthwhile(), "{least_squares:?}");
+        let scaling = Scaling::equations_only(&system).unwrap();
+        assert!(scaling.unbalanced_equations(), "{scaling:?}");
+        assert_eq!(scaling.variables, vec![0, 0]);
+        // 10¹² ≈ 2^39.9 (the mean of log₂ 10¹² and log₂ 2·10¹²).
+        assert_eq!(scaling.equations[0], -40, "{scaling:?}");
+        let root = [
+            C64::new(0.2f64.sqrt(), 0.0),
+            C64::new(3.0 * 0.2f64.sqrt(), 0.0),
+        ];
+        let scaled = scaling.apply(&system).evaluate_naive(&root, &[]);
+        assert!(scaled.iter().all(|r| r.norm() < 1e-12), "{scaled:?}");
+        let balanced = System::new(
+            ["x", "y"],
+            Vec::<String>::new(),
+            vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y],
+        )
+        .unwrap();
+        assert!(
+            !Scaling::equations_only(&balanced)
+                .unwrap()
+                .unbalanced_equations()
+        );
     }
 
     /// Exponents that would overflow a power of a scaled variable are refused: `x`
