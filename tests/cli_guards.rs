@@ -222,10 +222,11 @@ fn more_threads_than_cores_are_clamped_with_a_warning() {
 #[test]
 fn solve_with_failed_paths_warns_and_exits_3() {
     let dir = Scratch::new("solve");
-    // Coefficients of 1e300 overflow in every evaluation: every path fails.
+    // Coefficients of 1e300 overflow in every evaluation: every path fails. (Both
+    // equations of that size: one alone would be normalised by `--scaling auto`.)
     let failing = dir.write(
         "failing.input",
-        "INPUT\nvariable_group x,y;\nfunction f,g;\nf = 1e300*x^2 - 1e300;\ng = y^2 - 1;\nEND;\n",
+        "INPUT\nvariable_group x,y;\nfunction f,g;\nf = 1e300*x^2 - 1e300;\ng = 1e300*y^2 - 1e300;\nEND;\n",
     );
     let r = run(&["solve", &failing, "--threads", "10000"]);
     assert_eq!(r.code, 3, "stdout: {} stderr: {}", r.stdout, r.stderr);

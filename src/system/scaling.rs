@@ -93,6 +93,19 @@ fn rms(terms: &[(usize, Vec<u32>, f64)], c: &[f64], d: &[f64]) -> f64 {
     (sum / terms.len() as f64).sqrt()
 }
 
+/// `−mean of log₂|a_{iα}|` over the terms of each of the `m` equations (0 for an
+/// equation without terms): the equation-wise normalisation.
+fn normalising_exponents(terms: &[(usize, Vec<u32>, f64)], m: usize) -> Vec<f64> {
+    let mut sums = vec![(0.0, 0usize); m];
+    for (i, _, log) in terms {
+        sums[*i].0 += log;
+        sums[*i].1 += 1;
+    }
+    sums.iter()
+        .map(|&(s, k)| if k > 0 { -s / k as f64 } else { 0.0 })
+        .collect()
+}
+
 impl Scaling {
     /// The scaling `solve --scaling auto` solves in: the least-squares one where it is
     /// [`Scaling::worthwhile`], else the equation-only normalisation where the
@@ -113,20 +126,9 @@ impl Scaling {
         }
         let terms = log_terms(system)?;
         let (m, n) = (system.num_equations(), system.variables().len());
-        let mut sums = vec![(0.0, 0usize); m];
-        for (i, _, log) in &terms {
-            sums[*i].0 += log;
-            sums[*i].1 += 1;
-        }
-        let equations: Vec<i32> = sums
+        let equations: Vec<i32> = normalising_exponents(&terms, m)
             .iter()
-            .map(|&(s, k)| {
-                if k > 0 {
-                    (-s / k as f64).round().clamp(-900.0, 900.0) as i32
-                } else {
-                    0
-                }
-            })
+            .map(|c| c.round().clamp(-900.0, 900.0) as i32)
             .collect();
         let c: Vec<f64> = equations.iter().map(|&e| e as f64).collect();
         let spread = rms(&terms, &c, &vec![0.0; n]);
@@ -161,15 +163,7 @@ impl Scaling {
         let terms = log_terms(system)?;
         let (m, n) = (system.num_equations(), system.variables().len());
         // Equation-only normalisation: c_i = −mean of equation i's log sizes.
-        let mut sums = vec![(0.0, 0usize); m];
-        for (i, _, log) in &terms {
-            sums[*i].0 += log;
-            sums[*i].1 += 1;
-        }
-        let normalised: Vec<f64> = sums
-            .iter()
-            .map(|&(s, k)| if k > 0 { -s / k as f64 } else { 0.0 })
-            .collect();
+        let normalised = normalising_exponents(&terms, m);
         let rms_before = rms(&terms, &normalised, &vec![0.0; n]);
         // Normal equations of the least-squares problem in z = (c, d).
         let size = m + n;
