@@ -275,6 +275,11 @@ mod tests {
         Expr::constant(C64::new(re, 0.0))
     }
 
+    /// The system `equations` in the unknowns `x`, `y`.
+    fn in_x_and_y(equations: Vec<Expr>) -> System {
+        System::new(["x", "y"], Vec::<String>::new(), equations).unwrap()
+    }
+
     /// x = 10⁻⁶·u, y = 10⁴·v with u, v of order one: the roots (10⁻⁶, 10⁴) and
     /// (−10⁻⁶, 10⁴) of `10¹² x² − 1 = 0`, `10⁻⁴ y − 1 + 10⁶ x … `.
     fn badly_scaled() -> System {
@@ -318,12 +323,7 @@ mod tests {
     #[test]
     fn a_well_scaled_system_is_left_alone() {
         let (x, y) = (Expr::variable("x"), Expr::variable("y"));
-        let system = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y + c(0.5)],
-        )
-        .unwrap();
+        let system = in_x_and_y(vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y + c(0.5)]);
         let scaling = Scaling::least_squares(&system).unwrap();
         assert!(!scaling.worthwhile(), "{scaling:?}");
     }
@@ -333,12 +333,10 @@ mod tests {
     #[test]
     fn unbalanced_equations_are_normalised_alone() {
         let (x, y) = (Expr::variable("x"), Expr::variable("y"));
-        let system = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![c(1e12) * (&x * &x + &y * &y - c(2.0)), c(3.0) * &x - &y],
-        )
-        .unwrap();
+        let system = in_x_and_y(vec![
+            c(1e12) * (&x * &x + &y * &y - c(2.0)),
+            c(3.0) * &x - &y,
+        ]);
         let least_squares = Scaling::least_squares(&system).unwrap();
         assert!(!least_squares.worthwhile(), "{least_squares:?}");
         let scaling = Scaling::equations_only(&system).unwrap();
@@ -352,12 +350,7 @@ mod tests {
         ];
         let scaled = scaling.apply(&system).evaluate_naive(&root, &[]);
         assert!(scaled.iter().all(|r| r.norm() < 1e-12), "{scaled:?}");
-        let balanced = System::new(
-            ["x", "y"],
-            Vec::<String>::new(),
-            vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y],
-        )
-        .unwrap();
+        let balanced = in_x_and_y(vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y]);
         assert!(
             !Scaling::equations_only(&balanced)
                 .unwrap()

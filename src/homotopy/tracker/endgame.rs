@@ -348,12 +348,14 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// valuations at the last two radii; else failure.
     pub(super) fn give_up(&mut self, have_estimate: bool, reason: FailureReason) -> PathStatus {
         // With winding number 1 only deep in the endgame and where the options ask
-        // for it (`settle_on_stalled_estimate`).
-        let settle = self.winding > 1
-            || (self.options.endgame.settle_on_stalled_estimate
-                && (C64::new(1.0, 0.0) - self.t).norm() <= DEEP_RADIUS
-                && self.stalled_at_singular_point());
-        if have_estimate && settle && {
+        // for it (`settle_on_stalled_estimate`); without an estimate there is
+        // nothing to settle on (and `previous_estimate` may be another path's).
+        let settle = have_estimate
+            && (self.winding > 1
+                || (self.options.endgame.settle_on_stalled_estimate
+                    && (C64::new(1.0, 0.0) - self.t).norm() <= DEEP_RADIUS
+                    && self.stalled_at_singular_point()));
+        if settle && {
             self.state
                 .estimate
                 .copy_from_slice(&self.state.previous_estimate);
