@@ -151,3 +151,64 @@ fn invalid_start_pair_is_rejected() {
     assert!(monodromy_solve(&system, &x, &p, &MonodromyOptions::default(), 0).is_err());
     assert!(monodromy_solve(&system, &x[..1], &p, &MonodromyOptions::default(), 0).is_err());
 }
+
+/// Monodromy in a restricted family: `x³ = p₁`, `y² = p₂`. With both parameters
+/// moving, loops around `p₁ = 0` and `p₂ = 0` carry one solution to all six
+/// `(a ωᵏ, ±b)`; with `p₂` pinned (as a design's shape constants are) the restricted
+/// family's fiber splits into two orbits and the loops reach the three `(a ωᵏ, b)`;
+/// with nothing moving every loop is trivial and adds nothing.
+#[test]
+fn a_fiber_is_completed_by_loops_of_the_moving_parameters_alone() {
+    use singdist::homotopy::{TrackerOptions, complete_fiber};
+    let monomial = |coefficient: f64, parameter: Option<usize>, exponents: [u32; 2]| Term {
+        coefficient: C64::new(coefficient, 0.0),
+        parameter,
+        exponents: exponents.to_vec(),
+    };
+    let system = TermSystem {
+        n: 2,
+        m: 2,
+        equations: vec![
+            vec![monomial(1.0, None, [3, 0]), monomial(-1.0, Some(0), [0, 0])],
+            vec![monomial(1.0, None, [0, 2]), monomial(-1.0, Some(1), [0, 0])],
+        ],
+    };
+    let (a, b) = (C64::new(0.7, 0.4), C64::new(-0.5, 0.9));
+    let x0 = vec![a, b];
+    let p0 = vec![a * a * a, b * b];
+    let tracker = TrackerOptions::default();
+    let omega = C64::new(-0.5, 3f64.sqrt() / 2.0);
+    let orbit = |signs: &[f64]| -> Vec<Vec<C64>> {
+        let mut points = Vec::new();
+        for &sign in signs {
+            for k in 0..3 {
+                points.push(vec![a * omega.powu(k), b * sign]);
+            }
+        }
+        points
+    };
+    let cases = [
+        (2, orbit(&[1.0, -1.0])),
+        (1, orbit(&[1.0])),
+        (0, vec![x0.clone()]),
+    ];
+    for (moving, expected) in cases {
+        let mut solutions = vec![x0.clone()];
+        let completion = complete_fiber(
+            &system,
+            (&p0, moving),
+            &mut solutions,
+            (6, 8),
+            &tracker,
+            &mut seeded(4),
+        );
+        assert_eq!(solutions.len(), expected.len(), "{moving}: {completion:?}");
+        assert_eq!(completion.added, expected.len() - 1);
+        assert!(!completion.abandoned);
+        assert!(set_distance(&solutions, &expected) < 1e-10, "{moving}");
+        assert!(set_distance(&expected, &solutions) < 1e-10, "{moving}");
+        for x in &solutions {
+            assert!(residual(&system, x, &p0) < 1e-12);
+        }
+    }
+}

@@ -364,9 +364,21 @@ fn congruent_design_loses_no_path_on_scattered_poses() {
 /// The seed count and generic count of sub-problem `name` of metric `metric` at the
 /// seed stage of the `close-base-12` class (two base anchors 1e-4 apart) with `options`.
 fn close_base_seed_counts(metric: &str, name: &str, options: &CurveOptions) -> (usize, usize) {
+    let (count, generic, _, _) = class_seed_counts("close-base-12", (metric, name), options);
+    (count, generic)
+}
+
+/// The seed count and generic count of sub-problem `name` of metric `metric` at the
+/// seed stage of the matrix class `class` with `options`, whether monodromy completion
+/// settled the count, and the stage's failures.
+fn class_seed_counts(
+    class: &str,
+    (metric, name): (&str, &str),
+    options: &CurveOptions,
+) -> (usize, usize, bool, usize) {
     use singdist::pipeline::curve::seed_stage;
     use singdist::reference::designs::design_case;
-    let case = design_case("close-base-12", 1).expect("a class of the matrix");
+    let case = design_case(class, 1).expect("a class of the matrix");
     let design = Design::new(case.base, case.platform).unwrap();
     let motion = Motion::Analytic(case.motion.clone());
     let metric: Metric = metric.parse().unwrap();
@@ -383,7 +395,49 @@ fn close_base_seed_counts(metric: &str, name: &str, options: &CurveOptions) -> (
         .iter()
         .find(|p| p.id.name() == name)
         .expect("the sub-problem");
-    (problem.at_seed.start_count, problem.at_seed.generic_count)
+    (
+        problem.at_seed.start_count,
+        problem.at_seed.generic_count,
+        problem.at_seed.completed_by_monodromy,
+        stage.failures.len(),
+    )
+}
+
+/// Designs whose rigid parts send whole orbits of `rigid/rigid` critical points to
+/// infinity at every seed (of the generic 88, 60 on a platform similar to the base,
+/// 64 on a congruent one, 68 on both equilateral, 60 on two coincident platform
+/// anchors). Where a seed point's first run loses finite points only to path
+/// crossings, monodromy loops in the design's restricted family complete its set and
+/// two seed points must agree; elsewhere the detours and the projective twin settle
+/// the count. Either way the count is the one the detours, twin and self-check settled
+/// without monodromy (the design matrix's reference runs), at seeds 1 and 2, with no
+/// seed-stage failure; and at least one of these stages is settled by monodromy, so
+/// the loops are exercised.
+#[test]
+fn rigid_seed_counts_below_the_generic_one_agree_with_or_without_monodromy() {
+    let name = ("rigid/rigid", "rigid/rigid:singularity");
+    let mut by_monodromy = 0;
+    for (class, expected) in [
+        ("similar", 28),
+        ("congruent", 24),
+        ("equilateral-both-rotated", 20),
+        ("coincident-platform-23", 28),
+    ] {
+        for seed in [1, 2] {
+            let options = CurveOptions {
+                seed,
+                ..CurveOptions::default()
+            };
+            let (count, generic, monodromy, failures) = class_seed_counts(class, name, &options);
+            assert_eq!(
+                (count, generic, failures),
+                (expected, 88, 0),
+                "{class}, seed {seed}"
+            );
+            by_monodromy += usize::from(monodromy);
+        }
+    }
+    assert!(by_monodromy > 0, "no stage was settled by monodromy");
 }
 
 /// A seed count must not be settled by two seed points that both lost paths and

@@ -29,8 +29,8 @@ pub use homotopies::{
 };
 pub use linalg::{DdLuWorkspace, LuWorkspace};
 pub use monodromy::{
-    ConstantShift, IncidenceSlice, MonodromyOptions, MonodromyResult, TraceCertificate,
-    monodromy_solve, solve_by_monodromy, trace_test,
+    ConstantShift, FiberCompletion, IncidenceSlice, MonodromyOptions, MonodromyResult,
+    TraceCertificate, complete_fiber, monodromy_solve, solve_by_monodromy, trace_test,
 };
 pub use multihomogeneous::{
     MultiHomogeneousStartSystem, StartChoice, StartRequest, VariablePartition, choose_start_system,

@@ -27,7 +27,7 @@
 use super::homotopies::{ParameterHomotopy, PolylineParameterHomotopy};
 use super::refine::contains_point;
 use super::solve::{HomotopyError, check_finite, check_length, check_square};
-use super::tracker::{PathStatus, Tracker, TrackerOptions};
+use super::tracker::{PathResult, PathStatus, Tracker, TrackerOptions};
 use crate::C64;
 use crate::random::{SeededRng, complex_normal, seeded};
 use crate::system::Evaluator;
@@ -116,6 +116,33 @@ fn parameter_scale(p: &[C64]) -> f64 {
     }
 }
 
+/// Every point of `solutions` tracked over `system` around one random triangle
+/// `base → p₁ → p₂ → base` (`p₁`, `p₂` complex normal of `base`'s scale, the parameters
+/// `pinned` at their base values), in parallel, results in the order of `solutions`.
+fn around_a_loop<F: Evaluator + ?Sized>(
+    system: &F,
+    (base, pinned): (&[C64], std::ops::Range<usize>),
+    solutions: &[Vec<C64>],
+    tracker: &TrackerOptions,
+    rng: &mut SeededRng,
+) -> Vec<PathResult> {
+    let (m, scale) = (base.len(), parameter_scale(base));
+    let mut p1 = random_point(rng, m, scale);
+    let mut p2 = random_point(rng, m, scale);
+    p1[pinned.clone()].copy_from_slice(&base[pinned.clone()]);
+    p2[pinned.clone()].copy_from_slice(&base[pinned]);
+    let homotopy =
+        PolylineParameterHomotopy::through(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
+    solutions
+        .par_iter()
+        .enumerate()
+        .map_init(
+            || Tracker::new(&homotopy, tracker.clone()),
+            |tracker, (i, x)| tracker.track_between(x, 0.0, 1.0, i),
+        )
+        .collect()
+}
+
 /// Tracks every point of `solutions` over `system` around random triangles based at
 /// `base` (the parameters `pinned` keep their base values), adding new endpoints, until
 /// stagnation. Returns (loops, failed paths).
@@ -127,8 +154,6 @@ fn populate<F: Evaluator + ?Sized>(
     target: Option<usize>,
     rng: &mut SeededRng,
 ) -> (usize, usize) {
-    let m = base.len();
-    let scale = parameter_scale(base);
     let mut loops = 0;
     let mut stagnant = 0;
     let mut failed = 0;
@@ -136,22 +161,13 @@ fn populate<F: Evaluator + ?Sized>(
         && loops < options.max_loops
         && target.is_none_or(|t| solutions.len() < t)
     {
-        let mut p1 = random_point(rng, m, scale);
-        let mut p2 = random_point(rng, m, scale);
-        for i in pinned.clone() {
-            p1[i] = base[i];
-            p2[i] = base[i];
-        }
-        let homotopy =
-            PolylineParameterHomotopy::through(system, vec![base.to_vec(), p1, p2, base.to_vec()]);
-        let results: Vec<_> = solutions
-            .par_iter()
-            .enumerate()
-            .map_init(
-                || Tracker::new(&homotopy, options.tracker.clone()),
-                |tracker, (i, x)| tracker.track_between(x, 0.0, 1.0, i),
-            )
-            .collect();
+        let results = around_a_loop(
+            system,
+            (base, pinned.clone()),
+            solutions,
+            &options.tracker,
+            rng,
+        );
         loops += 1;
         let mut new = 0;
         for r in results {
@@ -172,6 +188,118 @@ fn populate<F: Evaluator + ?Sized>(
     }
     (loops, failed)
 }
+
+/// What [`complete_fiber`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FiberCompletion {
+    /// Monodromy loops tracked.
+    pub loops: usize,
+    /// Paths tracked over all loops.
+    pub tracked: usize,
+    /// Solutions added to the fiber.
+    pub added: usize,
+    /// Loop paths that failed (they add nothing).
+    pub failed: usize,
+    /// Whether the loops stopped because too many of their paths failed
+    /// ([`COMPLETION_MAX_FAILED`]): the fiber may still lack points the loops could
+    /// have found.
+    pub abandoned: bool,
+}
+
+/// Completes the known part `solutions` of the fiber of `F(x; p) = 0` over `base` by
+/// monodromy in the *restricted* family where only the first `moving` parameters vary
+/// (the others, e.g. a design's fixed shape constants, are pinned at their `base`
+/// values): every known solution is tracked around random triangles
+/// `base → p₁ → p₂ → base` (Duff, Hill, Jensen, Lee, Leykin and Sommars, *Solving
+/// polynomial systems via homotopy continuation and monodromy*, IMA J. Numer. Anal.
+/// 39, 2019), and each new nonsingular endpoint, refined by Newton's method at `base`,
+/// is added, until `target` solutions are known, `stagnant_loops` loops in a row add
+/// none, or more than [`COMPLETION_MAX_FAILED`] of the loop paths failed. Loops permute the fiber of each irreducible component of the incidence
+/// variety, so a fiber that meets every component is completed (with probability one
+/// for random loops); stagnation is no proof of completeness. Deterministic for the
+/// state of `rng` (loops drawn in sequence, paths tracked in parallel, endpoints
+/// merged in path order).
+pub fn complete_fiber<F: Evaluator + ?Sized>(
+    system: &F,
+    (base, moving): (&[C64], usize),
+    solutions: &mut Vec<Vec<C64>>,
+    (target, stagnant_loops): (usize, usize),
+    tracker: &TrackerOptions,
+    rng: &mut SeededRng,
+) -> FiberCompletion {
+    let m = base.len();
+    let known = solutions.len();
+    let mut outcome = FiberCompletion::default();
+    let mut tracker = tracker.clone();
+    tracker.step.max_steps = tracker.step.max_steps.min(COMPLETION_MAX_STEPS);
+    let tracker = &tracker;
+    let mut stagnant = 0;
+    while stagnant < stagnant_loops
+        && outcome.loops < COMPLETION_MAX_LOOPS
+        && solutions.len() < target
+    {
+        let results = around_a_loop(system, (base, moving.min(m)..m), solutions, tracker, rng);
+        outcome.loops += 1;
+        outcome.tracked += results.len();
+        let before = solutions.len();
+        for result in results {
+            if result.status != PathStatus::Nonsingular {
+                outcome.failed += 1;
+                continue;
+            }
+            if contains_point(solutions, &result.solution, COMPLETION_DUPLICATE) {
+                continue;
+            }
+            let refined = super::refine::newton_refine(system, &result.solution, base, 1e-13, 8);
+            if refined.converged
+                && refined.condition < COMPLETION_MAX_CONDITION
+                && !contains_point(solutions, &refined.point, COMPLETION_DUPLICATE)
+            {
+                solutions.push(refined.point);
+            }
+        }
+        if solutions.len() < target
+            && outcome.failed as f64 > COMPLETION_MAX_FAILED * outcome.tracked as f64
+        {
+            outcome.abandoned = true;
+            break;
+        }
+        stagnant = if solutions.len() == before {
+            stagnant + 1
+        } else {
+            0
+        };
+    }
+    outcome.added = solutions.len() - known;
+    outcome
+}
+
+/// Loops [`complete_fiber`] tracks at most.
+const COMPLETION_MAX_LOOPS: usize = 32;
+
+/// Step budget of a loop path of [`complete_fiber`] (three segments): where the family
+/// tracks well a loop path needs far fewer (the 3-RPR seed stages of a platform
+/// congruent with the base or with two coincident anchors give the same counts in
+/// the same time with 300 steps as with 1,500), and where it does not, a path that
+/// crawls costs a few hundred steps before it counts as failed (two base anchors 10⁻⁴
+/// apart: 1.0 s → 0.3 s for a seed point whose loops are then abandoned).
+const COMPLETION_MAX_STEPS: usize = 300;
+
+/// Relative distance under which [`complete_fiber`] takes two solutions for one.
+const COMPLETION_DUPLICATE: f64 = 1e-8;
+
+/// Fraction of failed loop paths above which [`complete_fiber`] gives up: where the
+/// family is hard to track at random parameters, loops lose the very points they
+/// should find. Measured on the 3-RPR seed stages (two loops each): 0 % on a base
+/// congruent with or similar to the platform, at most 12 % on collinear anchors, and
+/// 20–35 % on two anchors of a rigid part 10⁻⁴ apart.
+pub const COMPLETION_MAX_FAILED: f64 = 0.15;
+
+/// Condition bound of a solution [`complete_fiber`] adds (one the loop's tracker
+/// ended as nonsingular, and Newton's method converges to at `base`): far out along
+/// isotropic lines simple critical points have unscaled condition numbers up to
+/// about 10¹⁴.
+const COMPLETION_MAX_CONDITION: f64 = 1e15;
 
 /// Populates all solutions of `F(x; start_parameters) = 0` from one start solution by
 /// monodromy, then certifies the set with the trace test (module documentation).

@@ -4,7 +4,8 @@ use super::*;
 use crate::metric::Part;
 use crate::pipeline::family::Family;
 use crate::pipeline::sweep::{
-    ProjectiveTwin, SeedPolicy, SeedSolutions, seed_family, split_seeded,
+    MonodromyLoops, ProjectiveTwin, SeedPolicy, SeedSolutions, completed_by_monodromy, first_run,
+    seed_family, split_seeded,
 };
 use crate::problem::{equilateral, pedal};
 use crate::system::CompiledSystem;
@@ -226,6 +227,14 @@ fn seed_point_in_stream(design: &Design, motion: &Motion, seed: u64, stream: u64
 /// confirm a finite count below the generic one.
 pub const SEED_POINTS: usize = 5;
 
+/// The parameters a 3-RPR motion moves: the twelve coordinates of the configuration
+/// `K` (the rest are a rigid part's shape constants, fixed by the design).
+const MOVING_PARAMETERS: usize = 12;
+
+/// [`SeedPolicy::monodromy_stagnant_loops`] of the curve's seed stages: a seed point's
+/// first run is completed by monodromy until two loops in a row add nothing.
+pub const SEED_MONODROMY_STAGNANT_LOOPS: usize = 2;
+
 /// The normalised configuration `N(K(seed)) + δ` of a seed point.
 fn seed_configuration(
     design: &Design,
@@ -296,7 +305,7 @@ impl Family for SeedFamily<'_> {
     }
 
     fn moving_parameters(&self) -> usize {
-        12
+        MOVING_PARAMETERS
     }
 }
 
@@ -405,12 +414,15 @@ pub(super) fn seed_stage_with_probes(
         prepared: &prepared,
     };
     let trackers = (&options.tracker, &options.retry_tracker);
-    let policy = SeedPolicy::new(
-        SEED_POINTS,
-        options.seed,
-        trackers,
-        options.seed_retry_attempts,
-    );
+    let policy = SeedPolicy {
+        monodromy_stagnant_loops: SEED_MONODROMY_STAGNANT_LOOPS,
+        ..SeedPolicy::new(
+            SEED_POINTS,
+            options.seed,
+            trackers,
+            options.seed_retry_attempts,
+        )
+    };
     let (seeded, failures, paths_tracked) = split_seeded(seed_family(&family, &policy));
     let mut problems: Vec<SeededProblem> = prepared
         .into_iter()
@@ -510,8 +522,7 @@ pub(super) fn probe_seed_counts(
                     let parameters =
                         normalized_parameters(&seeded.problem, design, &k, normalization);
                     let stream = PROBE_STREAM | index as u64;
-                    let probe = generic_route(seeded, &parameters, stream, &without_detours);
-                    (probe.accounted, probe.endpoints.len(), probe.tracked)
+                    probe_at(seeded, &parameters, stream, (options, &without_detours))
                 }
             };
             let refuted =
@@ -602,6 +613,60 @@ pub(super) fn reconcile_seed_counts(
         settle_seed_failures(&stage.problems, &mut stage.failures);
     }
 }
+
+/// The probe of [`probe_seed_counts`] at `parameters` (a real pose): paths accounted
+/// for, distinct finite solutions, paths tracked. Where the seed count was settled by
+/// monodromy and no path of the first run to the pose fails, that run completed by
+/// monodromy at the pose ([`completed_by_monodromy`]); a set the loops completed counts
+/// as settled, as a route that accounts for every path does. Elsewhere, or where the
+/// loops give up, the generic route with its re-runs and projective twin
+/// (`without_detours`).
+fn probe_at(
+    seeded: &SeededProblem,
+    parameters: &[C64],
+    stream: u64,
+    (options, without_detours): (&CurveOptions, &CurveOptions),
+) -> (usize, usize, usize) {
+    let mut tracked = 0;
+    if seeded.at_seed.completed_by_monodromy {
+        let (source, starts) = &seeded.at_seed.generic_start;
+        let system = seeded.problem.evaluator();
+        let paths = first_run(system, (source, starts), parameters, &options.tracker);
+        tracked += paths.len();
+        let failed = paths
+            .iter()
+            .any(|p| matches!(p.status, crate::homotopy::PathStatus::Failed(_)));
+        let probe = (!failed).then(|| {
+            completed_by_monodromy(
+                system,
+                &paths,
+                (parameters, MOVING_PARAMETERS),
+                MonodromyLoops {
+                    stagnant: SEED_MONODROMY_STAGNANT_LOOPS,
+                    at_least: 0,
+                    unless_reached: None,
+                },
+                &options.tracker,
+                &mut random::stream(options.seed, stream ^ PROBE_MONODROMY),
+            )
+        });
+        if let Some(probe) = probe {
+            tracked += probe.tracked;
+            if !probe.abandoned {
+                return (seeded.at_seed.generic_count, probe.solutions.len(), tracked);
+            }
+        }
+    }
+    let probe = generic_route(seeded, parameters, stream, without_detours);
+    (
+        probe.accounted,
+        probe.endpoints.len(),
+        tracked + probe.tracked,
+    )
+}
+
+/// Random stream tag of [`probe_at`]'s monodromy loops.
+const PROBE_MONODROMY: u64 = 0x6d6f_6e6f;
 
 /// Random stream of [`probe_seed_counts`] (ored with the sub-problem's index): apart
 /// from every pose's streams, which hold the pose index + 1 in the upper half.

@@ -344,6 +344,7 @@ mod tests {
                     },
                     start_count: count,
                     generic_start: (Vec::new(), Vec::new()),
+                    completed_by_monodromy: false,
                 },
                 tau_star: None,
             })

@@ -26,8 +26,10 @@ pub(crate) use check::{check_seed, checked_poses};
 pub(crate) use jump::{JUMP_HISTORY, JumpRoutes, jump_set};
 pub(crate) use retry::*;
 pub use run::{PoseRange, Sweep, SweepWindow, SweptFamily, merge_windows, window_ranges};
+pub(crate) use seed::{
+    MonodromyLoops, completed_by_monodromy, first_run, seed_family, split_seeded,
+};
 pub use seed::{SeedPolicy, SeedSolutions, Seeded, distinct_solutions, seed_count_confirmed};
-pub(crate) use seed::{seed_family, split_seeded};
 pub use twin::ProjectiveTwin;
 pub(crate) use walk::{
     ChainHistory, ChainRoutes, Rescued, lost_runs, rescue_lost_runs, rescue_run, solve_in_chain,

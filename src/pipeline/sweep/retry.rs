@@ -314,6 +314,12 @@ pub(crate) struct TrackingPlan<'a> {
     /// the endpoints are completed with the conjugates they lack
     /// ([`with_conjugates`]), and a set completed that way ends the attempts.
     pub conjugate: Option<&'a Conjugation<'a>>,
+    /// Whether the failed paths get a last, long re-run at the end (step 5 of
+    /// [`track_with_retries`]).
+    pub last_chance: bool,
+    /// The first run along the reference route, where the caller has tracked it
+    /// already (with `first` and the plan's endgame): not tracked again.
+    pub first_run: Option<&'a [PathResult]>,
 }
 
 impl<'a> TrackingPlan<'a> {
@@ -327,6 +333,8 @@ impl<'a> TrackingPlan<'a> {
             twin: None,
             hand_over_when_steps_run_out: false,
             conjugate: None,
+            last_chance: true,
+            first_run: None,
         }
     }
 
@@ -367,7 +375,8 @@ impl<'a> TrackingPlan<'a> {
 ///    to infinity and a few of them stay unclassified on every detour);
 /// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
 ///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
-/// 5. gives the lost paths the twin did not classify a last, long re-run.
+/// 5. gives the lost paths the twin did not classify a last, long re-run
+///    (`plan.last_chance`).
 ///
 /// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
 /// of the best attempt, or the distinct finite endpoints of all attempts plus the
@@ -387,6 +396,8 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         twin,
         hand_over_when_steps_run_out,
         conjugate,
+        last_chance,
+        first_run,
     } = plan;
     let expected = starts.len();
     // The endpoints with the conjugates they lack (up to `expected`), where the target
@@ -397,8 +408,13 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         }
     };
     let reference = PathParameterHomotopy::new(system, path(0));
-    let mut paths = track_all(&reference, starts, tracker, endgame);
-    let mut tracked = starts.len();
+    let (mut paths, mut tracked) = match first_run {
+        Some(paths) => (paths.to_vec(), 0),
+        None => (
+            track_all(&reference, starts, tracker, endgame),
+            starts.len(),
+        ),
+    };
     if hand_over_when_steps_run_out
         && paths
             .iter()
@@ -599,7 +615,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 && classified == unsettled.len();
         }
     }
-    if best < expected {
+    if last_chance && best < expected {
         // Last chance: the reference route's paths that ran out of steps or failed
         // otherwise (not those that passed close to infinity: that is the route's
         // property), once more with a long step budget shared among them. Paths near

@@ -17,12 +17,26 @@
 //! of steps, but already as many solutions as the best point so far, is left at that
 //! (its count a lower bound that confirms nothing) for the next seed point, except the
 //! first and the last one, which re-run, detour and re-track in the twin.
+//!
+//! Where a seed point's first run loses points only to path crossings (no path fails),
+//! the count is settled first by monodromy ([`SeedPolicy::monodromy_stagnant_loops`]):
+//! each of two seed points completes its first run's finite solutions by loops in the
+//! design's restricted family (the motion's parameters free, the design's fixed), and
+//! the two counts must agree ([`completed_by_monodromy`]). An orbit of critical points
+//! at infinity then costs its paths once per first run, not once per detour and twin
+//! re-check.
 
-use super::{PathFailure, Retried, TrackingPlan, detour_point, same_endpoint, track_with_retries};
+use super::{
+    PathFailure, Retried, TrackingPlan, accounted, detour_point, finite_solutions, same_endpoint,
+    track_all, track_with_retries, unaccounted_reasons,
+};
 use crate::C64;
-use crate::homotopy::{PolylinePath, TrackerOptions};
+use crate::homotopy::{
+    PathParameterHomotopy, PathResult, PathStatus, PolylinePath, TrackerOptions, complete_fiber,
+};
 use crate::pipeline::family::Family;
 use crate::random;
+use crate::system::Evaluator;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -44,6 +58,12 @@ pub struct SeedPolicy<'a> {
     /// with whole detours only where that does not confirm an earlier point's count
     /// (`false`: whole detours at every seed point).
     pub confirm_lost_paths_first: bool,
+    /// Monodromy completion before the detours (see the module documentation): where a
+    /// seed point's first run loses points only to path crossings, its finite
+    /// solutions are completed by monodromy loops in the design's restricted family
+    /// until this many loops in a row add none (`0`: straight to the re-runs, detours,
+    /// projective twin and last chances).
+    pub monodromy_stagnant_loops: usize,
 }
 
 impl<'a> SeedPolicy<'a> {
@@ -62,6 +82,7 @@ impl<'a> SeedPolicy<'a> {
             retry_tracker,
             attempts,
             confirm_lost_paths_first: true,
+            monodromy_stagnant_loops: 0,
         }
     }
 }
@@ -80,6 +101,10 @@ pub struct Seeded<S> {
     pub failure: Option<PathFailure>,
     /// Paths tracked at every seed point.
     pub tracked: usize,
+    /// Whether the count was settled by seed points completed by monodromy
+    /// ([`SeedPolicy::monodromy_stagnant_loops`]): the family tracks well at random
+    /// parameters of its restricted family.
+    pub completed_by_monodromy: bool,
 }
 
 /// A sub-problem at its seed as every pose's route sees it, for any mechanism: the
@@ -105,6 +130,9 @@ pub struct SeedSolutions {
     /// The start file's generic parameter point and its solutions (the start of the
     /// seed stage, and of the generic route to a pose).
     pub generic_start: (Vec<C64>, Vec<Vec<C64>>),
+    /// Whether the seed count was settled by monodromy completion
+    /// ([`Seeded::completed_by_monodromy`]).
+    pub completed_by_monodromy: bool,
 }
 
 impl SeedSolutions {
@@ -117,6 +145,7 @@ impl SeedSolutions {
             solutions: seeded.solutions,
             generic_count: seeded.generic_count,
             generic_start,
+            completed_by_monodromy: seeded.completed_by_monodromy,
         };
         (seeded.seed, at_seed)
     }
@@ -175,6 +204,20 @@ pub(crate) fn seed_problem<F: Family>(
     problem: usize,
     policy: &SeedPolicy<'_>,
 ) -> Seeded<F::Seed> {
+    // What the monodromy points left to the detours: the paths they tracked, the seed
+    // points they completed, and the next point's first run if they stopped there.
+    let mut fallback = Fallback {
+        tracked: 0,
+        runs: Vec::new(),
+        first_run: None,
+    };
+    if policy.monodromy_stagnant_loops > 0 {
+        match seed_problem_by_monodromy(family, problem, policy) {
+            Ok(seeded) => return seeded,
+            Err(left) => fallback = left,
+        }
+    }
+    let mut tracked = fallback.tracked;
     let (source, starts) = family.generic_start(problem);
     let generic = starts.len();
     let twin = family.twin(problem);
@@ -196,10 +239,11 @@ pub(crate) fn seed_problem<F: Family>(
                 .with_twin(twin)
         },
     ];
-    let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
-    let mut tracked = 0;
+    // The seed points the monodromy points completed, and the next point's first run.
+    let first_point = fallback.runs.len();
+    let mut runs: Vec<SeedRun<F::Seed>> = fallback.runs;
     let mut twin_settled = false;
-    for point in 0..policy.points {
+    for point in first_point..policy.points {
         let (seed, parameters) = family.seed(problem, point);
         let stream = ((problem as u64) << 32) + ((point as u64) << 24);
         let track = |plan: &TrackingPlan<'_>| {
@@ -238,7 +282,13 @@ pub(crate) fn seed_problem<F: Family>(
             (true, false) => &plans[0],
             (false, _) => &plans[1],
         };
-        let mut retried: Retried = track(plan);
+        // This point's first run, where the monodromy points tracked it already.
+        let first_run = if point == first_point {
+            fallback.first_run.as_deref()
+        } else {
+            None
+        };
+        let mut retried: Retried = track(&TrackingPlan { first_run, ..*plan });
         tracked += retried.tracked;
         let mut solutions = distinct_solutions(retried.endpoints, generic);
         let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
@@ -286,9 +336,20 @@ pub(crate) fn seed_problem<F: Family>(
             break;
         }
     }
+    let confirmed = twin_settled || runs_confirm(&runs, generic);
+    chosen_run(family.name(problem), runs, (generic, confirmed), tracked)
+}
+
+/// The seeded problem from its seed points' `runs`: the earliest run with the most
+/// solutions, with a seed-stage failure for the shortfall unless `confirmed`.
+fn chosen_run<S>(
+    problem: String,
+    runs: Vec<SeedRun<S>>,
+    (generic, confirmed): (usize, bool),
+    tracked: usize,
+) -> Seeded<S> {
     let counts: Vec<usize> = runs.iter().map(|r| r.solutions.len()).collect();
     let most = counts.iter().copied().max().unwrap_or(0);
-    let confirmed = twin_settled || runs_confirm(&runs, generic);
     let chosen = runs
         .into_iter()
         .find(|r| r.solutions.len() == most)
@@ -303,7 +364,7 @@ pub(crate) fn seed_problem<F: Family>(
         PathFailure {
             pose_index: None,
             tau: None,
-            problem: family.name(problem),
+            problem,
             expected: generic,
             accounted: most,
             reasons,
@@ -316,8 +377,221 @@ pub(crate) fn seed_problem<F: Family>(
         generic_count: generic,
         failure,
         tracked,
+        completed_by_monodromy: false,
     }
 }
+
+/// The first seed points of [`seed_problem`] with monodromy completion
+/// ([`SeedPolicy::monodromy_stagnant_loops`]), where every path of the first run ends
+/// (at a finite point, or at infinity by the endgame's evidence) and only path
+/// crossings leave paths unaccounted for. At each of the first [`MONODROMY_POINTS`]
+/// seed points the generic start set is tracked along the straight segment to the seed
+/// (first run only), and where its distinct finite endpoints fall short of the generic
+/// count they are completed by monodromy in the design's restricted family (only the
+/// parameters the motion moves vary; [`complete_fiber`]): a path that jumped onto
+/// another one's endpoint hid a point of the same fiber, which loops from the others
+/// reach, where the detours track every path again (on a base congruent with the
+/// platform the first seed point's `rigid/rigid` detours tracked 88 paths each, 64 of
+/// them to infinity, and added nothing). As in
+/// [`seed_problem`], a count below the generic one counts only when both points, each
+/// reached along its own route, agree on it; the second point's first run is completed
+/// only where it has fewer solutions than the first.
+///
+/// A path that fails may be heading for a finite point far out that loops do not
+/// reach either (on a base whose anchors are 10⁻³ from collinear, four of the 88
+/// `rigid/rigid` critical points at every seed: two points completed by loops agreed
+/// on 84): there, where the loops give up, where the first run accounts for every path
+/// with at most [`TWIN_SETTLES_AT_MOST`] at infinity (the projective twin settles the
+/// count at that one point), and where the two points disagree, [`seed_problem`] goes
+/// on from that point with its re-runs, detours, twin and last chances, the points
+/// completed so far kept ([`Fallback`]).
+fn seed_problem_by_monodromy<F: Family>(
+    family: &F,
+    problem: usize,
+    policy: &SeedPolicy<'_>,
+) -> Result<Seeded<F::Seed>, Fallback<F::Seed>> {
+    let (source, starts) = family.generic_start(problem);
+    let generic = starts.len();
+    let system = family.system(problem);
+    let mut runs: Vec<SeedRun<F::Seed>> = Vec::new();
+    let mut tracked = 0;
+    for point in 0..MONODROMY_POINTS.min(policy.points) {
+        let (seed, parameters) = family.seed(problem, point);
+        let stream = ((problem as u64) << 32) + ((point as u64) << 24);
+        let paths = first_run(system, (source, starts), &parameters, policy.tracker);
+        tracked += paths.len();
+        let at_infinity = paths
+            .iter()
+            .filter(|p| p.status == PathStatus::AtInfinity)
+            .count();
+        let failed = paths
+            .iter()
+            .any(|p| matches!(p.status, PathStatus::Failed(_)));
+        let settled_by_twin =
+            point == 0 && accounted(&paths) == generic && at_infinity <= TWIN_SETTLES_AT_MOST;
+        if failed || settled_by_twin {
+            return Err(Fallback {
+                tracked,
+                runs,
+                first_run: Some(paths),
+            });
+        }
+        let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
+        let completed = completed_by_monodromy(
+            system,
+            &paths,
+            (&parameters, family.moving_parameters()),
+            MonodromyLoops {
+                stagnant: policy.monodromy_stagnant_loops,
+                at_least: most,
+                unless_reached: (point > 0).then_some(most),
+            },
+            policy.tracker,
+            &mut random::stream(policy.seed, stream | MONODROMY_STREAM),
+        );
+        tracked += completed.tracked;
+        if completed.abandoned {
+            return Err(Fallback {
+                tracked,
+                runs,
+                first_run: Some(paths),
+            });
+        }
+        runs.push(SeedRun {
+            seed,
+            parameters,
+            solutions: completed.solutions,
+            reasons: completed.reasons,
+            handed_over: false,
+        });
+        if runs_confirm(&runs, generic) {
+            let chosen = chosen_run(family.name(problem), runs, (generic, true), tracked);
+            return Ok(Seeded {
+                completed_by_monodromy: true,
+                ..chosen
+            });
+        }
+    }
+    Err(Fallback {
+        tracked,
+        runs,
+        first_run: None,
+    })
+}
+
+/// What [`seed_problem_by_monodromy`] leaves to the detours: the paths it tracked, the
+/// seed points it completed (their counts stand, and the detours go on at the next
+/// point), and the next point's first run where it stopped there (the detours' first
+/// run at that point is the same).
+struct Fallback<S> {
+    tracked: usize,
+    runs: Vec<SeedRun<S>>,
+    first_run: Option<Vec<PathResult>>,
+}
+
+/// The generic start set `(source, starts)` of `system` tracked along the straight
+/// segment to `parameters`, with the endgame.
+pub(crate) fn first_run<E: Evaluator + ?Sized>(
+    system: &E,
+    (source, starts): (&[C64], &[Vec<C64>]),
+    parameters: &[C64],
+    tracker: &TrackerOptions,
+) -> Vec<PathResult> {
+    let route = PolylinePath::new(vec![source.to_vec(), parameters.to_vec()]);
+    track_all(
+        &PathParameterHomotopy::new(system, route),
+        starts,
+        tracker,
+        true,
+    )
+}
+
+/// How many monodromy loops [`completed_by_monodromy`] tracks.
+#[derive(Clone, Copy)]
+pub(crate) struct MonodromyLoops {
+    /// Loops in a row that add nothing, after which the loops stop.
+    pub stagnant: usize,
+    /// While below this many solutions (another point's count: the family's finite
+    /// count is generically constant), [`CATCH_UP_STAGNANT_LOOPS`] more.
+    pub at_least: usize,
+    /// No loops at all where the first run reached this many solutions.
+    pub unless_reached: Option<usize>,
+}
+
+/// What [`completed_by_monodromy`] found at one parameter point.
+pub(crate) struct CompletedRun {
+    /// Distinct finite solutions, at most the generic count.
+    pub solutions: Vec<Vec<C64>>,
+    /// Why paths of the route are unaccounted for ([`unaccounted_reasons`]).
+    pub reasons: BTreeMap<String, usize>,
+    /// Paths tracked by the loops.
+    pub tracked: usize,
+    /// Whether the monodromy loops gave up (too many of their paths failed): the
+    /// family is too hard to track at random parameters for the loops to complete it.
+    pub abandoned: bool,
+}
+
+/// The distinct finite endpoints of a first run `paths` (of the generic start set to
+/// `parameters`), completed where they fall short of the generic count by monodromy
+/// in the restricted family of the first `moving` parameters ([`complete_fiber`]) as
+/// `loops` says.
+pub(crate) fn completed_by_monodromy<E: Evaluator + ?Sized>(
+    system: &E,
+    paths: &[PathResult],
+    (parameters, moving): (&[C64], usize),
+    loops: MonodromyLoops,
+    tracker: &TrackerOptions,
+    rng: &mut random::SeededRng,
+) -> CompletedRun {
+    let generic = paths.len();
+    let mut run = CompletedRun {
+        solutions: distinct_solutions(finite_solutions(paths), generic),
+        reasons: unaccounted_reasons(paths),
+        tracked: 0,
+        abandoned: false,
+    };
+    let reached = loops
+        .unless_reached
+        .is_some_and(|count| run.solutions.len() >= count);
+    if run.solutions.is_empty() || run.solutions.len() >= generic || reached {
+        return run;
+    }
+    for stagnant in [loops.stagnant, CATCH_UP_STAGNANT_LOOPS] {
+        let completion = complete_fiber(
+            system,
+            (parameters, moving),
+            &mut run.solutions,
+            (generic, stagnant),
+            tracker,
+            rng,
+        );
+        run.tracked += completion.tracked;
+        run.abandoned = completion.abandoned;
+        if run.abandoned || run.solutions.len() >= loops.at_least {
+            break;
+        }
+    }
+    run
+}
+
+/// Paths at infinity of a first seed point's first run that accounts for every path,
+/// up to which the projective twin settles the count there ([`seed_problem`]), as it
+/// does for the 8 of the built-in example's 88 `rigid/rigid` paths. Beyond, a second
+/// seed point costs less: on a base congruent with the platform 64 of the 88 are at
+/// infinity, and the twin's re-check of them took 0.23–0.5 s per seed point.
+const TWIN_SETTLES_AT_MOST: usize = 16;
+
+/// Seed points solved with monodromy completion before [`seed_problem`] falls back to
+/// the detours: two, the fewest that can agree on a count.
+const MONODROMY_POINTS: usize = 2;
+
+/// Stagnant loops a seed point's monodromy gets once more where it has fewer
+/// solutions than an earlier point.
+const CATCH_UP_STAGNANT_LOOPS: usize = 4;
+
+/// Bit of the random stream of a seed point's monodromy loops (ored with the point's
+/// own stream).
+const MONODROMY_STREAM: u64 = 1 << 20;
 
 /// Every problem of `family` at its seed ([`seed_problem`]), in parallel, in order.
 pub(crate) fn seed_family<F: Family>(family: &F, policy: &SeedPolicy<'_>) -> Vec<Seeded<F::Seed>> {
