@@ -343,11 +343,13 @@ fn extended_precision_accounts_for_every_rigid_rigid_path_near_the_motion_start(
         ..CurveOptions::default()
     };
     options.tracker.precision.extended_after_rejections = 3;
+    options.seed_tracker.precision.extended_after_rejections = 3;
     let (seed_default, poses_default) = lost_on_example("rigid/rigid", &poses, &options);
     assert_eq!(poses_default, 0, "double-double extended mode");
     assert!(seed_default <= 2, "seed stage lost {seed_default}");
     let mut double_only = options.clone();
     double_only.tracker.precision.extended_residual = false;
+    double_only.seed_tracker.precision.extended_residual = false;
     double_only.retry_tracker.precision.extended_residual = false;
     let (seed_double, poses_double) = lost_on_example("rigid/rigid", &poses, &double_only);
     assert!(
@@ -443,6 +445,7 @@ fn rescue_pass_recovers_poses_from_complete_neighbours() {
     let starved_with = |budget: usize| {
         let mut options = CurveOptions::default();
         options.tracker.step.max_steps = budget;
+        options.seed_tracker.step.max_steps = budget;
         options.retry_tracker.step.max_steps = budget;
         options.retry_attempts = 0;
         // Without the projective twin, whose own budget would find the starved paths.

@@ -77,7 +77,8 @@ mod step;
 
 pub use options::{
     CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
-    CURVE_PREDICTION_TOLERANCE, EndgameOptions, PrecisionOptions, StepOptions, TrackerOptions,
+    CURVE_PREDICTION_TOLERANCE, CURVE_SEED_EXTENDED_AFTER_REJECTIONS, EndgameOptions,
+    PrecisionOptions, StepOptions, TrackerOptions,
 };
 
 /// Why a path failed.

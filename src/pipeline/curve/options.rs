@@ -17,6 +17,11 @@ pub struct CurveOptions {
     /// example's `plate/*` curves about 1.2 × slower).
     #[serde(default = "default_neighbour_tracker")]
     pub neighbour_tracker: TrackerOptions,
+    /// Tracker settings of the seed stages' first runs, detours and monodromy loops
+    /// (source → seed): [`TrackerOptions::curve_seed`], the first-run tracker with
+    /// double-double arithmetic after five rejections.
+    #[serde(default = "default_seed_tracker")]
+    pub seed_tracker: TrackerOptions,
     /// Tracker settings of the re-runs (safer).
     pub retry_tracker: TrackerOptions,
     /// Number of detour re-runs of a (pose, sub-problem) that lost paths.
@@ -116,10 +121,10 @@ fn default_self_check() -> bool {
 
 /// The curve's tuned tracker settings, kept with the presets they define
 /// ([`TrackerOptions::curve`], [`TrackerOptions::curve_neighbour`],
-/// [`TrackerOptions::curve_retry`]).
+/// [`TrackerOptions::curve_seed`], [`TrackerOptions::curve_retry`]).
 pub use crate::homotopy::tracker::{
     CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
-    CURVE_PREDICTION_TOLERANCE,
+    CURVE_PREDICTION_TOLERANCE, CURVE_SEED_EXTENDED_AFTER_REJECTIONS,
 };
 
 impl Default for CurveOptions {
@@ -128,6 +133,7 @@ impl Default for CurveOptions {
             seed: 1,
             tracker: TrackerOptions::curve(),
             neighbour_tracker: default_neighbour_tracker(),
+            seed_tracker: default_seed_tracker(),
             retry_tracker: TrackerOptions::curve_retry(),
             retry_attempts: 1,
             seed_retry_attempts: default_seed_retry_attempts(),
@@ -152,6 +158,10 @@ fn default_seed_retry_attempts() -> usize {
 
 fn default_neighbour_tracker() -> TrackerOptions {
     TrackerOptions::curve_neighbour()
+}
+
+fn default_seed_tracker() -> TrackerOptions {
+    TrackerOptions::curve_seed()
 }
 
 fn default_multipliers() -> Multipliers {

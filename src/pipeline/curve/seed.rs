@@ -413,7 +413,7 @@ pub(super) fn seed_stage_with_probes(
         seed: options.seed,
         prepared: &prepared,
     };
-    let trackers = (&options.tracker, &options.retry_tracker);
+    let trackers = (&options.seed_tracker, &options.retry_tracker);
     let policy = SeedPolicy {
         monodromy_stagnant_loops: SEED_MONODROMY_STAGNANT_LOOPS,
         ..SeedPolicy::new(

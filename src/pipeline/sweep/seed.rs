@@ -27,12 +27,13 @@
 //! re-check.
 
 use super::{
-    PathFailure, Retried, TrackingPlan, accounted, detour_point, finite_solutions, same_endpoint,
-    track_all, track_with_retries, unaccounted_reasons,
+    PathFailure, Retried, TrackingPlan, accounted, crossings, detour_point, finite_solutions,
+    same_endpoint, track_all, track_with_retries, unaccounted_reasons,
 };
 use crate::C64;
 use crate::homotopy::{
-    PathParameterHomotopy, PathResult, PathStatus, PolylinePath, TrackerOptions, complete_fiber,
+    PathParameterHomotopy, PathResult, PathStatus, PolylinePath, Tracker, TrackerOptions,
+    complete_fiber,
 };
 use crate::pipeline::family::Family;
 use crate::random;
@@ -435,6 +436,19 @@ fn seed_problem_by_monodromy<F: Family>(
                 runs,
                 first_run: Some(paths),
             });
+        }
+        // The paths that crossed another one, re-run with the careful tracker first: a
+        // few such paths cost less than a loop over every solution.
+        let mut paths = paths;
+        let crossed = crossings(&paths);
+        if crossed.iter().any(|&c| c) {
+            let route = PolylinePath::new(vec![source.to_vec(), parameters.clone()]);
+            let homotopy = PathParameterHomotopy::new(system, route);
+            let mut careful = Tracker::new(&homotopy, policy.retry_tracker.clone());
+            for (i, _) in crossed.iter().enumerate().filter(|(_, c)| **c) {
+                paths[i] = careful.track(&starts[i], i);
+                tracked += 1;
+            }
         }
         let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
         let completed = completed_by_monodromy(
