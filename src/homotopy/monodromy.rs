@@ -214,11 +214,11 @@ pub struct FiberCompletion {
 /// polynomial systems via homotopy continuation and monodromy*, IMA J. Numer. Anal.
 /// 39, 2019), and each new nonsingular endpoint, refined by Newton's method at `base`,
 /// is added, until `target` solutions are known, `stagnant_loops` loops in a row add
-/// none, or more than [`COMPLETION_MAX_FAILED`] of the loop paths failed. Loops permute the fiber of each irreducible component of the incidence
-/// variety, so a fiber that meets every component is completed (with probability one
-/// for random loops); stagnation is no proof of completeness. Deterministic for the
-/// state of `rng` (loops drawn in sequence, paths tracked in parallel, endpoints
-/// merged in path order).
+/// none, or more than [`COMPLETION_MAX_FAILED`] of the loop paths failed. Loops permute
+/// the fiber of each irreducible component of the incidence variety, so a fiber that
+/// meets every component is completed (with probability one for random loops);
+/// stagnation is no proof of completeness. Deterministic for the state of `rng` (loops
+/// drawn in sequence, paths tracked in parallel, endpoints merged in path order).
 pub fn complete_fiber<F: Evaluator + ?Sized>(
     system: &F,
     (base, moving): (&[C64], usize),

@@ -691,7 +691,6 @@ fn track_problem(
                 twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
                 hand_over_when_steps_run_out,
                 conjugate: Some(&conjugate),
-                last_chance: true,
                 first_run: None,
             },
         )

@@ -314,9 +314,6 @@ pub(crate) struct TrackingPlan<'a> {
     /// the endpoints are completed with the conjugates they lack
     /// ([`with_conjugates`]), and a set completed that way ends the attempts.
     pub conjugate: Option<&'a Conjugation<'a>>,
-    /// Whether the failed paths get a last, long re-run at the end (step 5 of
-    /// [`track_with_retries`]).
-    pub last_chance: bool,
     /// The first run along the reference route, where the caller has tracked it
     /// already (with `first` and the plan's endgame): not tracked again.
     pub first_run: Option<&'a [PathResult]>,
@@ -333,7 +330,6 @@ impl<'a> TrackingPlan<'a> {
             twin: None,
             hand_over_when_steps_run_out: false,
             conjugate: None,
-            last_chance: true,
             first_run: None,
         }
     }
@@ -375,8 +371,7 @@ impl<'a> TrackingPlan<'a> {
 ///    to infinity and a few of them stay unclassified on every detour);
 /// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
 ///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
-/// 5. gives the lost paths the twin did not classify a last, long re-run
-///    (`plan.last_chance`).
+/// 5. gives the lost paths the twin did not classify a last, long re-run.
 ///
 /// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
 /// of the best attempt, or the distinct finite endpoints of all attempts plus the
@@ -396,7 +391,6 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         twin,
         hand_over_when_steps_run_out,
         conjugate,
-        last_chance,
         first_run,
     } = plan;
     let expected = starts.len();
@@ -615,7 +609,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 && classified == unsettled.len();
         }
     }
-    if last_chance && best < expected {
+    if best < expected {
         // Last chance: the reference route's paths that ran out of steps or failed
         // otherwise (not those that passed close to infinity: that is the route's
         // property), once more with a long step budget shared among them. Paths near
