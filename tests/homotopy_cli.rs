@@ -387,6 +387,31 @@ fn badly_scaled_systems_are_solved_completely_in_their_scaling() {
     }
 }
 
+/// PHCpack's `pb601` as distributed (coefficients from 1 to 10¹⁶): at the default seed
+/// one of its 18 polyhedral paths passes the norm cap, the projective chart neither
+/// confirms it at infinity nor finds a new root, and the conjugate of a root of
+/// modulus 26 is missing. The system is real, so that conjugate is a root: it is
+/// recorded at the unaccounted path, and all 18 roots are reported (17 with a warning
+/// before), each verified and distinct, at this seed and another.
+#[test]
+fn a_missing_conjugate_of_a_real_system_completes_the_roots() {
+    let file = demo_file("pb601");
+    for seed in ["24301", "1"] {
+        let value = solve_json(&[&file, "--seed", seed, "--threads", "1"]);
+        let summary = &value["summary"];
+        assert_eq!(summary["nonsingular"], 18, "seed {seed}: {summary}");
+        assert_eq!(summary["failed"], 0, "seed {seed}: {summary}");
+        assert_eq!(
+            summary["unconfirmed_at_infinity"], 0,
+            "seed {seed}: {summary}"
+        );
+        assert_eq!(verified_distinct_roots(&file, &value), 18, "seed {seed}");
+        if seed == "24301" {
+            assert_eq!(summary["completed_by_conjugation"], 1, "{summary}");
+        }
+    }
+}
+
 /// PHCpack's `fbrfive4` (four-bar linkage through five points): 36 nonsingular roots
 /// among 56 polyhedral paths, the others ending at singular points where Cauchy loops
 /// do not close (10,000–18,000 steps a path, and 3 failed paths, before the endgame

@@ -642,6 +642,12 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             s.failed,
             s.real
         );
+        if s.completed_by_conjugation > 0 {
+            text.push_str(&format!(
+                "conjugates    {} root(s) found as the conjugate of a root, at paths not accounted for\n",
+                s.completed_by_conjugation
+            ));
+        }
         if let Some(s) = &scaling {
             let exponents = |v: &[i32]| {
                 v.iter()

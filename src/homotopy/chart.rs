@@ -279,6 +279,7 @@ where
         // affine target decides.
         let undecided = result.status == PathStatus::Failed(FailureReason::HyperplaneUndecided);
         if !result.status.is_finite() && !undecided {
+            outcome.unconfirmed_paths.push(index);
             continue;
         }
         let refined = newton_refine(&target, &chart.lower(&result.solution), &[], 1e-13, 8);
@@ -290,14 +291,11 @@ where
             || !finite
             || known.iter().any(|y| same_point(y, &refined.point))
         {
+            outcome.unconfirmed_paths.push(index);
             continue;
         }
         let path = &mut paths[index];
-        path.status = PathStatus::Nonsingular;
-        path.solution = refined.point.clone();
-        path.residual = refined.residual;
-        path.condition = refined.condition;
-        path.winding_number = 1;
+        path.record_nonsingular_root(&refined);
         path.steps += result.steps;
         path.rejected_steps += result.rejected_steps;
         path.last_t = result.last_t;
@@ -308,7 +306,7 @@ where
 }
 
 /// What [`recover_from_infinity`] did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct ChartRecheck {
     /// Paths re-tracked in the chart.
     pub rechecked: usize,
@@ -316,31 +314,21 @@ pub(crate) struct ChartRecheck {
     pub confirmed: usize,
     /// Paths whose chart route reached a new finite root.
     pub recovered: usize,
-}
-
-impl ChartRecheck {
     /// Paths left at infinity that the chart neither confirmed nor recovered (it
-    /// failed, or reached a root already known): their classification rests on the
-    /// norm cap alone.
-    pub fn unconfirmed(&self) -> usize {
-        self.rechecked - self.confirmed - self.recovered
-    }
+    /// failed, or reached a root already known), in path order: their classification
+    /// rests on the norm cap alone.
+    pub unconfirmed_paths: Vec<usize>,
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::homotopy::StraightLineHomotopy;
-    use crate::system::{CompiledSystem, Evaluator};
+    use crate::homotopy::test_support::read_xy as read;
+    use crate::system::Evaluator;
 
     fn c(re: f64, im: f64) -> C64 {
         C64::new(re, im)
-    }
-
-    /// Equations `f`, `g` in `x`, `y` (Bertini syntax), compiled.
-    fn read(equations: &str) -> CompiledSystem {
-        let text = format!("INPUT\nvariable_group x, y;\nfunction f, g;\n{equations}\nEND;\n");
-        crate::system::bertini::read(&text).unwrap().compile()
     }
 
     /// The chart system's Jacobian and time derivative agree with central
@@ -429,7 +417,7 @@ mod tests {
         let outcome =
             recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
         assert_eq!((outcome.rechecked, outcome.recovered), (1, 1));
-        assert_eq!(outcome.unconfirmed(), 0);
+        assert_eq!(outcome.unconfirmed_paths.len(), 0);
         assert_eq!(paths[0].status, PathStatus::Nonsingular);
         assert!(same(&paths[0].solution, &root), "{:?}", paths[0].solution);
         // Known already: path 1's root given to path 0 as well is not counted twice.
@@ -440,7 +428,7 @@ mod tests {
             recover_from_infinity(&homotopy, &[2, 1], &mut paths, begin, &options, 5, same);
         assert_eq!(outcome.recovered, 0);
         // Its chart endpoint is the known root: not a confirmation of infinity.
-        assert_eq!(outcome.unconfirmed(), 1);
+        assert_eq!(outcome.unconfirmed_paths.len(), 1);
         assert_eq!(paths[0].status, PathStatus::AtInfinity);
     }
 

@@ -11,6 +11,7 @@
 //! start pair, certified by a trace test).
 
 pub mod chart;
+pub mod conjugates;
 mod divergence;
 pub mod homotopies;
 pub mod linalg;
@@ -21,6 +22,8 @@ pub mod polyhedral;
 pub mod refine;
 pub mod solve;
 pub mod start;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod tracker;
 
 pub use homotopies::{

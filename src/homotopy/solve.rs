@@ -15,6 +15,7 @@
 //! with [`EndgameOptions::growth_before_divergence`]), else it stays failed. Finite
 //! endpoints are then clustered to give multiplicities.
 
+use super::conjugates::complete_conjugate_roots;
 use super::divergence::settle_diverged_paths;
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
 use super::refine::{group_roots, newton_refine, same_point};
@@ -147,6 +148,11 @@ pub struct SolveSummary {
     /// nor reached a new root: their classification rests on the norm cap alone.
     #[serde(default)]
     pub unconfirmed_at_infinity: usize,
+    /// Paths not accounted for (failed, or left at infinity by the norm cap alone) that
+    /// now hold the complex conjugate of a root no path reached, confirmed by Newton's
+    /// method in place ([`super::conjugates`]; counted under `nonsingular`).
+    #[serde(default)]
+    pub completed_by_conjugation: usize,
 }
 
 /// Result of a solve run: every path in path order, and the summary.
@@ -441,13 +447,50 @@ where
         ),
         None => Default::default(),
     };
-    if recheck.recovered > 0 {
+    // Roots whose conjugates no path reported, recorded at the paths not accounted
+    // for: those left at infinity by the norm cap alone first, then the failed ones.
+    let doubtful: Vec<usize> = recheck
+        .unconfirmed_paths
+        .iter()
+        .copied()
+        .chain(
+            paths
+                .iter()
+                .filter(|p| matches!(p.status, PathStatus::Failed(_)))
+                .map(|p| p.path_index),
+        )
+        .collect();
+    let conjugates = complete_conjugate_roots(
+        homotopy,
+        &mut paths,
+        &doubtful,
+        (
+            options.real_tolerance,
+            options.cluster_tolerance,
+            options.tracker.endgame.singular_condition,
+        ),
+    );
+    if recheck.recovered > 0 || !conjugates.paths.is_empty() {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
+    }
+    if !conjugates.paths.is_empty() {
+        // A conjugate the cluster test did not match but Newton's grouping does is a
+        // duplicate: reported as a jumped path, not counted twice.
+        mark_jumped_paths(homotopy, &mut paths);
     }
     let mut summary = summarize(&paths, options.real_tolerance, retracked);
     summary.rechecked_at_infinity = recheck.rechecked;
     summary.recovered_from_infinity = recheck.recovered;
-    summary.unconfirmed_at_infinity = recheck.unconfirmed();
+    summary.unconfirmed_at_infinity = recheck
+        .unconfirmed_paths
+        .iter()
+        .filter(|&&i| paths[i].status == PathStatus::AtInfinity)
+        .count();
+    summary.completed_by_conjugation = conjugates
+        .paths
+        .iter()
+        .filter(|&&i| paths[i].status == PathStatus::Nonsingular)
+        .count();
     SolveResult {
         paths,
         summary,

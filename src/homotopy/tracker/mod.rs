@@ -165,6 +165,17 @@ pub struct PathResult {
 }
 
 impl PathResult {
+    /// Records `root`, a nonsingular root Newton's method refined on the target system
+    /// from another route than this path (a projective chart, a conjugate), as this
+    /// path's endpoint: status, point, residual and condition, winding number 1.
+    pub(crate) fn record_nonsingular_root(&mut self, root: &crate::homotopy::refine::Refinement) {
+        self.status = PathStatus::Nonsingular;
+        self.solution.clone_from(&root.point);
+        self.residual = root.residual;
+        self.condition = root.condition;
+        self.winding_number = 1;
+    }
+
     /// Whether every coordinate is real up to `tolerance · (1 + ‖x‖∞)`.
     pub fn is_real(&self, tolerance: f64) -> bool {
         let scale = 1.0 + max_norm(&self.solution);

@@ -3,19 +3,8 @@ use crate::C64;
 use crate::homotopy::{PathResult, PathStatus};
 
 fn path(index: usize, status: PathStatus, point: [f64; 2]) -> PathResult {
-    PathResult {
-        path_index: index,
-        solution: point.iter().map(|&v| C64::new(v, 0.5)).collect(),
-        status,
-        residual: 0.0,
-        condition: 1.0,
-        winding_number: 1,
-        multiplicity: 1,
-        steps: 10,
-        rejected_steps: 0,
-        used_extended_precision: false,
-        last_t: C64::new(1.0, 0.0),
-    }
+    let solution = point.iter().map(|&v| C64::new(v, 0.5)).collect();
+    crate::homotopy::test_support::path_result(index, status, solution)
 }
 
 /// Two paths on one nonsingular endpoint are a crossing (one critical point
