@@ -412,6 +412,22 @@ fn a_missing_conjugate_of_a_real_system_completes_the_roots() {
     }
 }
 
+/// PHCpack's `butcher8`: 15 of its 24 polyhedral paths go to infinity, and the
+/// endgame's norm cap classifies 4 of them there without evidence from their
+/// valuations. Re-tracked in a random projective chart, each reaches the hyperplane at
+/// infinity (its homogenising coordinate of 10⁻⁹–10⁻¹⁰ at `t ≈ 1 − 10⁻⁴` after 400
+/// steps, the former budget, which left 3 of them unconfirmed with a warning): all
+/// confirmed, and the 5 roots reported.
+#[test]
+fn paths_at_infinity_by_the_norm_cap_are_confirmed_in_a_projective_chart() {
+    let value = solve_json(&[&demo_file("butcher8"), "--threads", "1"]);
+    let summary = &value["summary"];
+    assert_eq!(summary["nonsingular"], 5, "{summary}");
+    assert_eq!(summary["failed"], 0, "{summary}");
+    assert_eq!(summary["rechecked_at_infinity"], 4, "{summary}");
+    assert_eq!(summary["unconfirmed_at_infinity"], 0, "{summary}");
+}
+
 /// PHCpack's `fbrfive4` (four-bar linkage through five points): 36 nonsingular roots
 /// among 56 polyhedral paths, the others ending at singular points where Cauchy loops
 /// do not close (10,000–18,000 steps a path, and 3 failed paths, before the endgame
