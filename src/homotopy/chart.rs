@@ -189,11 +189,12 @@ const VANISHED: f64 = 1e-20;
 /// Step budget of a chart path. In the chart a path to infinity ends at a finite,
 /// usually singular, point on `x₀ = 0`, whose endgame costs several times the affine
 /// path; a large finite root is reached in a few hundred steps (`pb601`: 210–240).
-/// On PHCpack's demo suite 400 steps left 31 paths unconfirmed, most of them out of
-/// steps at `t ≈ 1 − 10⁻⁴` with `x₀` of 10⁻⁹–10⁻¹⁰ (`stewgou40` 18, `butcher8` 3,
-/// `butcher` 2); 4,000 steps confirm all of `butcher`'s and `butcher8`'s and 10 of
-/// `stewgou40`'s (15 left in the suite), for 10 % (`stewgou40`, `butcher`) to 40 %
-/// (`butcher8`, 0.07 → 0.10 s) more time on those systems and none elsewhere.
+/// On PHCpack's demo suite one chart of 400 steps left 31 paths unconfirmed, most of
+/// them out of steps at `t ≈ 1 − 10⁻⁴` with `x₀` of 10⁻⁹–10⁻¹⁰ (`stewgou40` 18,
+/// `butcher8` 3, `butcher` 2); 4,000 steps confirm all of `butcher`'s and
+/// `butcher8`'s and 10 of `stewgou40`'s (15 left in the suite), for 10 % (`stewgou40`,
+/// `butcher`) to 40 % (`butcher8`, 0.07 → 0.10 s) more time on those systems and none
+/// elsewhere.
 const CHART_MAX_STEPS: usize = 4_000;
 
 /// Seed offset of the chart, so that it differs from the homotopy's γ drawn from the
@@ -213,7 +214,8 @@ const RECOVERED_MAX_CONDITION: f64 = 1e14;
 /// (its homogenising coordinate not zero, Newton's method on `H(·, 1)` converging)
 /// and distinct from every finite endpoint (`same_point`) replaces the path's result.
 /// A chart endpoint at infinity, singular, failed or already known leaves the path as
-/// it was.
+/// it was; the paths left neither confirmed nor recovered are tracked in up to
+/// [`CHARTS`] charts in all.
 pub(crate) fn recover_from_infinity<H, S>(
     homotopy: &H,
     degrees: &[u32],
@@ -236,18 +238,82 @@ where
         .collect();
     let mut outcome = ChartRecheck {
         rechecked: at_infinity.len(),
+        unconfirmed_paths: at_infinity,
         ..ChartRecheck::default()
     };
-    if at_infinity.is_empty() {
-        return outcome;
+    // The paths a chart left unconfirmed, once more in another random chart: its
+    // paths meet other trouble spots (a path that reaches a known root, or stalls on
+    // the way, in one chart rarely does so in the next: `pb601` at seed 17 found its
+    // 18th root in the third chart). Those that stalled at `t = 1` on the hyperplane
+    // itself ([`stalled_on_hyperplane`]) get one more chart only: the second one
+    // confirms `cohn2`'s two, while `stewgou40`'s 7 stall in every chart (0.6 s each).
+    let mut pending = std::mem::take(&mut outcome.unconfirmed_paths);
+    for chart in 0..CHARTS {
+        if pending.is_empty() {
+            break;
+        }
+        let chart_seed = seed ^ CHART_SEED ^ (chart as u64).wrapping_mul(NEXT_CHART);
+        let (pass, stalled) = recheck_in_chart(
+            (homotopy, degrees, chart_seed),
+            (paths, &pending),
+            &start,
+            options,
+            &same_point,
+        );
+        outcome.confirmed += pass.confirmed;
+        outcome.recovered += pass.recovered;
+        pending = pass.unconfirmed_paths;
+        if chart == 0 {
+            pending.extend(stalled);
+        } else {
+            outcome.unconfirmed_paths.extend(stalled);
+        }
     }
-    let chart = ChartHomotopy::new(homotopy, degrees, seed ^ CHART_SEED);
+    outcome.unconfirmed_paths.extend(pending);
+    outcome.unconfirmed_paths.sort_unstable();
+    outcome
+}
+
+/// Whether a chart path stopped (failed) at `t = 1` to within 10⁻⁶ with its
+/// homogenising coordinate below 10⁻⁸ of its norm: on the hyperplane at infinity as
+/// far as the endgame got, though not below [`VANISHED`].
+fn stalled_on_hyperplane(result: &PathResult) -> bool {
+    matches!(result.status, PathStatus::Failed(_))
+        && (C64::new(1.0, 0.0) - result.last_t).norm() <= 1e-6
+        && result.solution[0].norm() <= 1e-8 * (1.0 + max_norm(&result.solution))
+}
+
+/// Random charts of [`recover_from_infinity`], each for the paths the ones before
+/// left unconfirmed.
+const CHARTS: usize = 3;
+
+/// Seed offset between successive charts of [`recover_from_infinity`].
+const NEXT_CHART: u64 = 0x2545_f491_4f6c_dd1d;
+
+/// One chart pass of [`recover_from_infinity`] over the paths `indices` (in the chart
+/// of seed `chart_seed`; `rechecked` is left 0), and the paths of `indices` left
+/// unconfirmed because they [`stalled_on_hyperplane`] (not among the outcome's
+/// `unconfirmed_paths`, which another chart may settle).
+fn recheck_in_chart<H, S>(
+    (homotopy, degrees, chart_seed): (&H, &[u32], u64),
+    (paths, indices): (&mut [PathResult], &[usize]),
+    start: &S,
+    options: &TrackerOptions,
+    same_point: &(impl Fn(&[C64], &[C64]) -> bool + Sync),
+) -> (ChartRecheck, Vec<usize>)
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    let mut outcome = ChartRecheck::default();
+    let mut stalled = Vec::new();
+    let chart = ChartHomotopy::new(homotopy, degrees, chart_seed);
     let mut options = options.clone();
     options.step.max_steps = options.step.max_steps.min(CHART_MAX_STEPS);
     options.endgame.homogenizing_valuation_test = true;
     let n = homotopy.dimension();
     let target = TargetSystem { homotopy };
-    let found: Vec<(usize, PathResult)> = at_infinity
+    let found: Vec<(usize, PathResult)> = indices
         .par_iter()
         .map_init(
             || {
@@ -284,7 +350,11 @@ where
         // affine target decides.
         let undecided = result.status == PathStatus::Failed(FailureReason::HyperplaneUndecided);
         if !result.status.is_finite() && !undecided {
-            outcome.unconfirmed_paths.push(index);
+            if stalled_on_hyperplane(&result) {
+                stalled.push(index);
+            } else {
+                outcome.unconfirmed_paths.push(index);
+            }
             continue;
         }
         let refined = newton_refine(&target, &chart.lower(&result.solution), &[], 1e-13, 8);
@@ -307,7 +377,7 @@ where
         known.push(refined.point);
         outcome.recovered += 1;
     }
-    outcome
+    (outcome, stalled)
 }
 
 /// What [`recover_from_infinity`] did.
