@@ -478,6 +478,16 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let over_budget = self.steps >= self.step_limit && self.step_limit < limit;
         self.step_limit = limit;
         match looped {
+            // A loop that did not close within the largest winding number ends on
+            // another path's sheet (the radius encloses other branch points): the path
+            // goes back to where the loop started, like one over its step budget.
+            Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge)) => {
+                self.x.copy_from_slice(&self.x_checkpoint);
+                self.t = C64::new(1.0 - s, 0.0);
+                self.step = step;
+                self.factorization_current = false;
+                Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
+            }
             Err(RouteStop::Failed(FailureReason::TooManySteps))
                 if over_budget && !self.precision.budget_spent(&self.options) =>
             {

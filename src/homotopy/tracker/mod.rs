@@ -1022,6 +1022,36 @@ pub(crate) mod tests {
         }
     }
 
+    /// A Cauchy loop that has not closed after the largest winding number allowed
+    /// (here one turn, around the cycle of two sheets that [`cubic_family`] has at
+    /// `s = 0.025`) ends on another path's sheet: the path goes back to where the loop
+    /// started, so the endgame goes on along its own branch. Left on the other sheet,
+    /// the paths of `redcyc7` (PHCpack's demo suite) ended on roots other paths had
+    /// reached, and were lost as jumped paths.
+    #[test]
+    fn a_loop_that_does_not_close_within_its_winding_bound_returns_to_where_it_started() {
+        let cubic = cubic_family();
+        let homotopy = real_segment(&cubic, 1.0, 0.0);
+        let s = 0.025;
+        let end = C64::new(1.0 - s, 0.0);
+        let mut options = TrackerOptions::default();
+        options.endgame.max_winding_number = 1;
+        let mut tracker = Tracker::new(&homotopy, options);
+        tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
+        assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
+        let (before, steps_before) = (tracker.x.clone(), tracker.steps);
+        assert_eq!(
+            tracker.cauchy_loop(s),
+            Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
+        );
+        // The loop was tracked (one turn, within its budget), and undone.
+        let budget =
+            endgame::LOOP_STEPS_PER_SAMPLE * tracker.options.endgame.cauchy_samples_per_loop;
+        assert!(tracker.steps > steps_before && tracker.steps - steps_before < budget);
+        assert_eq!(tracker.x, before);
+        assert_eq!(tracker.t, end);
+    }
+
     #[test]
     fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
         let result = along_pole(1.0, TrackerOptions::default(), true);
