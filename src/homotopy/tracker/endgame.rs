@@ -27,7 +27,7 @@ pub(super) struct EndgameState {
     pub(super) loop_valuations: Vec<f64>,
     previous_loop_valuations: Vec<f64>,
     /// `max(1, |x_i|)` at the start of the endgame (see [`MIN_COORDINATE_GROWTH`]).
-    endgame_origin: Vec<f64>,
+    pub(super) endgame_origin: Vec<f64>,
     /// Change of each valuation between the last two radii of the endgame.
     valuation_changes: Vec<f64>,
     /// The direct finish's singular endpoint (`settle_on_direct_endpoint`).
@@ -332,10 +332,14 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 
     /// Whether coordinate `i` has grown by [`MIN_COORDINATE_GROWTH`] since the start of
     /// the endgame (relative to `max(1, |x_i(s₀)|)`): only such a coordinate's negative
-    /// valuation classifies a path as diverging.
+    /// valuation classifies a path as diverging (in either endgame, with or without
+    /// `growth_before_divergence`). A path to a large finite point `a/(s + ε)` has the
+    /// valuation −1 of a pole until `s` nears `ε`: on two base anchors 10⁻⁴ apart the
+    /// classic test sent such `rigid/rigid` critical points (multipliers of 10³–10⁵)
+    /// to infinity at the seed, and the poses, expecting the 88 a real pose has, lost
+    /// them.
     fn has_grown(&self, i: usize) -> bool {
-        !self.options.endgame.growth_before_divergence
-            || self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.state.endgame_origin[i]
+        self.x[i].norm() >= MIN_COORDINATE_GROWTH * self.state.endgame_origin[i]
     }
 
     /// End of the endgame without converged estimates: the last Cauchy estimate if

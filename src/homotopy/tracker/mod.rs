@@ -931,6 +931,12 @@ pub(crate) mod tests {
         let valuation = (log_means[1] - log_means[0]) / 0.25f64.ln();
         assert!((valuation + 0.5).abs() < 1e-5, "{valuation}");
         tracker.state.loop_valuations[0] = valuation;
+        // |x| ≈ 13 here: not grown by MIN_COORDINATE_GROWTH from an endgame that began
+        // at |x| ≤ 1, so no evidence yet (a large finite root looks the same) …
+        assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
+        // … and evidence from an endgame that began at |x| = 0.1 (origin max(1, ·)
+        // made 0.1 here to stand for that growth).
+        tracker.state.endgame_origin[0] = 0.1;
         assert!(tracker.puiseux_exponents_at_infinity(2, 0.006_25));
         tracker.state.loop_valuations[0] = -0.5 + 1e-3;
         assert!(!tracker.puiseux_exponents_at_infinity(2, 0.006_25));
@@ -1050,6 +1056,19 @@ pub(crate) mod tests {
         assert!(tracker.steps > steps_before && tracker.steps - steps_before < budget);
         assert_eq!(tracker.x, before);
         assert_eq!(tracker.t, end);
+    }
+
+    /// A path to a large finite root: `x(t) = 1/(p − t)` with `p = 1 + 10⁻⁵` ends at
+    /// `x = 10⁵`. Its valuation is that of a pole, −s/(s + 10⁻⁵), stable to 10⁻² over
+    /// the radii 0.1, 0.025 and 0.006 25, where `x` has grown from 10 to 160 only: the
+    /// classic power-series test called it at infinity there. It is at infinity only
+    /// once grown by [`MIN_COORDINATE_GROWTH`], by which time its valuation has begun
+    /// to rise, and the endgame reaches the root.
+    #[test]
+    fn a_large_finite_root_is_not_taken_for_a_pole() {
+        let result = along_pole(1.0 + 1e-5, TrackerOptions::default(), true);
+        assert_eq!(result.status, PathStatus::Nonsingular, "{result:?}");
+        assert!((result.solution[0] - 1e5).norm() < 1e-6, "{result:?}");
     }
 
     #[test]

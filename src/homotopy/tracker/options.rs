@@ -113,14 +113,15 @@ pub struct EndgameOptions {
     /// A singular (Cauchy) endpoint must have `‖H(x, 1)‖∞` below this (relative).
     pub endpoint_residual: f64,
     /// The endgame of Breiding and Timme ("HomotopyContinuation.jl: a package for
-    /// homotopy continuation in Julia", 2018) for badly scaled systems: a stable
-    /// negative valuation means divergence only for a coordinate grown by
-    /// `MIN_COORDINATE_GROWTH` since the endgame began (or below `s = DEEP_RADIUS`), a
-    /// grown coordinate's valuation may drift towards a negative limit, an endgame
-    /// stopped with stable negative valuations is at infinity, and accepted steps
-    /// below the step floor fail instead of crawling. On for `solve`
-    /// ([`crate::homotopy::SolveOptions`]); off (the classic power-series test) in the
-    /// presets, which the curve pipeline's near-degenerate designs are tuned for.
+    /// homotopy continuation in Julia", 2018) for badly scaled systems: a grown
+    /// coordinate's valuation may drift towards a negative limit, an endgame stopped
+    /// with stable negative valuations is at infinity, and accepted steps below the
+    /// step floor fail instead of crawling. (Its first rule — a stable negative
+    /// valuation means divergence only for a coordinate grown by
+    /// `MIN_COORDINATE_GROWTH` since the endgame began, or below `s = DEEP_RADIUS` —
+    /// holds in every endgame.) On for `solve` ([`crate::homotopy::SolveOptions`]);
+    /// off in the presets, which the curve pipeline's near-degenerate designs are
+    /// tuned for.
     #[serde(default)]
     pub growth_before_divergence: bool,
     /// Where the direct finish reached `t = 1` with a small residual but a singular
