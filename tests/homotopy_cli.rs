@@ -449,6 +449,22 @@ fn paths_to_singular_points_settle_without_failing() {
     }
 }
 
+/// PHCpack's `redcyc7` (reduced cyclic 7-roots): 132 nonsingular roots among 228
+/// polyhedral paths, most others ending at singular roots of winding numbers 5 and 10.
+/// At the first endgame radius the Cauchy loops of some paths enclose more than their
+/// own branch point and do not close within the winding bound; a path left where such
+/// a loop stopped went on along another path's sheet and ended on a root that path
+/// reached too (7 paths lost as jumped, and a 3.5 s total-degree fallback). Every root
+/// is found by the polyhedral run and no path fails.
+#[test]
+fn a_loop_that_does_not_close_leaves_no_path_on_another_sheet() {
+    let value = solve_json(&[&demo_file("redcyc7"), "--threads", "2"]);
+    let summary = &value["summary"];
+    assert_eq!(summary["failed"], 0, "{summary}");
+    assert_eq!(summary["nonsingular"], 132, "{summary}");
+    assert_eq!(value["start_system"]["name"], "polyhedral", "{value}");
+}
+
 /// `singdist solve ARGS --json`, which must succeed, as parsed JSON.
 fn solve_json(args: &[&str]) -> serde_json::Value {
     let mut all = vec!["solve"];
