@@ -1071,6 +1071,43 @@ pub(crate) mod tests {
         assert!((result.solution[0] - 1e5).norm() < 1e-6, "{result:?}");
     }
 
+    /// `x⁵ = q` with `q` from 1 to 0: the path `x = (1 − t)^{1/5}` ends at the
+    /// singular root 0 with winding number 5. A loop at the endgame's first radius
+    /// makes at most [`endgame::FIRST_RADIUS_MAX_WINDING`] (4) turns and gives up
+    /// there, back where it started; at a smaller radius it closes after 5, and the
+    /// whole endgame ends at the singular root with winding number 5.
+    #[test]
+    fn loops_at_the_first_radius_make_at_most_four_turns() {
+        let (x, q) = (Expr::variable("x"), Expr::parameter("q"));
+        let quintic = System::new(
+            ["x"],
+            ["q"],
+            vec![x.clone() * x.clone() * x.clone() * x.clone() * x - q],
+        )
+        .unwrap()
+        .compile();
+        let homotopy = real_segment(&quintic, 1.0, 0.0);
+        let s = 0.1;
+        let end = C64::new(1.0 - s, 0.0);
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        tracker.reset(&[C64::new(1.0, 0.0)], 0.0);
+        assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
+        let before = tracker.x.clone();
+        tracker.state.first_radius = s;
+        assert_eq!(
+            tracker.cauchy_loop(s),
+            Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
+        );
+        assert_eq!(tracker.x, before);
+        tracker.state.first_radius = 0.5;
+        assert_eq!(tracker.cauchy_loop(s).ok(), Some(5));
+        let result =
+            Tracker::new(&homotopy, TrackerOptions::default()).track(&[C64::new(1.0, 0.0)], 0);
+        assert_eq!(result.status, PathStatus::Singular, "{result:?}");
+        assert_eq!(result.winding_number, 5, "{result:?}");
+        assert!(result.solution[0].norm() < 1e-6, "{result:?}");
+    }
+
     #[test]
     fn the_endgame_classifies_a_pole_at_t_one_as_at_infinity() {
         let result = along_pole(1.0, TrackerOptions::default(), true);
