@@ -235,9 +235,9 @@ const POLYHEDRAL_RERUN_MAX_FAILED: usize = 3;
 /// times the polyhedral paths: `discret3s` (128 polyhedral paths, 256 by total
 /// degree, a path lost on every lifting) took 0.40 s with the fallback alone and
 /// 0.58 s with a re-run before it; `redcyc7` (228 polyhedral paths, 720 by total
-/// degree) takes 1.5 s with a re-run that loses nothing and 4–5 s with the fallback,
-/// whose paths to its singular roots fail by the dozen (seeds 1, 2 and 4: a re-run
-/// completes the polyhedral solve; 3, 5 and 7: it loses a path too).
+/// degree, one thread) takes 1.2–1.3 s with a re-run that loses nothing and 4.3 s with
+/// the fallback, whose paths to its singular roots fail by the dozen (seeds 1, 2 and
+/// 4: a re-run completes the polyhedral solve; 3, 5 and 7: it loses a path too).
 const POLYHEDRAL_RERUN_PATH_RATIO: u128 = 3;
 
 /// The random stream (of `options.seed`) the re-runs' seeds are drawn from.

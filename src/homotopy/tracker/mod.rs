@@ -988,74 +988,72 @@ pub(crate) mod tests {
         assert_eq!(tracker.steps, CRAWL_STEPS);
     }
 
+    /// One Cauchy loop at `s = 0.025` on [`cubic_family`] (`q` from 1 to 0, where two
+    /// sheets form a cycle) with `options`, from the real root of `x³ − x − 1`: the
+    /// loop's outcome, the point and `t` before and after it, and its steps.
+    fn cubic_loop(
+        options: TrackerOptions,
+    ) -> (Result<usize, RouteStop>, [Vec<C64>; 2], C64, usize) {
+        let cubic = cubic_family();
+        let homotopy = real_segment(&cubic, 1.0, 0.0);
+        let s = 0.025;
+        let mut tracker = Tracker::new(&homotopy, options);
+        tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
+        let end = C64::new(1.0 - s, 0.0);
+        assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
+        let (before, steps_before) = (tracker.x.clone(), tracker.steps);
+        let looped = tracker.cauchy_loop(s);
+        let after = tracker.x.clone();
+        (
+            looped,
+            [before, after],
+            tracker.t,
+            tracker.steps - steps_before,
+        )
+    }
+
     /// A Cauchy loop that needs more than its step budget (here: steps of at most
     /// 10⁻⁴ around a circle of length 0.16 at `s = 0.025`) is abandoned: the path is
     /// back where the loop started, at `t = 1 − s`, and the endgame may go on to a
     /// smaller radius. The same loop with its usual steps closes after two turns.
     #[test]
     fn a_cauchy_loop_over_its_step_budget_returns_to_where_it_started() {
-        let cubic = cubic_family();
-        let homotopy = real_segment(&cubic, 1.0, 0.0);
-        let s = 0.025;
-        let end = C64::new(1.0 - s, 0.0);
-        for (max_step, closes) in [
-            (TrackerOptions::default().step.max_step, true),
-            (1e-4, false),
-        ] {
-            let mut options = TrackerOptions::default();
-            options.step.max_step = max_step;
-            let mut tracker = Tracker::new(&homotopy, options);
-            tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
-            assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
-            let (before, steps_before) = (tracker.x.clone(), tracker.steps);
-            let looped = tracker.cauchy_loop(s);
-            if closes {
-                assert_eq!(looped.ok(), Some(2));
-            } else {
-                assert_eq!(
-                    looped,
-                    Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
-                );
-                assert_eq!(tracker.x, before);
-                assert_eq!(tracker.t, end);
-                // The loop's budget was spent, not the rest of the path's.
-                let options = &tracker.options.endgame;
-                let budget = endgame::LOOP_STEPS_PER_SAMPLE
-                    * options.cauchy_samples_per_loop
-                    * options.max_winding_number;
-                assert_eq!(tracker.steps - steps_before, budget);
-            }
-        }
+        let (closed, ..) = cubic_loop(TrackerOptions::default());
+        assert_eq!(closed.ok(), Some(2));
+        let mut options = TrackerOptions::default();
+        options.step.max_step = 1e-4;
+        let (looped, [before, after], t, steps) = cubic_loop(options.clone());
+        assert_eq!(
+            looped,
+            Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
+        );
+        assert_eq!((after, t), (before, C64::new(0.975, 0.0)));
+        // The loop's budget was spent, not the rest of the path's.
+        let budget = endgame::LOOP_STEPS_PER_SAMPLE
+            * options.endgame.cauchy_samples_per_loop
+            * options.endgame.max_winding_number;
+        assert_eq!(steps, budget);
     }
 
     /// A Cauchy loop that has not closed after the largest winding number allowed
-    /// (here one turn, around the cycle of two sheets that [`cubic_family`] has at
-    /// `s = 0.025`) ends on another path's sheet: the path goes back to where the loop
-    /// started, so the endgame goes on along its own branch. Left on the other sheet,
-    /// the paths of `redcyc7` (PHCpack's demo suite) ended on roots other paths had
-    /// reached, and were lost as jumped paths.
+    /// (here one turn, around the two-sheet cycle of [`cubic_loop`]) ends on another
+    /// path's sheet: the path goes back to where the loop started, so the endgame goes
+    /// on along its own branch. Left on the other sheet, the paths of `redcyc7`
+    /// (PHCpack's demo suite) ended on roots other paths had reached, and were lost as
+    /// jumped paths.
     #[test]
     fn a_loop_that_does_not_close_within_its_winding_bound_returns_to_where_it_started() {
-        let cubic = cubic_family();
-        let homotopy = real_segment(&cubic, 1.0, 0.0);
-        let s = 0.025;
-        let end = C64::new(1.0 - s, 0.0);
         let mut options = TrackerOptions::default();
         options.endgame.max_winding_number = 1;
-        let mut tracker = Tracker::new(&homotopy, options);
-        tracker.reset(&[C64::new(1.324_717_957_244_746, 0.0)], 0.0);
-        assert!(tracker.track_segment(C64::new(0.0, 0.0), end).is_ok());
-        let (before, steps_before) = (tracker.x.clone(), tracker.steps);
+        let (looped, [before, after], t, steps) = cubic_loop(options.clone());
         assert_eq!(
-            tracker.cauchy_loop(s),
+            looped,
             Err(RouteStop::Failed(FailureReason::WindingNumberTooLarge))
         );
         // The loop was tracked (one turn, within its budget), and undone.
-        let budget =
-            endgame::LOOP_STEPS_PER_SAMPLE * tracker.options.endgame.cauchy_samples_per_loop;
-        assert!(tracker.steps > steps_before && tracker.steps - steps_before < budget);
-        assert_eq!(tracker.x, before);
-        assert_eq!(tracker.t, end);
+        let budget = endgame::LOOP_STEPS_PER_SAMPLE * options.endgame.cauchy_samples_per_loop;
+        assert!(steps > 0 && steps < budget);
+        assert_eq!((after, t), (before, C64::new(0.975, 0.0)));
     }
 
     /// A path to a large finite root: `x(t) = 1/(p − t)` with `p = 1 + 10⁻⁵` ends at
