@@ -179,7 +179,7 @@ fn run_timed(
 }
 
 /// Distinct nonsingular roots among approximate roots, after Newton refinement:
-/// (number of distinct roots, the refined representatives with their condition).
+/// (number of distinct roots, the refined representatives with their accuracy).
 fn distinct_nonsingular(
     system: &CompiledSystem,
     points: &[Vec<C64>],
@@ -188,7 +188,10 @@ fn distinct_nonsingular(
         .iter()
         .map(|x| newton_refine(system, x, &[], NEWTON_TOLERANCE, 60))
         .filter(|r| r.is_nonsingular(NONSINGULAR_CONDITION))
-        .map(|r| (r.point, r.condition))
+        .map(|r| {
+            let accuracy = r.accuracy();
+            (r.point, accuracy)
+        })
         .collect();
     let groups = group_roots(&refined, SAME_ROOT_TOLERANCE);
     let representatives: Vec<(Vec<C64>, f64)> = groups

@@ -11,8 +11,11 @@
 //! 1998) guarantees such a point is in the quadratic basin of exactly one root.
 //!
 //! Two approximate roots are the same root when Newton started from each converges to
-//! the same limit ("Newton-cluster test"): a fixed distance tolerance either merges
-//! distinct close roots or splits one ill-conditioned root in two.
+//! the same limit ("Newton-cluster test"), compared at the accuracy each limit has: a
+//! fixed distance tolerance either merges distinct close roots or splits one
+//! ill-conditioned root in two. A converged limit is accurate to about its last
+//! correction (in the quadratic regime the error after a correction Δ is O(‖Δ‖²)); a
+//! point where Newton did not converge only to `κ·ε`.
 
 use super::linalg::LuWorkspace;
 use super::newton::{NewtonBuffers, NewtonOptions, max_norm, newton};
@@ -41,6 +44,24 @@ impl Refinement {
     pub fn is_nonsingular(&self, max_condition: f64) -> bool {
         self.converged && self.condition < max_condition
     }
+
+    /// Accuracy of the last iterate relative to `1 + ‖x‖∞`, for [`group_roots`]: ten
+    /// times the last correction (plus rounding) when Newton converged, else
+    /// [`accuracy_at_condition`] of its condition number.
+    pub fn accuracy(&self) -> f64 {
+        if self.converged {
+            10.0 * self.last_correction + 4.0 * f64::EPSILON
+        } else {
+            accuracy_at_condition(self.condition)
+        }
+    }
+}
+
+/// Accuracy `10·κ·ε` (κ capped at 10¹²) relative to `1 + ‖x‖∞` of an approximate root
+/// at condition number `κ = condition` that Newton's method has not been seen to
+/// converge to.
+pub fn accuracy_at_condition(condition: f64) -> f64 {
+    10.0 * condition.min(1e12) * f64::EPSILON
 }
 
 /// Refines `x` by at most `max_iterations` Newton steps on `F(·; p) = 0`
@@ -97,14 +118,14 @@ pub fn newton_refine<F: Evaluator + ?Sized>(
 }
 
 /// Whether two refined roots `a` and `b` (limits of [`newton_refine`]) are the same
-/// root: their distance is below `(tolerance + 10·κ·ε) · (1 + ‖a‖∞)`, the accuracy a
-/// Newton limit has at condition number `κ = condition` (the larger of the two).
-pub fn same_root(a: &[C64], b: &[C64], condition: f64, tolerance: f64) -> bool {
+/// root: their distance is below `(tolerance + accuracy) · (1 + ‖a‖∞)`, `accuracy` the
+/// larger relative accuracy of the two ([`Refinement::accuracy`]).
+pub fn same_root(a: &[C64], b: &[C64], accuracy: f64, tolerance: f64) -> bool {
     let scale = 1.0 + max_norm(a).max(max_norm(b));
-    let accuracy = tolerance + 10.0 * condition.min(1e12) * f64::EPSILON;
+    let bound = tolerance + accuracy;
     a.iter()
         .zip(b)
-        .all(|(u, v)| (u - v).norm() <= accuracy * scale)
+        .all(|(u, v)| (u - v).norm() <= bound * scale)
 }
 
 /// Whether `b` is within `tolerance · (1 + ‖a‖∞)` of `a` in every coordinate: the
@@ -134,7 +155,10 @@ pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
         .iter()
         .map(|x| newton_refine(system, x, &[], 1e-13, 40))
         .filter(|r| r.is_nonsingular(1e11))
-        .map(|r| (r.point, r.condition))
+        .map(|r| {
+            let accuracy = r.accuracy();
+            (r.point, accuracy)
+        })
         .collect();
     let groups = group_roots(&refined, 1e-10);
     (0..refined.len())
@@ -144,7 +168,8 @@ pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
 }
 
 /// Groups refined nonsingular roots into distinct roots: `roots[i]` is a point with its
-/// condition number; returns for every root the index of its group's first member.
+/// relative accuracy ([`Refinement::accuracy`]); two are one root when [`same_root`]
+/// at the larger accuracy. Returns for every root the index of its group's first member.
 /// Sorting by the real part of the first coordinate keeps the comparison near-linear.
 pub fn group_roots(roots: &[(Vec<C64>, f64)], tolerance: f64) -> Vec<usize> {
     fn find(parent: &mut [usize], mut i: usize) -> usize {
@@ -158,12 +183,12 @@ pub fn group_roots(roots: &[(Vec<C64>, f64)], tolerance: f64) -> Vec<usize> {
     let key = |i: usize| roots[i].0.first().map_or(0.0, |v| v.re);
     order.sort_by(|&a, &b| key(a).total_cmp(&key(b)));
     let mut parent: Vec<usize> = (0..roots.len()).collect();
+    // The largest bound of `same_root` bounds the gap of the real parts.
+    let widest = tolerance + roots.iter().map(|r| r.1).fold(0.0, f64::max);
     for (position, &i) in order.iter().enumerate() {
         let (a, ka) = (&roots[i].0, roots[i].1);
         for &j in order[position + 1..].iter() {
             let (b, kb) = (&roots[j].0, roots[j].1);
-            // The largest accuracy of `same_root` bounds the gap of the real parts.
-            let widest = tolerance + 10.0 * 1e12 * f64::EPSILON;
             if key(j) - key(i) > widest * (1.0 + max_norm(a) + max_norm(b)) {
                 break;
             }
@@ -197,14 +222,46 @@ mod tests {
         assert!(!r.is_nonsingular(1e8), "{r:?}");
     }
 
+    /// Two roots that differ only in a coordinate far smaller than the others, at a
+    /// condition number of 10¹⁰ (`1e-8·(x² − 9·10⁻⁶) = 0, y = 2000`: x = ±0.003): the
+    /// limits are accurate to their last Newton correction, so they stay two roots,
+    /// while two approximations of one of them group together. A slack of `10·κ·ε`
+    /// relative to `1 + ‖x‖∞` (0.07 here) merged them.
+    #[test]
+    fn converged_limits_of_an_ill_conditioned_pair_are_two_roots() {
+        let f =
+            system("variable_group x, y;\nfunction f, g;\nf = 1e-8*(x^2 - 9e-6);\ng = y - 2000;\n");
+        let refine = |x: f64, y: f64| {
+            let r = newton_refine(&f, &[C64::new(x, 0.0), C64::new(y, 0.0)], &[], 1e-13, 40);
+            assert!(r.converged && r.condition > 1e9, "{r:?}");
+            let accuracy = r.accuracy();
+            assert!(accuracy < 1e-12, "{accuracy}");
+            (r.point, accuracy)
+        };
+        let roots = vec![
+            refine(0.0031, 2000.1),
+            refine(-0.0029, 1999.9),
+            refine(0.00299, 2000.0),
+        ];
+        let groups = group_roots(&roots, 1e-10);
+        assert_ne!(groups[0], groups[1]);
+        assert_eq!(groups[0], groups[2]);
+        // The same two points without the evidence of convergence are one root.
+        let unconverged: Vec<_> = roots
+            .iter()
+            .map(|(x, _)| (x.clone(), accuracy_at_condition(1e10)))
+            .collect();
+        assert_eq!(group_roots(&unconverged, 1e-10)[1], 0);
+    }
+
     /// Two approximations of one root group together, a distinct close root does not.
     #[test]
     fn groups_by_refined_limits() {
         let roots = vec![
-            (vec![C64::new(1.0, 0.0)], 10.0),
-            (vec![C64::new(1.0 + 1e-15, 0.0)], 10.0),
-            (vec![C64::new(1.0 + 1e-9, 0.0)], 10.0),
-            (vec![C64::new(-3.0, 0.0)], 10.0),
+            (vec![C64::new(1.0, 0.0)], 1e-14),
+            (vec![C64::new(1.0 + 1e-15, 0.0)], 1e-14),
+            (vec![C64::new(1.0 + 1e-9, 0.0)], 1e-14),
+            (vec![C64::new(-3.0, 0.0)], 1e-14),
         ];
         let groups = group_roots(&roots, 1e-12);
         assert_eq!(groups[0], groups[1]);

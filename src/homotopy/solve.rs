@@ -18,7 +18,7 @@
 use super::conjugates::complete_conjugate_roots;
 use super::divergence::settle_diverged_paths;
 use super::homotopies::{Homotopy, ParameterHomotopy, StraightLineHomotopy};
-use super::refine::{group_roots, newton_refine, same_point};
+use super::refine::{accuracy_at_condition, group_roots, newton_refine, same_point};
 use super::start::TotalDegreeStartSystem;
 use super::tracker::{
     EndgameOptions, FailureReason, PathResult, PathStatus, StepOptions, Tracker, TrackerOptions,
@@ -558,8 +558,8 @@ fn promote_nonsingular_endpoints<H: Homotopy + ?Sized>(
 
 /// Relative Newton tolerance of the duplicate test on nonsingular endpoints.
 const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
-/// Two refined nonsingular endpoints closer than this (relative, plus their accuracy
-/// 10·κ·ε at condition κ) are the same root.
+/// Two refined nonsingular endpoints closer than this (relative, plus their accuracy,
+/// [`super::refine::Refinement::accuracy`]) are the same root.
 const DUPLICATE_TOLERANCE: f64 = 1e-10;
 
 /// For every path, the root group of its nonsingular endpoint (the index of the group's
@@ -590,9 +590,10 @@ pub(crate) fn root_groups_on<F: Evaluator + ?Sized>(
         .map(|p| {
             let r = newton_refine(system, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
             if r.converged {
-                (r.point, r.condition.max(p.condition))
+                let accuracy = r.accuracy();
+                (r.point, accuracy)
             } else {
-                (p.solution.clone(), p.condition)
+                (p.solution.clone(), accuracy_at_condition(p.condition))
             }
         })
         .collect();

@@ -52,6 +52,12 @@ use rayon::prelude::*;
 
 /// Most paths a polyhedral run tracks.
 const MAX_PATHS: u128 = 1 << 32;
+/// Condition number above which a stage-one endpoint counts as singular. `Q` has random
+/// coefficients, so its roots are nonsingular; some are still ill-conditioned (PHCpack's
+/// `butcher`: a root of norm 4·10⁴ and condition 7·10¹⁰), and the target's bound
+/// (10¹⁰) called such a root singular and lost it, which cost two fresh liftings and a
+/// second polyhedral run.
+const STAGE_ONE_SINGULAR_CONDITION: f64 = 1e13;
 /// The stage-one endgame zone starts at `1 − s = ENDGAME_SCALE / max e`.
 const ENDGAME_SCALE: f64 = 0.1;
 
@@ -228,6 +234,7 @@ fn track_stage_one(
 ) -> (Vec<PathResult>, usize) {
     let mut first = options.tracker.clone();
     first.endgame.growth_before_divergence = false;
+    first.endgame.singular_condition = STAGE_ONE_SINGULAR_CONDITION;
     let all: Vec<usize> = (0..count).collect();
     let mut paths = track_cells(start, &all, &first);
     let mut retracked = 0;
@@ -245,6 +252,7 @@ fn track_stage_one(
             let mut conservative = TrackerOptions::conservative();
             conservative.step.max_steps = conservative.step.max_steps.max(first.step.max_steps);
             conservative.endgame.growth_before_divergence = false;
+            conservative.endgame.singular_condition = STAGE_ONE_SINGULAR_CONDITION;
             for redo in track_cells(start, &suspicious, &conservative) {
                 let index = redo.path_index;
                 paths[index] = redo;
