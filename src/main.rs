@@ -4,6 +4,7 @@
 mod cli;
 
 use clap::{Parser, Subcommand};
+use cli::deferred::Deferred;
 use std::io::Write;
 use std::process::ExitCode;
 
@@ -37,7 +38,7 @@ enum Command {
     /// every window of poses is appended to `FILE.partial` (JSON Lines) as soon as it is
     /// final; `--resume` continues from it. `--plot`: the signed distance curves against
     /// τ, singular poses marked.
-    Curve(cli::curve::CurveArgs),
+    Curve(Deferred<cli::curve::CurveArgs>),
     /// Singularity distances of a 3-RPR at one pose, in full detail.
     ///
     /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
@@ -48,10 +49,10 @@ enum Command {
     /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
     /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
     /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
-    Distance(cli::distance::DistanceArgs),
+    Distance(Deferred<cli::distance::DistanceArgs>),
     /// Re-checks a saved `curve` result: re-solves its poses with another seed,
     /// certifies them, and compares the file's distances (exit 3 if one is contradicted).
-    Certify(cli::certify::CertifyArgs),
+    Certify(Deferred<cli::certify::CertifyArgs>),
     /// Drawing (SVG) of a 3-RPR at one pose with each metric's closest singular configuration.
     ///
     /// τ: the motion parameter (the unit of the motion file's `tau_range`); a pose is
@@ -62,7 +63,7 @@ enum Command {
     /// configuration K′ under a metric PLATFORM/BASE, each part a deformable triangular
     /// `plate`, a triangle of three deformable `bars`, or `rigid` (K′ moves it only by a
     /// Euclidean motion), in the design's length unit; signed D carries the sign of S.
-    Draw(cli::draw::DrawArgs),
+    Draw(Deferred<cli::draw::DrawArgs>),
     /// Kinematic performance indices of a 3-RPR along a motion or at one pose.
     ///
     /// M = |det J| (manipulability, J the inverse Jacobian of unit leg lines); S the
@@ -80,7 +81,7 @@ enum Command {
     /// lost path) or `.json` (one document); default: CSV on stdout. `--plot`: the
     /// indices along the motion, each scaled to [0, 1] by its maximum. `--seed` seeds
     /// the metric computation (`--with-metrics`, as `curve --seed`).
-    Indices(cli::indices::IndicesArgs),
+    Indices(Deferred<cli::indices::IndicesArgs>),
     /// Indices and metric distances side by side (`indices --with-metrics all`).
     ///
     /// M = |det J| (manipulability, J the inverse Jacobian of unit leg lines); S the
@@ -96,27 +97,27 @@ enum Command {
     ///
     /// Outputs as `indices --help` describes; the plot shows the metric distances next
     /// to the indices.
-    Compare(cli::indices::IndicesArgs),
+    Compare(Deferred<cli::indices::IndicesArgs>),
     /// Inspect and export polynomial systems (Bertini input format).
     #[command(subcommand)]
-    System(cli::system::SystemCommand),
+    System(Deferred<cli::system::SystemCommand>),
     /// Solve a polynomial system by homotopy continuation.
-    Solve(cli::solve::SolveArgs),
+    Solve(Deferred<cli::solve::SolveArgs>),
     /// Compute, store and verify generic start solutions of every sub-problem.
-    AbInitio(cli::ab_initio::AbInitioArgs),
+    AbInitio(Deferred<cli::ab_initio::AbInitioArgs>),
     /// 3-PRRR indices and redundancy resolution.
     #[command(subcommand)]
-    Prrr(cli::prrr::PrrrCommand),
+    Prrr(Deferred<cli::prrr::PrrrCommand>),
     /// Conditioning maps of 3RRR and 3PRRR over the workspace.
-    Map(cli::map::MapArgs),
+    Map(Deferred<cli::map::MapArgs>),
     /// 3RRR actuation schemes, singularity loci and GCI.
     ///
     /// Outputs: `--out` the GCI table (`.csv` or `.json`); `--plot` the singularity loci
     /// (rows = orientations, columns = schemes).
-    Schemes(cli::schemes::SchemesArgs),
+    Schemes(Deferred<cli::schemes::SchemesArgs>),
     /// 3-RRR distances to parallel and leg singularities along a motion.
     #[command(subcommand)]
-    Rrr(cli::rrr::RrrCommand),
+    Rrr(Deferred<cli::rrr::RrrCommand>),
 }
 
 /// Restores the default action of `SIGPIPE` (terminate quietly), as Unix command-line
@@ -142,19 +143,19 @@ fn main() -> ExitCode {
     restore_default_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Curve(args) => cli::curve::run(args),
-        Command::Distance(args) => cli::distance::run(args),
-        Command::Certify(args) => cli::certify::run(args),
-        Command::Draw(args) => cli::draw::run(args),
-        Command::Indices(args) => cli::indices::run(args),
-        Command::Compare(args) => cli::indices::run_compare(args),
-        Command::System(cmd) => cli::system::run(cmd),
-        Command::Solve(args) => cli::solve::run(args),
-        Command::AbInitio(args) => cli::ab_initio::run(args),
-        Command::Prrr(cmd) => cli::prrr::run(cmd),
-        Command::Map(args) => cli::map::run(args),
-        Command::Schemes(args) => cli::schemes::run(args),
-        Command::Rrr(cmd) => cli::rrr::run(cmd),
+        Command::Curve(args) => cli::curve::run(args.0),
+        Command::Distance(args) => cli::distance::run(args.0),
+        Command::Certify(args) => cli::certify::run(args.0),
+        Command::Draw(args) => cli::draw::run(args.0),
+        Command::Indices(args) => cli::indices::run(args.0),
+        Command::Compare(args) => cli::indices::run_compare(args.0),
+        Command::System(cmd) => cli::system::run(cmd.0),
+        Command::Solve(args) => cli::solve::run(args.0),
+        Command::AbInitio(args) => cli::ab_initio::run(args.0),
+        Command::Prrr(cmd) => cli::prrr::run(cmd.0),
+        Command::Map(args) => cli::map::run(args.0),
+        Command::Schemes(args) => cli::schemes::run(args.0),
+        Command::Rrr(cmd) => cli::rrr::run(cmd.0),
     };
     // What is still buffered goes out before the exit code is decided; a reader that
     // has gone away is not an error of the run.

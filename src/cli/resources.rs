@@ -35,6 +35,7 @@ pub fn thread_count(threads: ThreadsArg) -> Result<Option<usize>> {
     match threads.requested() {
         None => Ok(None),
         Some(0) => bail!("--threads: must be at least 1"),
+        Some(1) => Ok(Some(1)),
         Some(n) => {
             let cores = available_cores();
             if n > cores {
