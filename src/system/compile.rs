@@ -613,15 +613,29 @@ impl<'a> TapeBuilder<'a> {
 }
 
 /// Symbolic partial derivatives `∂f_i/∂s` for every equation and every symbol in
-/// `symbols`, row-major (equation, symbol).
+/// `symbols`, row-major (equation, symbol). An equation is differentiated only by the
+/// symbols it contains (the others give 0): a sparse system's equations each hold few
+/// of them, and the polyhedral term family has one parameter per term, each in one
+/// equation.
 fn symbolic_jacobian(equations: &[Expr], symbols: &[String]) -> Vec<Expr> {
+    let contained: Vec<std::collections::HashSet<String>> = equations
+        .iter()
+        .map(|f| f.symbols().into_iter().collect())
+        .collect();
     let mut columns: Vec<Vec<Expr>> = Vec::with_capacity(symbols.len());
     for symbol in symbols {
         let mut memo = HashMap::new();
         columns.push(
             equations
                 .iter()
-                .map(|f| f.differentiate_memo(symbol, &mut memo))
+                .zip(&contained)
+                .map(|(f, symbols)| {
+                    if symbols.contains(symbol) {
+                        f.differentiate_memo(symbol, &mut memo)
+                    } else {
+                        Expr::zero()
+                    }
+                })
                 .collect(),
         );
     }

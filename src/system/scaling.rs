@@ -51,6 +51,19 @@ pub struct Scaling {
     pub rms_after: f64,
 }
 
+/// `(equation, exponent vector, log₂|coefficient|)` of one term.
+type LogTerm = (usize, Vec<u32>, f64);
+
+/// The [`log_terms`] of a system that can be scaled (no parameters left, not
+/// homogenised, every equation expandable), with its numbers of equations and unknowns.
+fn scalable_terms(system: &System) -> Option<(Vec<LogTerm>, usize, usize)> {
+    if !system.parameters().is_empty() || system.homogenizing().is_some() {
+        return None;
+    }
+    let terms = log_terms(system)?;
+    Some((terms, system.num_equations(), system.variables().len()))
+}
+
 /// `(equation, exponent vector, log₂|coefficient|)` of every non-zero term.
 fn log_terms(system: &System) -> Option<Vec<(usize, Vec<u32>, f64)>> {
     let n = system.variables().len();
@@ -111,9 +124,13 @@ impl Scaling {
     /// [`Scaling::worthwhile`], else the equation-only normalisation where the
     /// equations are [`Scaling::unbalanced_equations`], else none.
     pub fn automatic(system: &System) -> Option<Scaling> {
-        Scaling::least_squares(system)
+        // One expansion of the system for both candidates.
+        let (terms, m, n) = scalable_terms(system)?;
+        Scaling::least_squares_of(&terms, m, n)
             .filter(Scaling::worthwhile)
-            .or_else(|| Scaling::equations_only(system).filter(Scaling::unbalanced_equations))
+            .or_else(|| {
+                Some(Scaling::equations_only_of(&terms, m, n)).filter(Scaling::unbalanced_equations)
+            })
     }
 
     /// Equation-only normalisation of `system` (no parameters left, every equation
@@ -121,23 +138,25 @@ impl Scaling {
     /// and `d = 0`, so the roots and their coordinates are unchanged. `rms_before` and
     /// `rms_after` are both the spread left within the equations.
     pub fn equations_only(system: &System) -> Option<Scaling> {
-        if !system.parameters().is_empty() || system.homogenizing().is_some() {
-            return None;
-        }
-        let terms = log_terms(system)?;
-        let (m, n) = (system.num_equations(), system.variables().len());
-        let equations: Vec<i32> = normalising_exponents(&terms, m)
+        let (terms, m, n) = scalable_terms(system)?;
+        Some(Scaling::equations_only_of(&terms, m, n))
+    }
+
+    /// [`Scaling::equations_only`] of the terms of a system of `m` equations in `n`
+    /// unknowns ([`scalable_terms`]).
+    fn equations_only_of(terms: &[LogTerm], m: usize, n: usize) -> Scaling {
+        let equations: Vec<i32> = normalising_exponents(terms, m)
             .iter()
             .map(|c| c.round().clamp(-900.0, 900.0) as i32)
             .collect();
         let c: Vec<f64> = equations.iter().map(|&e| e as f64).collect();
-        let spread = rms(&terms, &c, &vec![0.0; n]);
-        Some(Scaling {
+        let spread = rms(terms, &c, &vec![0.0; n]);
+        Scaling {
             equations,
             variables: vec![0; n],
             rms_before: spread,
             rms_after: spread,
-        })
+        }
     }
 
     /// Whether the equations' sizes differ by more than `2^BADLY_SCALED_RMS`: their
@@ -157,20 +176,22 @@ impl Scaling {
     /// The least-squares scaling of `system` (no parameters left, every equation
     /// expandable, every scaled factor within 2^±900, `MAX_EXPONENT`); `None` otherwise.
     pub fn least_squares(system: &System) -> Option<Scaling> {
-        if !system.parameters().is_empty() || system.homogenizing().is_some() {
-            return None;
-        }
-        let terms = log_terms(system)?;
-        let (m, n) = (system.num_equations(), system.variables().len());
+        let (terms, m, n) = scalable_terms(system)?;
+        Scaling::least_squares_of(&terms, m, n)
+    }
+
+    /// [`Scaling::least_squares`] of the terms of a system of `m` equations in `n`
+    /// unknowns ([`scalable_terms`]).
+    fn least_squares_of(terms: &[LogTerm], m: usize, n: usize) -> Option<Scaling> {
         // Equation-only normalisation: c_i = −mean of equation i's log sizes.
-        let normalised = normalising_exponents(&terms, m);
-        let rms_before = rms(&terms, &normalised, &vec![0.0; n]);
+        let normalised = normalising_exponents(terms, m);
+        let rms_before = rms(terms, &normalised, &vec![0.0; n]);
         // Normal equations of the least-squares problem in z = (c, d).
         let size = m + n;
         let mut normal = DMatrix::<f64>::identity(size, size) * LEAST_NORM_WEIGHT;
         let mut rhs = DVector::<f64>::zeros(size);
         let mut row = vec![0.0; size];
-        for (i, alpha, log) in &terms {
+        for (i, alpha, log) in terms {
             row.iter_mut().for_each(|r| *r = 0.0);
             row[*i] = 1.0;
             for (j, &e) in alpha.iter().enumerate() {
@@ -204,7 +225,7 @@ impl Scaling {
         if !representable {
             return None;
         }
-        let rms_after = rms(&terms, &as_f64(&equations), &as_f64(&variables));
+        let rms_after = rms(terms, &as_f64(&equations), &as_f64(&variables));
         Some(Scaling {
             equations,
             variables,
