@@ -27,7 +27,7 @@
 mod bench_support;
 use serde_json::Value;
 use singdist::C64;
-use singdist::homotopy::{group_roots, newton_refine};
+use singdist::homotopy::{accuracy_at_condition, group_roots, newton_refine};
 use singdist::system::scaling::Scaling;
 use singdist::system::{CompiledSystem, System, bertini, phc};
 use std::path::{Path, PathBuf};
@@ -38,8 +38,8 @@ use std::time::Instant;
 const NEWTON_TOLERANCE: f64 = 1e-13;
 /// Condition number below which a converged Newton limit is a nonsingular root.
 const NONSINGULAR_CONDITION: f64 = 1e11;
-/// Two refined nonsingular roots closer than this (relative, plus their accuracy
-/// 10·κ·ε) are the same root.
+/// Two refined nonsingular roots closer than this (relative, plus `10·κ·ε`, how far a
+/// root at condition κ moves when the coefficients are rounded) are the same root.
 const SAME_ROOT_TOLERANCE: f64 = 1e-10;
 
 /// Six characters standing for the distinct-root count until it is known.
@@ -189,7 +189,7 @@ fn distinct_nonsingular(
         .map(|x| newton_refine(system, x, &[], NEWTON_TOLERANCE, 60))
         .filter(|r| r.is_nonsingular(NONSINGULAR_CONDITION))
         .map(|r| {
-            let accuracy = r.accuracy();
+            let accuracy = accuracy_at_condition(r.condition);
             (r.point, accuracy)
         })
         .collect();

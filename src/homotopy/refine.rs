@@ -11,11 +11,14 @@
 //! 1998) guarantees such a point is in the quadratic basin of exactly one root.
 //!
 //! Two approximate roots are the same root when Newton started from each converges to
-//! the same limit ("Newton-cluster test"), compared at the accuracy each limit has: a
-//! fixed distance tolerance either merges distinct close roots or splits one
-//! ill-conditioned root in two. A converged limit is accurate to about its last
-//! correction (in the quadratic regime the error after a correction Δ is O(‖Δ‖²)); a
-//! point where Newton did not converge only to `κ·ε`.
+//! the same limit ("Newton-cluster test"), compared at an accuracy: a fixed distance
+//! tolerance either merges distinct close roots or splits one ill-conditioned root in
+//! two. Two accuracies serve: that of the problem, `10·κ·ε` at condition κ (how far a
+//! root moves when the coefficients are rounded, [`accuracy_at_condition`]), for
+//! systems given to rounding; and that of the limit, for a system that is exactly
+//! what it is (a random start system): a converged limit is accurate to about its last
+//! correction (in the quadratic regime the error after a correction Δ is O(‖Δ‖²)),
+//! [`Refinement::accuracy`].
 
 use super::linalg::LuWorkspace;
 use super::newton::{NewtonBuffers, NewtonOptions, max_norm, newton};
@@ -119,7 +122,8 @@ pub fn newton_refine<F: Evaluator + ?Sized>(
 
 /// Whether two refined roots `a` and `b` (limits of [`newton_refine`]) are the same
 /// root: their distance is below `(tolerance + accuracy) · (1 + ‖a‖∞)`, `accuracy` the
-/// larger relative accuracy of the two ([`Refinement::accuracy`]).
+/// larger relative accuracy of the two ([`accuracy_at_condition`] or
+/// [`Refinement::accuracy`]).
 pub fn same_root(a: &[C64], b: &[C64], accuracy: f64, tolerance: f64) -> bool {
     let scale = 1.0 + max_norm(a).max(max_norm(b));
     let bound = tolerance + accuracy;
@@ -145,7 +149,8 @@ pub fn contains_point(set: &[Vec<C64>], x: &[C64], tolerance: f64) -> bool {
 /// The distinct nonsingular roots among approximate solutions `points` of
 /// `F(·; p) = 0` (no parameters): each refined by [`newton_refine`] (corrections below
 /// 1e-13 relative, at most 40 steps), kept if its condition number is below 1e11, and
-/// grouped by [`group_roots`] (tolerance 1e-10); one representative per root, in the
+/// grouped by [`group_roots`] (tolerance 1e-10, at the accuracy of the problem
+/// [`accuracy_at_condition`]); one representative per root, in the
 /// order of `points`. The independent count the demo-suite tests compare with.
 pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
     system: &F,
@@ -156,7 +161,7 @@ pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
         .map(|x| newton_refine(system, x, &[], 1e-13, 40))
         .filter(|r| r.is_nonsingular(1e11))
         .map(|r| {
-            let accuracy = r.accuracy();
+            let accuracy = accuracy_at_condition(r.condition);
             (r.point, accuracy)
         })
         .collect();
@@ -168,8 +173,9 @@ pub fn distinct_nonsingular_roots<F: Evaluator + ?Sized>(
 }
 
 /// Groups refined nonsingular roots into distinct roots: `roots[i]` is a point with its
-/// relative accuracy ([`Refinement::accuracy`]); two are one root when [`same_root`]
-/// at the larger accuracy. Returns for every root the index of its group's first member.
+/// relative accuracy ([`accuracy_at_condition`] or [`Refinement::accuracy`]); two are
+/// one root when [`same_root`] at the larger accuracy. Returns for every root the index
+/// of its group's first member.
 /// Sorting by the real part of the first coordinate keeps the comparison near-linear.
 pub fn group_roots(roots: &[(Vec<C64>, f64)], tolerance: f64) -> Vec<usize> {
     fn find(parent: &mut [usize], mut i: usize) -> usize {

@@ -559,7 +559,7 @@ fn promote_nonsingular_endpoints<H: Homotopy + ?Sized>(
 /// Relative Newton tolerance of the duplicate test on nonsingular endpoints.
 const DUPLICATE_NEWTON_TOLERANCE: f64 = 1e-13;
 /// Two refined nonsingular endpoints closer than this (relative, plus their accuracy,
-/// [`super::refine::Refinement::accuracy`]) are the same root.
+/// [`RootAccuracy`]) are the same root.
 const DUPLICATE_TOLERANCE: f64 = 1e-10;
 
 /// For every path, the root group of its nonsingular endpoint (the index of the group's
@@ -572,14 +572,37 @@ fn nonsingular_root_groups<H: Homotopy + ?Sized>(
     homotopy: &H,
     paths: &[PathResult],
 ) -> Vec<Option<usize>> {
-    root_groups_on(&TargetSystem { homotopy }, paths)
+    root_groups_on(
+        &TargetSystem { homotopy },
+        paths,
+        RootAccuracy::OfTheProblem,
+    )
+}
+
+/// How far apart two Newton limits may be and still be one root.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RootAccuracy {
+    /// The system's coefficients are known to rounding: a root at condition κ moves by
+    /// about `κ·ε` relative under such a perturbation, so limits closer than `10·κ·ε`
+    /// are one root. A singular root of the exact system splits into a cluster of
+    /// nearby nonsingular roots of its rounded coefficients (PHCpack's `tangents1`:
+    /// clusters of radius 5·10⁻⁸ at condition 10⁸–4·10⁸), and this counts the cluster
+    /// once.
+    OfTheProblem,
+    /// The system is exactly the one given (the random-coefficient start system of the
+    /// polyhedral homotopy, whose roots are nonsingular and distinct): a converged limit
+    /// is accurate to its last Newton correction ([`super::refine::Refinement::accuracy`]),
+    /// so two roots of a badly scaled system that differ only in a small coordinate stay
+    /// two.
+    OfTheLimit,
 }
 
 /// [`nonsingular_root_groups`] with the endpoints refined on the system `system` (the
-/// target of the homotopy the paths ended on).
+/// target of the homotopy the paths ended on), compared at `accuracy`.
 pub(crate) fn root_groups_on<F: Evaluator + ?Sized>(
     system: &F,
     paths: &[PathResult],
+    accuracy: RootAccuracy,
 ) -> Vec<Option<usize>> {
     let nonsingular: Vec<&PathResult> = paths
         .iter()
@@ -590,8 +613,13 @@ pub(crate) fn root_groups_on<F: Evaluator + ?Sized>(
         .map(|p| {
             let r = newton_refine(system, &p.solution, &[], DUPLICATE_NEWTON_TOLERANCE, 8);
             if r.converged {
-                let accuracy = r.accuracy();
-                (r.point, accuracy)
+                let bound = match accuracy {
+                    RootAccuracy::OfTheProblem => {
+                        accuracy_at_condition(r.condition.max(p.condition))
+                    }
+                    RootAccuracy::OfTheLimit => r.accuracy(),
+                };
+                (r.point, bound)
             } else {
                 (p.solution.clone(), accuracy_at_condition(p.condition))
             }

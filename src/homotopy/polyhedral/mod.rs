@@ -42,7 +42,7 @@ pub use start::{PolyhedralError, PolyhedralStartSystem};
 pub use supports::{Supports, random_lifting};
 
 use super::solve::{
-    HomotopyError, SolveOptions, SolveResult, check_square, check_target_parameters,
+    HomotopyError, RootAccuracy, SolveOptions, SolveResult, check_square, check_target_parameters,
     root_groups_on, solve_from_start_system,
 };
 use super::tracker::{FailureReason, PathResult, PathStatus, Tracker, TrackerOptions};
@@ -333,5 +333,5 @@ fn start_roots(start: &PolyhedralStartSystem, count: usize, options: &SolveOptio
 /// For every stage-one path, the group (index of its first path) of its nonsingular
 /// endpoint after Newton refinement on `Q`; `None` for other statuses.
 fn root_groups(start: &PolyhedralStartSystem, paths: &[PathResult]) -> Vec<Option<usize>> {
-    root_groups_on(&start.system().evaluator(), paths)
+    root_groups_on(&start.system().evaluator(), paths, RootAccuracy::OfTheLimit)
 }
