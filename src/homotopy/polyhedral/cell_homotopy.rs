@@ -38,6 +38,10 @@ pub struct CellHomotopy<'a> {
     powers: Vec<f64>,
 }
 
+/// Workspace entries ahead of the parameters: the homotopy and the `τ` they were
+/// filled for ([`CellHomotopy::parameters`]).
+const CACHE_SLOTS: usize = 2;
+
 /// `L`: the path parameter `τ ∈ [0, 1]` stands for `t = exp(−L(1 − τ))`.
 pub const LOG_RANGE: f64 = 36.0;
 
@@ -72,14 +76,29 @@ impl<'a> CellHomotopy<'a> {
 
     /// Splits the workspace into the term family's parameters `c ⊙ t^e`, their
     /// τ-derivatives `c ⊙ eL·t^e` (filled at `tau`), and the family's scratch.
+    ///
+    /// The first [`CACHE_SLOTS`] entries remember for which homotopy and which `tau`
+    /// the parameters were last filled: a predictor–corrector step evaluates several
+    /// times at one `τ` (the two midpoint stages of Runge–Kutta, the last stage and
+    /// the corrector's iterations), and each filling costs one `exp` per term.
     fn parameters<'w>(
         &self,
         tau: C64,
         work: &'w mut [C64],
     ) -> (&'w [C64], &'w [C64], &'w mut [C64]) {
         let count = self.powers.len();
+        let (cache, work) = work.split_at_mut(CACHE_SLOTS);
         let (values, rest) = work.split_at_mut(count);
         let (derivatives, scratch) = rest.split_at_mut(count);
+        // Which homotopy filled the parameters: the address of its powers, and their
+        // number (a fresh, zeroed workspace matches no homotopy).
+        let owner = C64::new(self.powers.as_ptr() as usize as f64, count as f64 + 1.0);
+        let at = |z: C64| (z.re.to_bits(), z.im.to_bits());
+        if at(cache[0]) == at(owner) && at(cache[1]) == at(tau) {
+            return (values, derivatives, scratch);
+        }
+        cache[0] = owner;
+        cache[1] = tau;
         let coefficients = self.system.coefficients();
         for t in 0..count {
             let (power, power_derivative) = power_and_derivative(tau, self.powers[t]);
@@ -96,7 +115,7 @@ impl Homotopy for CellHomotopy<'_> {
     }
 
     fn workspace_len(&self) -> usize {
-        2 * self.powers.len() + self.system.family().workspace_len()
+        CACHE_SLOTS + 2 * self.powers.len() + self.system.family().workspace_len()
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
@@ -155,6 +174,35 @@ mod tests {
             ],
         );
         PolyhedralStartSystem::new(&supports, 11).unwrap()
+    }
+
+    /// The remembered parameters are those of the homotopy and the `τ` asked for: two
+    /// cells evaluated in turn on one workspace, at one `τ` and then another, give what
+    /// each gives on a fresh workspace.
+    #[test]
+    fn a_shared_workspace_gives_what_a_fresh_one_gives() {
+        let start = start_system();
+        let cells: Vec<_> = (0..start.subdivision().cells.len())
+            .map(|c| start.cell_homotopy(c))
+            .collect();
+        assert!(cells.len() >= 2, "{} cells", cells.len());
+        let n = cells[0].dimension();
+        let len = cells.iter().map(|h| h.workspace_len()).max().unwrap();
+        let x = vec![C64::new(0.7, -0.3); n];
+        let fresh = |h: &CellHomotopy, tau: C64| {
+            let mut work = vec![C64::new(0.0, 0.0); len];
+            let mut value = vec![C64::new(0.0, 0.0); n];
+            h.evaluate(&x, tau, &mut work, &mut value);
+            value
+        };
+        let mut shared = vec![C64::new(0.0, 0.0); len];
+        for tau in [C64::new(0.0, 0.0), C64::new(0.6, 0.0), C64::new(0.6, 0.1)] {
+            for h in cells.iter().chain(cells.iter().rev()) {
+                let mut value = vec![C64::new(0.0, 0.0); n];
+                h.evaluate(&x, tau, &mut shared, &mut value);
+                assert_eq!(value, fresh(h, tau), "τ = {tau}");
+            }
+        }
     }
 
     #[test]
