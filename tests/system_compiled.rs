@@ -153,3 +153,41 @@ fn extended_evaluation_survives_catastrophic_cancellation() {
         double[0]
     );
 }
+
+/// Without parameter derivatives a system evaluates F and ∂F/∂x as the full
+/// compilation does, bit for bit, and its ∂F/∂p and (∂F/∂p)·dp are NaN.
+#[test]
+fn a_system_without_parameter_derivatives_evaluates_f_and_its_jacobian_alike() {
+    let (x, y, p, q) = (
+        Expr::variable("x"),
+        Expr::variable("y"),
+        Expr::parameter("p"),
+        Expr::parameter("q"),
+    );
+    let system = System::new(
+        ["x", "y"],
+        ["p", "q"],
+        vec![&p * &x * &y + &q * &x, &q * &y * &y - &p],
+    )
+    .unwrap();
+    let (full, lean) = (
+        CompiledSystem::new(&system),
+        CompiledSystem::without_parameter_derivatives(&system),
+    );
+    let point = [C64::new(0.3, -1.2), C64::new(2.0, 0.5)];
+    let parameters = [C64::new(-0.7, 0.1), C64::new(1.5, 2.0)];
+    let evaluate = |s: &CompiledSystem| {
+        let mut work = s.new_workspace();
+        let (mut f, mut jac) = (vec![C64::new(0.0, 0.0); 2], vec![C64::new(0.0, 0.0); 4]);
+        s.evaluate_with_jacobian(&point, &parameters, &mut work, &mut f, &mut jac);
+        let mut dp = vec![C64::new(0.0, 0.0); 2];
+        s.evaluate_parameter_derivative(&point, &parameters, &parameters, &mut work, &mut dp);
+        (f, jac, dp)
+    };
+    let (f_full, jac_full, dp_full) = evaluate(&full);
+    let (f_lean, jac_lean, dp_lean) = evaluate(&lean);
+    assert_eq!(f_full, f_lean);
+    assert_eq!(jac_full, jac_lean);
+    assert!(dp_full.iter().all(|v| v.re.is_finite() && v.im.is_finite()));
+    assert!(dp_lean.iter().all(|v| v.re.is_nan() && v.im.is_nan()));
+}

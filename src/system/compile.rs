@@ -648,6 +648,48 @@ fn symbolic_jacobian(equations: &[Expr], symbols: &[String]) -> Vec<Expr> {
     jacobian
 }
 
+/// The tape of `∂F/∂p` (row-major entries `jacobian_p`).
+fn compile_parameter_jacobian(
+    inputs: &HashMap<&str, u32>,
+    num_inputs: usize,
+    jacobian_p: &[Expr],
+) -> Tape {
+    let mut builder = TapeBuilder::new(inputs, num_inputs);
+    let outputs: Vec<Signed> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
+    builder.finish(&outputs)
+}
+
+/// The tape of `(∂F/∂p)·dp`: `Σ_k ∂f_i/∂p_k · dp_k` with `dp_k` in input register
+/// `n + m + k`, for `equations` equations in `n` unknowns and `m` parameters.
+fn compile_parameter_derivative(
+    inputs: &HashMap<&str, u32>,
+    (n, m): (usize, usize),
+    equations: usize,
+    jacobian_p: &[Expr],
+) -> Tape {
+    let mut builder = TapeBuilder::new(inputs, n + 2 * m);
+    let mut outputs = Vec::with_capacity(equations);
+    for i in 0..equations {
+        let mut sum: Option<Signed> = None;
+        for k in 0..m {
+            let entry = &jacobian_p[i * m + k];
+            if entry.is_zero() {
+                continue;
+            }
+            let derivative = builder.lower(entry);
+            let direction = Signed::positive(Operand::Input((n + m + k) as u32));
+            let term = builder.product(derivative, direction);
+            sum = Some(match sum {
+                None => term,
+                Some(previous) => builder.sum(previous, term),
+            });
+        }
+        let zero = Signed::positive(builder.constant(C64::new(0.0, 0.0)));
+        outputs.push(sum.unwrap_or(zero));
+    }
+    builder.finish(&outputs)
+}
+
 #[derive(Debug)]
 struct CompiledParts {
     variables: Vec<String>,
@@ -673,6 +715,18 @@ pub struct CompiledSystem {
 impl CompiledSystem {
     /// Compiles `system` (see the module documentation for the method).
     pub fn new(system: &System) -> CompiledSystem {
+        CompiledSystem::build(system, true)
+    }
+
+    /// [`CompiledSystem::new`] without the tapes of `∂F/∂p` and `(∂F/∂p)·dp`, for a
+    /// system whose parameters only ever take values (the polyhedral term family, one
+    /// parameter per term: those tapes were most of its compile time). Its
+    /// parameter derivatives evaluate to NaN, which no tracker accepts.
+    pub fn without_parameter_derivatives(system: &System) -> CompiledSystem {
+        CompiledSystem::build(system, false)
+    }
+
+    fn build(system: &System, parameter_derivatives: bool) -> CompiledSystem {
         let variables = system.variables().to_vec();
         let parameters = system.parameters().to_vec();
         let equations = system.equations();
@@ -684,7 +738,11 @@ impl CompiledSystem {
         let num_inputs = n + 2 * m;
 
         let jacobian_x = symbolic_jacobian(equations, &variables);
-        let jacobian_p = symbolic_jacobian(equations, &parameters);
+        let jacobian_p = if parameter_derivatives {
+            symbolic_jacobian(equations, &parameters)
+        } else {
+            Vec::new()
+        };
 
         let mut builder = TapeBuilder::new(&inputs, num_inputs);
         let outputs: Vec<Signed> = equations.iter().map(|f| builder.lower(f)).collect();
@@ -698,32 +756,22 @@ impl CompiledSystem {
             .collect();
         let values_and_jacobian = builder.finish(&outputs);
 
-        let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let outputs: Vec<Signed> = jacobian_p.iter().map(|f| builder.lower(f)).collect();
-        let parameter_jacobian = builder.finish(&outputs);
-
-        // Σ_k ∂f_i/∂p_k · dp_k with dp_k in input registers n + m + k.
-        let mut builder = TapeBuilder::new(&inputs, num_inputs);
-        let mut outputs = Vec::with_capacity(equations.len());
-        for i in 0..equations.len() {
-            let mut sum: Option<Signed> = None;
-            for k in 0..m {
-                let entry = &jacobian_p[i * m + k];
-                if entry.is_zero() {
-                    continue;
-                }
-                let derivative = builder.lower(entry);
-                let direction = Signed::positive(Operand::Input((n + m + k) as u32));
-                let term = builder.product(derivative, direction);
-                sum = Some(match sum {
-                    None => term,
-                    Some(previous) => builder.sum(previous, term),
-                });
-            }
-            let zero = Signed::positive(builder.constant(C64::new(0.0, 0.0)));
-            outputs.push(sum.unwrap_or(zero));
-        }
-        let parameter_derivative = builder.finish(&outputs);
+        let (parameter_jacobian, parameter_derivative) = if parameter_derivatives {
+            let parameter_jacobian = compile_parameter_jacobian(&inputs, num_inputs, &jacobian_p);
+            let parameter_derivative =
+                compile_parameter_derivative(&inputs, (n, m), equations.len(), &jacobian_p);
+            (parameter_jacobian, parameter_derivative)
+        } else {
+            let not_available = |outputs: usize| {
+                let mut builder = TapeBuilder::new(&inputs, num_inputs);
+                let nan = Signed::positive(builder.constant(C64::new(f64::NAN, f64::NAN)));
+                builder.finish(&vec![nan; outputs])
+            };
+            (
+                not_available(equations.len() * m),
+                not_available(equations.len()),
+            )
+        };
 
         let workspace_len = [
             &values,

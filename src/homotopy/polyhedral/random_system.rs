@@ -90,9 +90,10 @@ fn term_family(supports: &Supports) -> CompiledSystem {
         }
         equations.push(Expr::balanced_sum(terms));
     }
-    System::new(&variables, &parameters, equations)
-        .expect("the term family declares every symbol it uses")
-        .compile()
+    let family = System::new(&variables, &parameters, equations)
+        .expect("the term family declares every symbol it uses");
+    // Its parameters only take values (coefficients, or their τ-derivatives).
+    CompiledSystem::without_parameter_derivatives(&family)
 }
 
 /// `Q_i(x) = Σ_{a ∈ A_i} c_{ia} x^a` with complex normal coefficients.
