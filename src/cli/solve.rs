@@ -24,6 +24,7 @@ use singdist::homotopy::{
     solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
 };
 use singdist::system::scaling::Scaling;
+use singdist::system::sparse::{ExpansionError, SparsePolynomial};
 use singdist::system::{CompiledSystem, System, bertini};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -181,11 +182,12 @@ const POLYHEDRAL_RERUNS: u64 = 1;
 /// is complete with probability one, so a path lost to the particular lifting or γ
 /// of the first run (PHCpack's `butcher`, `cassou`) costs a second polyhedral run,
 /// not the total-degree homotopy; a loss that every run repeats (paths to a
-/// positive-dimensional component) still ends in the total-degree fallback. The
-/// second value tells whether a re-run replaced `first`.
+/// positive-dimensional component) still ends in the total-degree fallback. No re-run
+/// without `supports` (the system's polyhedral supports). The second value tells
+/// whether a re-run replaced `first`.
 fn rerun_polyhedral(
     compiled: &CompiledSystem,
-    system: &System,
+    supports: Option<&Supports>,
     bezout_paths: u128,
     options: &SolveOptions,
     first: PolyhedralSolve,
@@ -198,7 +200,7 @@ fn rerun_polyhedral(
     {
         return Ok((first, false));
     }
-    let Ok(supports) = Supports::from_system(system) else {
+    let Some(supports) = supports else {
         return Ok((first, false));
     };
     let mut best = first;
@@ -206,7 +208,7 @@ fn rerun_polyhedral(
     for rerun in 1..=POLYHEDRAL_RERUNS {
         let seed =
             singdist::random::stream(options.seed, POLYHEDRAL_RERUN_STREAM + rerun).next_u64();
-        let Some(start) = polyhedral_if_fewer_paths(&supports, seed, bezout_paths) else {
+        let Some(start) = polyhedral_if_fewer_paths(supports, seed, bezout_paths) else {
             continue;
         };
         let rerun_options = SolveOptions {
@@ -454,10 +456,15 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
             system.parameters().join(", ")
         );
     }
+    // One expansion for the scaling, the degrees and the polyhedral supports.
+    let expansion = system.expand();
     let scaling = match args.scaling {
         ScalingArg::Never => None,
         ScalingArg::Always => Scaling::least_squares(&system),
-        ScalingArg::Auto => Scaling::automatic(&system),
+        ScalingArg::Auto => expansion
+            .as_ref()
+            .ok()
+            .and_then(|e| Scaling::automatic_of_expansion(&system, e)),
     };
     if args.scaling == ScalingArg::Always && scaling.is_none() {
         eprintln!(
@@ -469,12 +476,14 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         Some(scaling) => scaling.apply(&system).compile(),
         None => system.compile(),
     };
-    let degrees: Vec<u32> = system
-        .degrees()
-        .iter()
-        .map(|&d| u32::try_from(d))
-        .collect::<Result<_, _>>()
-        .context("an equation degree exceeds 2³²")?;
+    let degrees: Vec<u32> = match &expansion {
+        Ok(e) => system.degrees_of_expansion(e),
+        Err(_) => system.degrees(),
+    }
+    .iter()
+    .map(|&d| u32::try_from(d))
+    .collect::<Result<_, _>>()
+    .context("an equation degree exceeds 2³²")?;
     let options = SolveOptions {
         seed: args.seed,
         ..SolveOptions::default()
@@ -515,18 +524,22 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     };
     // The polyhedral start system: when asked for, or under `auto` when it has at most
     // half the paths of the best Bézout-type one and its mixed cells come cheaply.
+    let supports = supports_of(&system, &expansion);
     let polyhedral_start = if forced_polyhedral {
-        let supports = Supports::from_system(&system)
+        let supports = supports
+            .as_ref()
+            .map_err(Clone::clone)
             .with_context(|| format!("{}: --start polyhedral", args.file.display()))?;
         Some(
-            PolyhedralStartSystem::new(&supports, options.seed)
+            PolyhedralStartSystem::new(supports, options.seed)
                 .with_context(|| format!("{}: --start polyhedral", args.file.display()))?,
         )
     } else if args.start == Some(StartArg::Auto) || default_start {
         let paths = choice.as_ref().map_or(u128::MAX, StartChoice::paths);
-        Supports::from_system(&system)
+        supports
+            .as_ref()
             .ok()
-            .and_then(|supports| polyhedral_if_fewer_paths(&supports, options.seed, paths))
+            .and_then(|supports| polyhedral_if_fewer_paths(supports, options.seed, paths))
     } else {
         None
     };
@@ -540,8 +553,13 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                 let total = total_degree_paths(&degrees);
                 if default_start && solved.result.summary.failed > 0 {
                     let first = Superseded::of(&solved);
-                    let (best, rerun) =
-                        rerun_polyhedral(&compiled, &system, bezout_paths, &options, solved)?;
+                    let (best, rerun) = rerun_polyhedral(
+                        &compiled,
+                        supports.as_ref().ok(),
+                        bezout_paths,
+                        &options,
+                        solved,
+                    )?;
                     if rerun {
                         superseded = Some(first);
                     }
@@ -683,6 +701,18 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         emit(&text)?;
     }
     Ok(Outcome::paths_lost_if(warn_failed_paths(&result)))
+}
+
+/// The polyhedral supports of `system` from its `expansion`.
+fn supports_of(
+    system: &System,
+    expansion: &Result<Vec<SparsePolynomial>, ExpansionError>,
+) -> Result<Supports, ExpansionError> {
+    let expansion = expansion.as_ref().map_err(Clone::clone)?;
+    Ok(Supports::from_expansion(
+        system.variables().len(),
+        expansion,
+    ))
 }
 
 /// `‖F(x)‖∞` of the file's system (a solution found in scaled coordinates).

@@ -197,6 +197,16 @@ impl System {
             .collect()
     }
 
+    /// [`System::degrees`] from the system's expansion ([`System::expand`]), when the
+    /// caller has it already.
+    pub fn degrees_of_expansion(&self, expansion: &[SparsePolynomial]) -> Vec<u64> {
+        let n = self.variables.len();
+        expansion
+            .iter()
+            .map(|polynomial| polynomial.degree_in(|i| i < n).unwrap_or(0))
+            .collect()
+    }
+
     /// Bézout number `Π deg f_i` (saturating at `u128::MAX`): the number of isolated
     /// solutions in projective space of a generic system with these degrees, an upper
     /// bound of the finite isolated solutions of a square system.

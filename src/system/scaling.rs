@@ -20,6 +20,7 @@
 //! roots, each mapped by `x_j = 2^{d_j} y_j` without rounding.
 
 use crate::C64;
+use crate::system::sparse::SparsePolynomial;
 use crate::system::{Expr, System};
 use nalgebra::{DMatrix, DVector};
 
@@ -57,17 +58,24 @@ type LogTerm = (usize, Vec<u32>, f64);
 /// The [`log_terms`] of a system that can be scaled (no parameters left, not
 /// homogenised, every equation expandable), with its numbers of equations and unknowns.
 fn scalable_terms(system: &System) -> Option<(Vec<LogTerm>, usize, usize)> {
+    scalable_terms_of(system, &system.expand().ok()?)
+}
+
+/// [`scalable_terms`] from the system's expansion.
+fn scalable_terms_of(
+    system: &System,
+    expansion: &[SparsePolynomial],
+) -> Option<(Vec<LogTerm>, usize, usize)> {
     if !system.parameters().is_empty() || system.homogenizing().is_some() {
         return None;
     }
-    let terms = log_terms(system)?;
+    let terms = log_terms(system.variables().len(), expansion)?;
     Some((terms, system.num_equations(), system.variables().len()))
 }
 
-/// `(equation, exponent vector, log₂|coefficient|)` of every non-zero term.
-fn log_terms(system: &System) -> Option<Vec<(usize, Vec<u32>, f64)>> {
-    let n = system.variables().len();
-    let polynomials = system.expand().ok()?;
+/// `(equation, exponent vector, log₂|coefficient|)` of every non-zero term of the
+/// expansion of a system in `n` unknowns.
+fn log_terms(n: usize, polynomials: &[SparsePolynomial]) -> Option<Vec<LogTerm>> {
     let mut terms = Vec::new();
     for (i, polynomial) in polynomials.iter().enumerate() {
         for (monomial, coefficient) in &polynomial.terms {
@@ -124,8 +132,17 @@ impl Scaling {
     /// [`Scaling::worthwhile`], else the equation-only normalisation where the
     /// equations are [`Scaling::unbalanced_equations`], else none.
     pub fn automatic(system: &System) -> Option<Scaling> {
+        Scaling::automatic_of_expansion(system, &system.expand().ok()?)
+    }
+
+    /// [`Scaling::automatic`] from the system's expansion ([`System::expand`]), when the
+    /// caller has it already.
+    pub fn automatic_of_expansion(
+        system: &System,
+        expansion: &[SparsePolynomial],
+    ) -> Option<Scaling> {
         // One expansion of the system for both candidates.
-        let (terms, m, n) = scalable_terms(system)?;
+        let (terms, m, n) = scalable_terms_of(system, expansion)?;
         Scaling::least_squares_of(&terms, m, n)
             .filter(Scaling::worthwhile)
             .or_else(|| {
@@ -341,6 +358,32 @@ mod tests {
         assert_eq!(scaling.unscale(&inverse), original.to_vec());
     }
 
+    /// `10¹²(x² + y² − 2) = 0, 3x − y = 0`: equations of sizes 10¹² and 1, each balanced
+    /// within.
+    fn unbalanced() -> System {
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
+        in_x_and_y(vec![
+            c(1e12) * (&x * &x + &y * &y - c(2.0)),
+            c(3.0) * &x - &y,
+        ])
+    }
+
+    /// The automatic scaling and the degrees from an expansion the caller made once are
+    /// those the system's own expansions give.
+    #[test]
+    fn one_expansion_gives_the_automatic_scaling_and_the_degrees() {
+        for system in [badly_scaled(), unbalanced()] {
+            let expansion = system.expand().unwrap();
+            let automatic = Scaling::automatic(&system);
+            assert!(automatic.is_some());
+            assert_eq!(
+                Scaling::automatic_of_expansion(&system, &expansion),
+                automatic
+            );
+            assert_eq!(system.degrees_of_expansion(&expansion), system.degrees());
+        }
+    }
+
     #[test]
     fn a_well_scaled_system_is_left_alone() {
         let (x, y) = (Expr::variable("x"), Expr::variable("y"));
@@ -353,11 +396,7 @@ mod tests {
     /// normalised (the roots keep their coordinates); a balanced system is not.
     #[test]
     fn unbalanced_equations_are_normalised_alone() {
-        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
-        let system = in_x_and_y(vec![
-            c(1e12) * (&x * &x + &y * &y - c(2.0)),
-            c(3.0) * &x - &y,
-        ]);
+        let system = unbalanced();
         let least_squares = Scaling::least_squares(&system).unwrap();
         assert!(!least_squares.worthwhile(), "{least_squares:?}");
         let scaling = Scaling::equations_only(&system).unwrap();
@@ -371,6 +410,7 @@ mod tests {
         ];
         let scaled = scaling.apply(&system).evaluate_naive(&root, &[]);
         assert!(scaled.iter().all(|r| r.norm() < 1e-12), "{scaled:?}");
+        let (x, y) = (Expr::variable("x"), Expr::variable("y"));
         let balanced = in_x_and_y(vec![&x * &x + &y * &y - c(2.0), c(3.0) * &x - &y]);
         assert!(
             !Scaling::equations_only(&balanced)

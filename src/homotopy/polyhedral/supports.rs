@@ -11,7 +11,7 @@
 //! for solving sparse polynomial systems", Math. Comp. 1995).
 
 use crate::system::System;
-use crate::system::sparse::ExpansionError;
+use crate::system::sparse::{ExpansionError, SparsePolynomial};
 
 /// Every support of `equations` sorted and without repeated points.
 ///
@@ -57,10 +57,17 @@ impl Supports {
     /// The supports of a system's equations in its unknowns, from their expansion
     /// ([`System::expand`]); terms differing only in parameters are one monomial.
     pub fn from_system(system: &System) -> Result<Self, ExpansionError> {
-        let n = system.variables().len();
-        let equations = system
-            .expand()?
-            .into_iter()
+        Ok(Self::from_expansion(
+            system.variables().len(),
+            &system.expand()?,
+        ))
+    }
+
+    /// The supports in the first `n` symbols (the unknowns) of a system's expansion
+    /// ([`System::expand`]), as [`Supports::from_system`].
+    pub fn from_expansion(n: usize, expansion: &[SparsePolynomial]) -> Self {
+        let equations = expansion
+            .iter()
             .map(|p| {
                 p.terms
                     .iter()
@@ -69,7 +76,7 @@ impl Supports {
                     .collect()
             })
             .collect();
-        Ok(Self::new(n, equations))
+        Self::new(n, equations)
     }
 
     /// The same supports with the origin added to each one lacking it (Li–Wang).
