@@ -1,4 +1,4 @@
-//! Embeds every generic start-solution file of `supplementary/start/` into the library
+//! Embeds every start-solution file of `supplementary/start/` into the library
 //! (`include_str!`), so the binary works without the source tree.
 
 use std::fs;

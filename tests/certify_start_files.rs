@@ -1,13 +1,14 @@
 //! Krawczyk certificates of the shipped start solutions: at the start file's (complex,
-//! generic) parameters every stored critical point of every sub-problem is proved to
-//! be an exact solution in its own box, and the boxes are pairwise disjoint, so the
+//! generic) parameters every stored critical point of every sub-problem, on the generic
+//! stratum and on every stratum with a shipped file (rigid parts on a line), is proved
+//! to be an exact solution in its own box, and the boxes are pairwise disjoint, so the
 //! file holds as many distinct solutions as it claims.
 
 use singdist::C64;
 use singdist::certify::krawczyk::{Realness, certify_solutions};
 use singdist::pipeline::curve::default_start_solutions;
-use singdist::problem::ProblemId;
 use singdist::problem::{Coordinates, LagrangeProblem};
+use singdist::problem::{ProblemId, Stratum};
 
 /// The start file of `problem` and its parameter point, in the problem's order.
 fn start_point(
@@ -16,7 +17,13 @@ fn start_point(
     std::sync::Arc<singdist::pipeline::start_file::StartSolutions>,
     Vec<C64>,
 ) {
-    let start = default_start_solutions(problem.id()).expect("start file");
+    let start = default_start_solutions(problem.id(), problem.stratum()).expect("start file");
+    assert_eq!(
+        start.parameters.len(),
+        problem.parameter_names().len(),
+        "{}",
+        start.problem
+    );
     let parameters = problem
         .parameter_names()
         .iter()
@@ -29,12 +36,26 @@ fn start_point(
 fn every_start_solution_is_certified_and_distinct() {
     let mut report = Vec::new();
     let mut failed = Vec::new();
+    let mut problems = Vec::new();
     for id in ProblemId::all() {
-        let Ok(problem) = LagrangeProblem::new(id) else {
-            continue;
-        };
-        let (start, parameters) = start_point(&problem);
+        problems.extend(LagrangeProblem::new(id));
+        for stratum in Stratum::special(id) {
+            if default_start_solutions(id, stratum).is_ok() {
+                let representation = (Coordinates::Cartesian, Default::default());
+                problems.push(LagrangeProblem::new_on(id, representation, stratum).unwrap());
+            }
+        }
+    }
+    let on_strata = problems
+        .iter()
+        .filter(|p| !p.stratum().is_generic())
+        .count();
+    assert!(on_strata >= 6, "{on_strata} start files on special strata");
+    for problem in &problems {
+        let id = problem.id();
+        let (start, parameters) = start_point(problem);
         assert_eq!(start.variables, problem.variable_names(), "{}", id.name());
+        assert_eq!(start.stratum, problem.stratum(), "{}", start.problem);
         let result = certify_solutions(problem.evaluator(), &parameters, &start.solutions)
             .expect("square system");
         let widest = result
@@ -54,7 +75,7 @@ fn every_start_solution_is_certified_and_distinct() {
         );
         report.push(format!(
             "{}: {} of {} certified, {} overlapping pairs, widest box {:.1e}",
-            id.name(),
+            start.problem,
             result.distinct(),
             start.solutions.len(),
             result.overlapping.len(),
@@ -137,7 +158,7 @@ fn interval_values_enclose_sampled_values_and_agree_with_the_jacobian_tape() {
         let Ok(problem) = LagrangeProblem::new(id) else {
             continue;
         };
-        let start = default_start_solutions(id).expect("start file");
+        let start = default_start_solutions(id, Stratum::GENERIC).expect("start file");
         let parameters: Vec<C64> = problem
             .parameter_names()
             .iter()

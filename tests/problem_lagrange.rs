@@ -367,3 +367,75 @@ fn chart_multipliers_describe_the_same_critical_points() {
     }
     assert!(checked > 600, "only {checked} start solutions checked");
 }
+
+/// On the stratum of a base on a line (`v_base = 0` a constant, [`Stratum`]) the
+/// system is the generic one with `v_base = 0` substituted: the same unknowns, the
+/// parameters without `v_base`, and at any point the same residuals as the generic
+/// system at the same parameters with `v_base = 0`; a design off the line is refused.
+#[test]
+fn a_stratum_system_is_the_generic_one_with_v_fixed_at_zero() {
+    use singdist::problem::{Coordinates, Multipliers, Stratum};
+    let stratum = Stratum::from_name("collinear-base-anchors").unwrap();
+    let mut rng_state = 7u64;
+    let mut next = || {
+        rng_state = rng_state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((rng_state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    for name in ["rigid/rigid:singularity", "bars/rigid:coincident-platform"] {
+        let id: ProblemId = name.parse().unwrap();
+        let representation = (Coordinates::Cartesian, Multipliers::Affine);
+        let generic = LagrangeProblem::new(id).unwrap();
+        let on_line = LagrangeProblem::new_on(id, representation, stratum).unwrap();
+        assert_eq!(on_line.stratum(), stratum);
+        assert_eq!(on_line.variable_names(), generic.variable_names(), "{name}");
+        let expected: Vec<&String> = generic
+            .parameter_names()
+            .iter()
+            .filter(|p| *p != "v_base")
+            .collect();
+        let got: Vec<&String> = on_line.parameter_names().iter().collect();
+        assert_eq!(got, expected, "{name}");
+        let n = generic.variable_names().len();
+        let x: Vec<C64> = (0..n).map(|_| C64::new(next(), next())).collect();
+        let p: Vec<C64> = on_line
+            .parameter_names()
+            .iter()
+            .map(|_| C64::new(next(), next()))
+            .collect();
+        let p_generic: Vec<C64> = generic
+            .parameter_names()
+            .iter()
+            .map(
+                |name| match on_line.parameter_names().iter().position(|q| q == name) {
+                    Some(i) => p[i],
+                    None => C64::new(0.0, 0.0),
+                },
+            )
+            .collect();
+        let mut work =
+            vec![C64::new(0.0, 0.0); generic.workspace_len().max(on_line.workspace_len())];
+        let mut f = vec![C64::new(0.0, 0.0); n];
+        let mut g = vec![C64::new(0.0, 0.0); n];
+        on_line.evaluator().evaluate(&x, &p, &mut work, &mut f);
+        generic
+            .evaluator()
+            .evaluate(&x, &p_generic, &mut work, &mut g);
+        for (a, b) in f.iter().zip(&g) {
+            assert!(
+                (a - b).norm() <= 1e-12 * (1.0 + b.norm()),
+                "{name}: {a} vs {b}"
+            );
+        }
+    }
+    let off_line = rpr::Design::new(
+        [[0.0, 0.0], [2.0, 0.0], [1.0, 1e-6]],
+        [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+    )
+    .unwrap();
+    let id: ProblemId = "rigid/rigid:singularity".parse().unwrap();
+    let representation = (Coordinates::Cartesian, Multipliers::Affine);
+    assert!(LagrangeProblem::for_design_on(id, &off_line, representation, stratum).is_err());
+    assert!(Stratum::of(id, &off_line).is_generic());
+}

@@ -14,7 +14,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use singdist::pipeline::ab_initio::{self, AbInitioOptions};
 use singdist::problem::rrr::{RrrProblem, RrrSubProblem};
-use singdist::problem::{LagrangeProblem, ProblemError, ProblemId};
+use singdist::problem::{LagrangeProblem, ProblemError, ProblemId, Stratum};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -39,6 +39,13 @@ pub struct AbInitioArgs {
     /// `--verify` checks the copy embedded in the binary).
     #[arg(long, default_value = "supplementary/start")]
     dir: PathBuf,
+    /// The stratum of the design space to pose the problems on: `generic`, or rigid
+    /// parts with collinear anchors, `collinear-base-anchors`,
+    /// `collinear-platform-anchors` or `collinear-anchors` (both). Its files are named
+    /// `PLATFORM-BASE-SUBPROBLEM.STRATUM.json`; designs on it use them where they exist.
+    /// With `--all`, every problem that has the stratum.
+    #[arg(long, default_value = "generic", value_parser = parse_stratum)]
+    stratum: Stratum,
     #[command(flatten)]
     threads: ThreadsArg,
 }
@@ -60,7 +67,7 @@ pub fn run(args: AbInitioArgs) -> Result<Outcome> {
     };
     let started = Instant::now();
     let failures = if args.verify {
-        verify_stored(problem, &args.dir)?
+        verify_stored(problem, args.stratum, &args.dir)?
     } else {
         let ids = match (problem, args.all) {
             (Some(id), _) => vec![id],
@@ -69,15 +76,36 @@ pub fn run(args: AbInitioArgs) -> Result<Outcome> {
                 "give --problem NAME or --all to compute, or --verify to re-check the stored files"
             ),
         };
+        let on_stratum = |id: &ProblemId| {
+            args.stratum.is_generic() || Stratum::special(*id).contains(&args.stratum)
+        };
+        if let Some(id) = problem.filter(|id| !on_stratum(id)) {
+            bail!(
+                "--stratum {}: {} has no rigid part it puts on a line",
+                args.stratum.name().unwrap_or("generic"),
+                id.name()
+            );
+        }
+        let ids: Vec<ProblemId> = ids.into_iter().filter(on_stratum).collect();
         compute(&ids, &args)?
     };
     eprintln!("total {:.2} s", started.elapsed().as_secs_f64());
     all_passed(failures)
 }
 
-/// The problem of `id`, or `None` (with a line saying why) if no metric needs it.
-fn applicable(id: ProblemId) -> Result<Option<LagrangeProblem>> {
-    match LagrangeProblem::new(id) {
+/// A `--stratum` value.
+fn parse_stratum(name: &str) -> Result<Stratum, String> {
+    Stratum::from_name(name).ok_or_else(|| {
+        "expected generic, collinear-base-anchors, collinear-platform-anchors or \
+         collinear-anchors"
+            .to_string()
+    })
+}
+
+/// The problem of `id` on `stratum`, or `None` (with a line saying why) if no metric
+/// needs it.
+fn applicable(id: ProblemId, stratum: Stratum) -> Result<Option<LagrangeProblem>> {
+    match LagrangeProblem::new_on(id, Default::default(), stratum) {
         Ok(problem) => Ok(Some(problem)),
         Err(ProblemError::NotApplicable { reason, .. }) => {
             println!("{:<40} not applicable: {reason}", id.name());
@@ -87,13 +115,26 @@ fn applicable(id: ProblemId) -> Result<Option<LagrangeProblem>> {
     }
 }
 
-/// `--verify`: re-checks the stored file of `problem`, or without one every stored
-/// file of the 3-RPR problems and the 3-RRR sub-problems; returns how many failed.
-fn verify_stored(problem: Option<ProblemId>, dir: &Path) -> Result<usize> {
-    let ids = problem.map_or_else(ProblemId::all, |id| vec![id]);
+/// `--verify`: re-checks the stored file of `problem` on `stratum`, or without one
+/// every stored file of the 3-RPR problems (generic ones, and those of special strata
+/// that exist, in `dir` or embedded) and of the 3-RRR sub-problems; returns how many
+/// failed.
+fn verify_stored(problem: Option<ProblemId>, stratum: Stratum, dir: &Path) -> Result<usize> {
     let mut problems = Vec::new();
-    for id in ids {
-        problems.extend(applicable(id)?);
+    match problem {
+        Some(id) => problems.extend(applicable(id, stratum)?),
+        None => {
+            for id in ProblemId::all() {
+                problems.extend(applicable(id, Stratum::GENERIC)?);
+                for special in Stratum::special(id) {
+                    let stored = dir.join(format!("{}.json", special.file_stem(id))).exists()
+                        || ab_initio::embedded_start_solutions_on(id, special).is_some();
+                    if stored {
+                        problems.extend(applicable(id, special)?);
+                    }
+                }
+            }
+        }
     }
     let mut failures = check_stored(dir, &problems)?;
     if problem.is_none() {
@@ -112,7 +153,7 @@ fn compute(ids: &[ProblemId], args: &AbInitioArgs) -> Result<usize> {
     check_output_folder("--dir", &args.dir, true)?;
     let mut failures = 0;
     for &id in ids {
-        let Some(problem) = applicable(id)? else {
+        let Some(problem) = applicable(id, args.stratum)? else {
             continue;
         };
         let clock = Instant::now();
@@ -121,11 +162,11 @@ fn compute(ids: &[ProblemId], args: &AbInitioArgs) -> Result<usize> {
             ..AbInitioOptions::default()
         };
         let file = ab_initio::compute_start_solutions(&problem, &options)?;
-        let expected = ab_initio::expected_count(id);
+        let expected = ab_initio::AbInitioProblem::expected_count(&problem);
         let ok = file.certificate.passed && expected.is_none_or(|e| e == file.solutions.len());
         println!(
             "{:<40} {} solutions (expected {}), max residual {:.1e}, certificate {} (trace {}), {} loops, {} failed paths, {:.2} s{}",
-            id.name(),
+            ab_initio::AbInitioProblem::name(&problem),
             file.solutions.len(),
             expected.map_or("unknown".to_string(), |e| e.to_string()),
             file.max_residual,

@@ -10,13 +10,13 @@
 use super::start_file::StartSolutions;
 use crate::homotopy::{MonodromyOptions, PrecisionOptions, TrackerOptions};
 use crate::metric::Part;
-use crate::problem::{LagrangeProblem, ProblemId, SubProblem};
+use crate::problem::{LagrangeProblem, ProblemId, Stratum, SubProblem};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 pub use super::ab_initio_stage::{
     AbInitioError, AbInitioOptions, AbInitioProblem, MAX_STORED_RESIDUAL, NONSINGULAR_THRESHOLD,
-    Polish, Verification, smallest_relative_singular_value,
+    Polish, VERIFIED_GENERIC_COUNT, Verification, smallest_relative_singular_value,
 };
 
 /// Default seed of the ab-initio stage (the stored files were made with it).
@@ -42,6 +42,43 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
         SubProblem::CoincidentPlatform | SubProblem::CoincidentBase => MEASURED_COINCIDENT,
     }
 }
+
+/// Generic count of sub-problem `id` on `stratum` ([`Stratum`]): [`expected_count`] on
+/// the generic stratum. With one rigid part on a line (`v = 0`) the singularity
+/// sub-problem has [`SINGULARITY_ONE_RIGID_ON_A_LINE`] critical points instead of 80
+/// (one rigid part) and [`SINGULARITY_RIGID_RIGID_ONE_ON_A_LINE`] instead of 88
+/// (`rigid/rigid`). Measured, as the coincident-points counts: the seed stage of
+/// `singdist curve` (from the generic start files, each count confirmed at two
+/// independent seed points) finds them on designs with a base on a line and, by the
+/// base–platform symmetry, with a platform on a line (`bars/rigid`, `plate/rigid`,
+/// `rigid/bars`, `rigid/plate`: 72; `rigid/rigid`: 84), and monodromy at a random
+/// complex point of the stratum saturates at the same counts (the stored files of
+/// `supplementary/start/*.collinear-*-anchors.json`). Other sub-problems and the
+/// stratum with both rigid parts on lines: not known (`None`; the ab-initio stage then
+/// certifies by the trace test).
+pub fn expected_count_on(id: ProblemId, stratum: Stratum) -> Option<usize> {
+    if stratum.is_generic() {
+        return expected_count(id);
+    }
+    let rigid = [id.metric.platform, id.metric.base]
+        .iter()
+        .filter(|p| **p == Part::Rigid)
+        .count();
+    let on_a_line = usize::from(stratum.collinear_base) + usize::from(stratum.collinear_platform);
+    match (id.subproblem, rigid, on_a_line) {
+        (SubProblem::Singularity, 1, 1) => Some(SINGULARITY_ONE_RIGID_ON_A_LINE),
+        (SubProblem::Singularity, 2, 1) => Some(SINGULARITY_RIGID_RIGID_ONE_ON_A_LINE),
+        _ => None,
+    }
+}
+
+/// Critical points of the singularity sub-problem with one rigid part, on a line
+/// ([`expected_count_on`]; 80 off the line).
+pub const SINGULARITY_ONE_RIGID_ON_A_LINE: usize = 72;
+
+/// Critical points of the `rigid/rigid` singularity sub-problem with one rigid part on
+/// a line ([`expected_count_on`]; 88 off it).
+pub const SINGULARITY_RIGID_RIGID_ONE_ON_A_LINE: usize = 84;
 
 /// Generic count of the all-collinear sub-problem with one rigid part whose anchors
 /// are collinear (`plate/rigid`, `rigid/plate`; docs/theory.md §5.3, parameterisation of
@@ -103,8 +140,12 @@ impl AbInitioProblem for LagrangeProblem {
     };
     const VERIFY_RETRACES: bool = true;
 
+    /// `PLATFORM/BASE:SUBPROBLEM`, on a special stratum followed by `@STRATUM`.
     fn name(&self) -> String {
-        self.id().name()
+        match self.stratum().name() {
+            None => self.id().name(),
+            Some(stratum) => format!("{}@{stratum}", self.id().name()),
+        }
     }
     fn metric_name(&self) -> String {
         self.id().metric.name()
@@ -113,10 +154,25 @@ impl AbInitioProblem for LagrangeProblem {
         self.id().subproblem.name().to_string()
     }
     fn file_stem(&self) -> String {
-        self.id().file_stem()
+        self.stratum().file_stem(self.id())
     }
+    /// The generic count of docs/theory.md §6 on the generic stratum, the measured one
+    /// of [`expected_count_on`] on a special one.
     fn expected_count(&self) -> Option<usize> {
-        expected_count(self.id())
+        expected_count_on(self.id(), self.stratum())
+    }
+    fn count_certificate(&self) -> String {
+        if self.stratum().is_generic() {
+            VERIFIED_GENERIC_COUNT.to_string()
+        } else {
+            "verified-count (the stratum's measured count of \
+             singdist::pipeline::ab_initio::expected_count_on reached with distinct \
+             nonsingular solutions)"
+                .to_string()
+        }
+    }
+    fn stratum(&self) -> Stratum {
+        LagrangeProblem::stratum(self)
     }
 }
 
@@ -141,7 +197,15 @@ pub fn verify(
 
 /// The embedded start-solution file of `id`, if the build had one.
 pub fn embedded_start_solutions(id: ProblemId) -> Option<Result<StartSolutions, AbInitioError>> {
-    super::ab_initio_stage::embedded_file(&id.file_stem(), &id.name())
+    embedded_start_solutions_on(id, Stratum::GENERIC)
+}
+
+/// The embedded start-solution file of `id` on `stratum`, if the build had one.
+pub fn embedded_start_solutions_on(
+    id: ProblemId,
+    stratum: Stratum,
+) -> Option<Result<StartSolutions, AbInitioError>> {
+    super::ab_initio_stage::embedded_file(&stratum.file_stem(id), &id.name())
 }
 
 type Cache = Mutex<HashMap<String, Arc<StartSolutions>>>;
@@ -154,18 +218,33 @@ fn cache() -> &'static Cache {
 /// The generic start solutions of `id`: the embedded file when present, otherwise
 /// computed now with the default options (and kept for the rest of the process).
 pub fn start_solutions(id: ProblemId) -> Result<Arc<StartSolutions>, AbInitioError> {
-    let key = id.name();
+    let found = start_solutions_on(id, Stratum::GENERIC)?;
+    Ok(found.unwrap_or_else(|| unreachable!("the generic stratum computes a missing file")))
+}
+
+/// The start solutions of `id` on `stratum` (kept for the rest of the process): the
+/// embedded file when present; otherwise, on the generic stratum, computed now with the
+/// default options, and on a special stratum `None` (its problems fall back to the
+/// generic stratum: computing a stratum's set takes a minute and more).
+pub fn start_solutions_on(
+    id: ProblemId,
+    stratum: Stratum,
+) -> Result<Option<Arc<StartSolutions>>, AbInitioError> {
+    let key = stratum.file_stem(id);
     if let Some(found) = cache().lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-        return Ok(found.clone());
+        return Ok(Some(found.clone()));
     }
-    let solutions = match embedded_start_solutions(id) {
+    let solutions = match embedded_start_solutions_on(id, stratum) {
         Some(file) => file?,
-        None => compute_start_solutions(&LagrangeProblem::new(id)?, &AbInitioOptions::default())?,
+        None if stratum.is_generic() => {
+            compute_start_solutions(&LagrangeProblem::new(id)?, &AbInitioOptions::default())?
+        }
+        None => return Ok(None),
     };
     let solutions = Arc::new(solutions);
     cache()
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .insert(key, solutions.clone());
-    Ok(solutions)
+    Ok(Some(solutions))
 }

@@ -26,7 +26,7 @@ use crate::homotopy::{
     HomotopyError, MonodromyOptions, SolveOptions, TrackerOptions, contains_point, monodromy_solve,
     solve_parameter_homotopy, trace_test,
 };
-use crate::problem::ProblemError;
+use crate::problem::{ProblemError, Stratum};
 use crate::system::{Evaluator, ParametricSystem};
 use std::ops::Deref;
 
@@ -94,6 +94,16 @@ pub trait AbInitioProblem: Deref<Target = ParametricSystem> {
     fn file_stem(&self) -> String;
     /// The generic number of finite critical points, where it is known.
     fn expected_count(&self) -> Option<usize>;
+    /// The stratum of the parameter space the problem is posed on (recorded in the
+    /// file; the generic one by default).
+    fn stratum(&self) -> Stratum {
+        Stratum::GENERIC
+    }
+    /// The certificate kind of a set that reached [`AbInitioProblem::expected_count`]
+    /// with distinct nonsingular solutions: it names where the count comes from.
+    fn count_certificate(&self) -> String {
+        VERIFIED_GENERIC_COUNT.to_string()
+    }
 
     /// A start pair on the solution variety, seeded.
     fn start_pair(&self, seed: u64) -> Result<StartPair, StartPairError> {
@@ -119,6 +129,9 @@ pub fn embedded_file(stem: &str, name: &str) -> Option<Result<StartSolutions, Ab
             })
         })
 }
+
+/// The certificate kind of a set that reached the generic count of docs/theory.md §6.
+pub const VERIFIED_GENERIC_COUNT: &str = "verified-count (generic count of docs/theory.md §6 reached with distinct nonsingular solutions)";
 
 /// Further start pairs tried when monodromy from the first stays below the generic count.
 const EXTRA_START_PAIRS: usize = 4;
@@ -258,8 +271,7 @@ fn compute_at_source<P: AbInitioProblem>(
         // Gröbner-basis counts), so that many distinct nonsingular solutions at a generic
         // point are all.
         certified = true;
-        "verified-count (generic count of docs/theory.md §6 reached with distinct nonsingular solutions)"
-            .to_string()
+        problem.count_certificate()
     } else {
         "none".to_string()
     };
@@ -279,6 +291,7 @@ fn compute_at_source<P: AbInitioProblem>(
         max_residual,
         method: "monodromy (minimum-norm Gauss-Newton start pair) + trace test".to_string(),
         seed,
+        stratum: problem.stratum(),
         certificate: Certificate {
             kind,
             trace_residual,
@@ -460,6 +473,16 @@ fn measure<P: AbInitioProblem>(
     problem: &P,
     file: &StartSolutions,
 ) -> Result<StoredMeasures, AbInitioError> {
+    if file.stratum != problem.stratum() {
+        return Err(AbInitioError::File {
+            problem: problem.name(),
+            message: format!(
+                "field `stratum` is {}, the problem's {}",
+                file.stratum.name().unwrap_or("generic"),
+                problem.stratum().name().unwrap_or("generic")
+            ),
+        });
+    }
     file.measure(
         &problem.name(),
         problem.variable_names(),

@@ -6,6 +6,7 @@
 //! the method and seed that produced it, and the certificate of completeness.
 
 use crate::C64;
+use crate::problem::Stratum;
 use crate::system::Evaluator;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -64,6 +65,10 @@ pub struct StartSolutions {
     pub seed: u64,
     /// Completeness certificate.
     pub certificate: Certificate,
+    /// The stratum of the design space the source point lies on (absent: the generic
+    /// one; [`Stratum`]).
+    #[serde(default, skip_serializing_if = "Stratum::is_generic")]
+    pub stratum: Stratum,
 }
 
 /// What every verification recomputes from a stored file (see
@@ -98,6 +103,13 @@ impl StartSolutions {
         let parameters = self
             .parameter_vector(parameter_names)
             .map_err(|missing| format!("field `parameters` lacks `{missing}`"))?;
+        if self.parameters.len() != parameter_names.len() {
+            return Err(format!(
+                "field `parameters` has {} entries, the problem {}",
+                self.parameters.len(),
+                parameter_names.len()
+            ));
+        }
         let n = variables.len();
         if let Some(bad) = self.solutions.iter().position(|x| x.len() != n) {
             return Err(format!("field `solutions[{bad}]` has the wrong length"));
@@ -153,6 +165,13 @@ impl StartSolutions {
         let source = self
             .parameter_vector(parameter_names)
             .map_err(|name| format!("parameter `{name}` missing"))?;
+        if self.parameters.len() != parameter_names.len() {
+            return Err(format!(
+                "{} parameters, the problem has {} (a file of another stratum?)",
+                self.parameters.len(),
+                parameter_names.len()
+            ));
+        }
         if let Some(bad) = self.solutions.iter().find(|x| x.len() != variables) {
             return Err(format!(
                 "a solution has {} entries, expected {variables}",

@@ -1,6 +1,6 @@
 //! Construction of each sub-problem's Lagrange system with the system builder.
 
-use super::{ProblemId, SubProblem};
+use super::{ProblemId, Stratum, SubProblem};
 use crate::C64;
 use crate::algebra::{Cartesian, Isotropic, Plane, Point};
 use crate::mechanism::rpr::{self, Design};
@@ -124,6 +124,8 @@ pub struct LagrangeProblem {
     id: ProblemId,
     coordinates: Coordinates,
     multipliers: Multipliers,
+    /// The stratum posed on: rigid parts on a line have `v = 0` fixed.
+    stratum: Stratum,
     /// Index of the first multiplier among the unknowns (the multipliers, and
     /// `lambda0` last for [`Multipliers::Chart`], end the list).
     first_multiplier: usize,
@@ -178,6 +180,7 @@ fn part_unknowns<P: Plane<Expr>>(
     prefix: char,
     role: &str,
     [sx, sy]: [char; 2],
+    stratum: Stratum,
 ) -> PartUnknowns {
     let coordinate = |k: usize, c: char| format!("{prefix}{k}{c}");
     let point = |k: usize| [var(&coordinate(k, sx)), var(&coordinate(k, sy))];
@@ -189,14 +192,20 @@ fn part_unknowns<P: Plane<Expr>>(
                 format!("v_{role}"),
                 format!("r2_{role}"),
             );
-            let p3 = rpr::reconstruct_third_point_in::<P, _>(&p1, &p2, par(&u), par(&v));
+            // On a line (the stratum fixes v = 0): v is no parameter.
+            let (v, parameters) = if stratum.fixes(role) {
+                (Expr::from(0.0), vec![u.clone(), r2.clone()])
+            } else {
+                (par(&v), vec![u.clone(), v, r2.clone()])
+            };
+            let p3 = rpr::reconstruct_third_point_in::<P, _>(&p1, &p2, par(&u), v);
             let g = rpr::rigidity_constraint_in::<P, _>(&p1, &p2, par(&r2));
             PartUnknowns {
                 points: [p1, p2, p3],
                 variables: (1..=2)
                     .flat_map(|k| [coordinate(k, sx), coordinate(k, sy)])
                     .collect(),
-                parameters: vec![u, v, r2],
+                parameters,
                 rigidity: Some((g, format!("mu_{role}"))),
             }
         }
@@ -387,27 +396,58 @@ impl LagrangeProblem {
         coordinates: Coordinates,
         multipliers: Multipliers,
     ) -> Result<Self, ProblemError> {
+        Self::new_on(id, (coordinates, multipliers), Stratum::GENERIC)
+    }
+
+    /// [`LagrangeProblem::new_with`] posed on `stratum`: each rigid part it puts on a
+    /// line has `v = 0` as a constant of the system instead of the parameter `v_base` /
+    /// `v_platform` ([`Stratum`]).
+    pub fn new_on(
+        id: ProblemId,
+        (coordinates, multipliers): (Coordinates, Multipliers),
+        stratum: Stratum,
+    ) -> Result<Self, ProblemError> {
         match coordinates {
-            Coordinates::Cartesian => Self::build::<Cartesian>(id, coordinates, multipliers),
-            Coordinates::Isotropic => Self::build::<Isotropic>(id, coordinates, multipliers),
+            Coordinates::Cartesian => {
+                Self::build::<Cartesian>(id, coordinates, multipliers, stratum)
+            }
+            Coordinates::Isotropic => {
+                Self::build::<Isotropic>(id, coordinates, multipliers, stratum)
+            }
         }
     }
 
-    /// [`LagrangeProblem::new_with`] for a sub-problem that applies to `design`.
-    pub fn for_design_with(
+    /// [`LagrangeProblem::new_on`] for a sub-problem that applies to `design`, on a
+    /// stratum `design` lies on (the generic one, or one whose every part on a line is
+    /// on a line in `design` too, [`Stratum::of`]; otherwise an error).
+    pub fn for_design_on(
         id: ProblemId,
         design: &Design,
-        coordinates: Coordinates,
-        multipliers: Multipliers,
+        representation: (Coordinates, Multipliers),
+        stratum: Stratum,
     ) -> Result<Self, ProblemError> {
         Self::check_applicable(id, design)?;
-        Self::new_with(id, coordinates, multipliers)
+        let on_design = Stratum::of(id, design);
+        if (stratum.collinear_base && !on_design.collinear_base)
+            || (stratum.collinear_platform && !on_design.collinear_platform)
+        {
+            return Err(ProblemError::Build {
+                problem: id.name(),
+                message: format!(
+                    "the design is not on the stratum {} (a rigid part's anchors are not \
+                     collinear)",
+                    stratum.name().unwrap_or("generic")
+                ),
+            });
+        }
+        Self::new_on(id, representation, stratum)
     }
 
     fn build<P: Plane<Expr>>(
         id: ProblemId,
         coordinates: Coordinates,
         multipliers: Multipliers,
+        stratum: Stratum,
     ) -> Result<Self, ProblemError> {
         let metric = id.metric;
         let suffixes = coordinates.suffixes();
@@ -424,8 +464,9 @@ impl LagrangeProblem {
 
         let configuration: [Expr; 12] = match id.subproblem {
             SubProblem::Singularity | SubProblem::CollinearPlatform | SubProblem::CollinearBase => {
-                let base = part_unknowns::<P>(metric.base, 'a', "base", suffixes);
-                let platform = part_unknowns::<P>(metric.platform, 'b', "platform", suffixes);
+                let base = part_unknowns::<P>(metric.base, 'a', "base", suffixes, stratum);
+                let platform =
+                    part_unknowns::<P>(metric.platform, 'b', "platform", suffixes, stratum);
                 variables.extend(base.variables.iter().cloned());
                 variables.extend(platform.variables.iter().cloned());
                 let k_prime = flatten(&base.points, &platform.points);
@@ -483,13 +524,14 @@ impl LagrangeProblem {
                 variables.extend(names);
                 let coincident = [q.clone(), q.clone(), q];
                 let (base, platform) = if id.subproblem == SubProblem::CoincidentPlatform {
-                    let base = part_unknowns::<P>(Part::Rigid, 'a', "base", suffixes);
+                    let base = part_unknowns::<P>(Part::Rigid, 'a', "base", suffixes, stratum);
                     variables.extend(base.variables.iter().cloned());
                     parameters.extend(base.parameters.iter().cloned());
                     constraints.extend(base.rigidity.clone());
                     (base.points, coincident)
                 } else {
-                    let platform = part_unknowns::<P>(Part::Rigid, 'b', "platform", suffixes);
+                    let platform =
+                        part_unknowns::<P>(Part::Rigid, 'b', "platform", suffixes, stratum);
                     variables.extend(platform.variables.iter().cloned());
                     parameters.extend(platform.parameters.iter().cloned());
                     constraints.extend(platform.rigidity.clone());
@@ -553,6 +595,7 @@ impl LagrangeProblem {
             id,
             coordinates,
             multipliers,
+            stratum,
             first_multiplier,
             point_variables,
             equations: ParametricSystem::new(system),
@@ -573,6 +616,11 @@ impl LagrangeProblem {
     /// How the multipliers are represented.
     pub fn multipliers(&self) -> Multipliers {
         self.multipliers
+    }
+
+    /// The stratum the system is posed on ([`Stratum`]).
+    pub fn stratum(&self) -> Stratum {
+        self.stratum
     }
 
     /// Index of the first Lagrange multiplier among the unknowns: the unknowns before

@@ -24,11 +24,13 @@ mod build;
 pub mod equilateral;
 pub mod pedal;
 pub mod rrr;
+mod stratum;
 
 pub use build::{
     CHART_VARIABLE, COLLINEAR_ANCHOR_TOLERANCE, CONFIGURATION_PARAMETER_NAMES, COORDINATE_NAMES,
     Coordinates, LagrangeProblem, Multipliers, ProblemError, anchors_collinear,
 };
+pub use stratum::{ON_A_LINE_TOLERANCE, Stratum};
 
 use crate::metric::{Metric, Part};
 use std::fmt;

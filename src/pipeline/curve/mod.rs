@@ -104,8 +104,8 @@ use crate::homotopy::{ParameterPath, PathParameterHomotopy, PolylinePath, Tracke
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
 use crate::problem::{
-    Coordinates, LagrangeProblem, Multipliers, ProblemError, ProblemId, equilateral, pedal,
-    subproblems_of,
+    Coordinates, LagrangeProblem, Multipliers, ProblemError, ProblemId, Stratum, equilateral,
+    pedal, subproblems_of,
 };
 use crate::random;
 use crate::system::Evaluator;
@@ -171,10 +171,11 @@ pub enum PipelineError {
     },
 }
 
-/// Where the generic start solutions of a sub-problem come from (the ab-initio stage;
-/// tests may supply their own). Errors are plain messages.
+/// Where the start solutions of a sub-problem on a stratum come from (the ab-initio
+/// stage; tests may supply their own). Errors are plain messages; on a special stratum
+/// an error means no file (the sub-problem is posed on the generic stratum instead).
 pub type StartProvider<'a> =
-    &'a (dyn Fn(ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> + Sync);
+    &'a (dyn Fn(ProblemId, Stratum) -> Result<std::sync::Arc<StartSolutions>, String> + Sync);
 
 /// Result at one pose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -1093,10 +1094,21 @@ pub fn singular_parameters(design: &Design, motion: &Motion, samples: &[SampledP
     roots
 }
 
-/// The default start provider: [`super::ab_initio::start_solutions`] (embedded files,
-/// else monodromy on the fly, cached per process).
-pub fn default_start_solutions(id: ProblemId) -> Result<std::sync::Arc<StartSolutions>, String> {
-    super::ab_initio::start_solutions(id).map_err(|e| e.to_string())
+/// The default start provider: [`super::ab_initio::start_solutions_on`] (embedded
+/// files, else on the generic stratum monodromy on the fly, cached per process).
+pub fn default_start_solutions(
+    id: ProblemId,
+    stratum: Stratum,
+) -> Result<std::sync::Arc<StartSolutions>, String> {
+    match super::ab_initio::start_solutions_on(id, stratum) {
+        Ok(Some(file)) => Ok(file),
+        Ok(None) => Err(format!(
+            "no start file of {} on the stratum {}",
+            id.name(),
+            stratum.name().unwrap_or("generic")
+        )),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 #[cfg(test)]

@@ -53,7 +53,8 @@ impl SeededProblem {
             return &self.problem;
         }
         self.affine.get_or_init(|| {
-            LagrangeProblem::new_with(self.id, self.problem.coordinates(), Multipliers::Affine)
+            let representation = (self.problem.coordinates(), Multipliers::Affine);
+            LagrangeProblem::new_on(self.id, representation, self.problem.stratum())
                 .unwrap_or_else(|e| unreachable!("built once already with a chart: {e}"))
         })
     }
@@ -105,11 +106,11 @@ pub struct ChartTwin {
 impl ChartTwin {
     /// The twin of `affine` (a system with [`Multipliers::Affine`]) for `design`.
     pub fn of(affine: &LagrangeProblem, design: &Design) -> Result<Self, ProblemError> {
-        let chart = LagrangeProblem::for_design_with(
+        let chart = LagrangeProblem::for_design_on(
             affine.id(),
             design,
-            affine.coordinates(),
-            Multipliers::Chart,
+            (affine.coordinates(), Multipliers::Chart),
+            affine.stratum(),
         )?;
         Ok(ChartTwin {
             affine: affine.clone(),
@@ -359,20 +360,30 @@ pub(super) fn seed_stage_with_probes(
                 id.metric.platform == Part::Rigid,
             );
             let design = design.relabelled(labels);
-            let problem = match LagrangeProblem::for_design_with(
-                id,
-                &design,
-                options.coordinates,
-                options.multipliers,
-            ) {
+            // On the smallest stratum containing the design that has a start file (a
+            // rigid part on a line: the paths the generic family sends to infinity there
+            // are gone), else on the generic one.
+            let special = Stratum::of(id, &design)
+                .containing()
+                .into_iter()
+                .find_map(|stratum| provider(id, stratum).ok().map(|file| (stratum, file)));
+            let stratum = special.as_ref().map_or(Stratum::GENERIC, |(s, _)| *s);
+            let representation = (options.coordinates, options.multipliers);
+            let problem = match LagrangeProblem::for_design_on(id, &design, representation, stratum)
+            {
                 Ok(p) => p,
                 Err(ProblemError::NotApplicable { .. }) => return Ok(None),
                 Err(e) => return Err(e.into()),
             };
-            let start = provider(id).map_err(|message| PipelineError::StartSolutions {
-                problem: id.name(),
-                message,
-            })?;
+            let start = match special {
+                Some((_, start)) => start,
+                None => provider(id, Stratum::GENERIC).map_err(|message| {
+                    PipelineError::StartSolutions {
+                        problem: id.name(),
+                        message,
+                    }
+                })?,
+            };
             let source = start
                 .source_for(problem.parameter_names(), problem.stored_solution_len())
                 .map_err(|message| PipelineError::StartSolutions {
@@ -458,7 +469,7 @@ pub(super) fn seed_stage_with_probes(
                 return None;
             }
             let problem = LagrangeProblem::new(id).ok()?;
-            let generic_count = provider(id).ok()?.solutions.len();
+            let generic_count = provider(id, Stratum::GENERIC).ok()?.solutions.len();
             Some(ClosedFormSystem {
                 problem,
                 design: *design,
