@@ -55,9 +55,13 @@ pub fn expected_count(id: ProblemId) -> Option<usize> {
 /// complex point of the stratum saturates at the same counts: asked for 8 more (4 for
 /// `rigid/rigid` with the base on a line), the ab-initio stage stopped at these after 40
 /// loops in a row found nothing new, with its further start pairs too (the stored files of
-/// `supplementary/start/*.collinear-*-anchors.json` stop at the counts). Other sub-problems and the
-/// stratum with both rigid parts on lines: not known (`None`; the ab-initio stage then
-/// certifies by the trace test).
+/// `supplementary/start/*.collinear-*-anchors.json` stop at the counts). Other sub-problems: not
+/// known (`None`; the ab-initio stage then certifies by the trace test). No count is
+/// given for `rigid/rigid` with both parts on lines either, and no file is stored: a
+/// design there settles on 42 points (from the generic files, two seed points), but
+/// monodromy on that stratum stops at 40 at three source seeds (as on a platform
+/// congruent with the base, 22 against a design's 24), so monodromy misses part of the
+/// solution variety there and only the trace test could certify a file.
 pub fn expected_count_on(id: ProblemId, stratum: Stratum) -> Option<usize> {
     if stratum.is_generic() {
         return expected_count(id);

@@ -100,16 +100,7 @@ impl StartSolutions {
         if self.variables != variables {
             return Err("field `variables` does not match the problem's unknowns".to_string());
         }
-        let parameters = self
-            .parameter_vector(parameter_names)
-            .map_err(|missing| format!("field `parameters` lacks `{missing}`"))?;
-        if self.parameters.len() != parameter_names.len() {
-            return Err(format!(
-                "field `parameters` has {} entries, the problem {}",
-                self.parameters.len(),
-                parameter_names.len()
-            ));
-        }
+        let parameters = self.parameter_vector(parameter_names)?;
         let n = variables.len();
         if let Some(bad) = self.solutions.iter().position(|x| x.len() != n) {
             return Err(format!("field `solutions[{bad}]` has the wrong length"));
@@ -141,17 +132,28 @@ impl StartSolutions {
         })
     }
 
-    /// The parameter vector in the order of `names`; `None` names the first missing one.
+    /// The parameter vector in the order of `names` (the problem's parameters, all of
+    /// them): an error names the first missing one, or says that the file has others
+    /// too (a file of another stratum, [`Stratum`]).
     pub fn parameter_vector(&self, names: &[String]) -> Result<Vec<C64>, String> {
-        names
+        let vector = names
             .iter()
             .map(|name| {
                 self.parameters
                     .get(name)
                     .copied()
-                    .ok_or_else(|| name.clone())
+                    .ok_or_else(|| format!("field `parameters` lacks `{name}`"))
             })
-            .collect()
+            .collect::<Result<Vec<C64>, String>>()?;
+        if self.parameters.len() != names.len() {
+            return Err(format!(
+                "field `parameters` has {} entries, the problem {} (a file of another \
+                 stratum?)",
+                self.parameters.len(),
+                names.len()
+            ));
+        }
+        Ok(vector)
     }
 
     /// The source point in the order of `parameter_names` (the problem's), after
@@ -162,16 +164,7 @@ impl StartSolutions {
         parameter_names: &[String],
         variables: usize,
     ) -> Result<Vec<C64>, String> {
-        let source = self
-            .parameter_vector(parameter_names)
-            .map_err(|name| format!("parameter `{name}` missing"))?;
-        if self.parameters.len() != parameter_names.len() {
-            return Err(format!(
-                "{} parameters, the problem has {} (a file of another stratum?)",
-                self.parameters.len(),
-                parameter_names.len()
-            ));
-        }
+        let source = self.parameter_vector(parameter_names)?;
         if let Some(bad) = self.solutions.iter().find(|x| x.len() != variables) {
             return Err(format!(
                 "a solution has {} entries, expected {variables}",
