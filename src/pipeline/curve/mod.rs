@@ -691,6 +691,7 @@ fn track_problem(
                 whole_detours: true,
                 twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
                 hand_over_when_steps_run_out,
+                abandon_when_steps_run_out: true,
                 conjugate: Some(&conjugate),
                 first_run: None,
             },

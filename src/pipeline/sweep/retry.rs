@@ -48,6 +48,44 @@ pub(crate) fn track_all<H: Homotopy + ?Sized>(
     chunks.into_iter().flatten().collect()
 }
 
+/// [`track_all`] without the endgame ([`Tracker::track_between`] `0 → 1`), abandoned
+/// as soon as a path runs out of steps ([`FailureReason::TooManySteps`]): `None` then,
+/// whichever path it was, so the result does not depend on the thread count (a path
+/// that runs out of steps in one order does in any). The paths not yet started when
+/// one ran out are not tracked.
+pub(crate) fn track_all_unless_steps_run_out<H: Homotopy + ?Sized>(
+    homotopy: &H,
+    starts: &[Vec<C64>],
+    options: &TrackerOptions,
+) -> Option<Vec<PathResult>> {
+    const CHUNK: usize = 16;
+    let out_of_steps = std::sync::atomic::AtomicBool::new(false);
+    let chunks: Vec<Option<Vec<PathResult>>> = starts
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut tracker = Tracker::new(homotopy, options.clone());
+            let mut paths = Vec::with_capacity(chunk.len());
+            for (i, x) in chunk.iter().enumerate() {
+                if out_of_steps.load(std::sync::atomic::Ordering::Relaxed) {
+                    return None;
+                }
+                let path = tracker.track_between(x, 0.0, 1.0, c * CHUNK + i);
+                if path.status == PathStatus::Failed(FailureReason::TooManySteps) {
+                    out_of_steps.store(true, std::sync::atomic::Ordering::Relaxed);
+                    return None;
+                }
+                paths.push(path);
+            }
+            Some(paths)
+        })
+        .collect();
+    if out_of_steps.into_inner() {
+        return None;
+    }
+    Some(chunks.into_iter().flatten().flatten().collect())
+}
+
 /// Why paths of one run are unaccounted for ([`accounted`]): per failure reason (its
 /// name), and `PathCrossing` for each path beyond the first on a shared endpoint.
 pub(crate) fn unaccounted_reasons(paths: &[PathResult]) -> BTreeMap<String, usize> {
@@ -308,6 +346,12 @@ pub(crate) struct TrackingPlan<'a> {
     /// detours and long last re-runs cost 10–40 times a route that meets that
     /// trouble only at its end.
     pub hand_over_when_steps_run_out: bool,
+    /// With [`TrackingPlan::hand_over_when_steps_run_out`] and without the endgame:
+    /// the first run stops at the first path that runs out of steps
+    /// ([`track_all_unless_steps_run_out`]), for a caller that discards a handed-over
+    /// run (a pose's seed route, whose points the generic route then finds). The
+    /// [`Retried`] then holds no endpoint and counts every start as tracked.
+    pub abandon_when_steps_run_out: bool,
     /// The complex conjugation of the family's unknowns, where the route's target
     /// parameters are real (a real pose): the system there has real coefficients, so
     /// the conjugate of a finite nonsingular endpoint is one too. After each attempt
@@ -329,6 +373,7 @@ impl<'a> TrackingPlan<'a> {
             whole_detours: true,
             twin: None,
             hand_over_when_steps_run_out: false,
+            abandon_when_steps_run_out: false,
             conjugate: None,
             first_run: None,
         }
@@ -390,6 +435,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         whole_detours,
         twin,
         hand_over_when_steps_run_out,
+        abandon_when_steps_run_out,
         conjugate,
         first_run,
     } = plan;
@@ -404,6 +450,21 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
     let reference = PathParameterHomotopy::new(system, path(0));
     let (mut paths, mut tracked) = match first_run {
         Some(paths) => (paths.to_vec(), 0),
+        None if hand_over_when_steps_run_out && abandon_when_steps_run_out && !endgame => {
+            match track_all_unless_steps_run_out(&reference, starts, tracker) {
+                Some(paths) => (paths, starts.len()),
+                None => {
+                    return Retried {
+                        endpoints: Vec::new(),
+                        accounted: 0,
+                        tracked: starts.len(),
+                        reasons: BTreeMap::from([("TooManySteps".to_string(), 1)]),
+                        confirmed_by_twin: false,
+                        handed_over: true,
+                    };
+                }
+            }
+        }
         None => (
             track_all(&reference, starts, tracker, endgame),
             starts.len(),

@@ -235,6 +235,7 @@ pub(crate) fn seed_problem<F: Family>(
         // with five disagreeing counts).
         TrackingPlan {
             hand_over_when_steps_run_out: true,
+            abandon_when_steps_run_out: false,
             ..TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
                 .lost_paths_only()
                 .with_twin(twin)

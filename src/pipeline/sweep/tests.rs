@@ -121,6 +121,59 @@ fn a_plan_hands_over_after_a_first_run_whose_paths_run_out_of_steps() {
     }
 }
 
+/// The abandoned first run ([`TrackingPlan::abandon_when_steps_run_out`]): on `x² = p`
+/// from `p = 1` to `p = 4` with 40 starts (three chunks), a budget of two steps hands
+/// over with no endpoint and every start counted as tracked, on one thread and on
+/// four; with the full budget the run is the one [`track_all`] gives, path for path,
+/// and the plan goes on as without the flag.
+#[test]
+fn an_abandoned_first_run_hands_over_whatever_the_thread_count_and_changes_nothing_else() {
+    use crate::homotopy::{PathParameterHomotopy, PolylinePath, TrackerOptions};
+    let system = square_root_family();
+    let starts: Vec<Vec<C64>> = (0..40)
+        .map(|k| vec![C64::new(if k % 2 == 0 { 1.0 } else { -1.0 }, 0.0)])
+        .collect();
+    let route = |_| PolylinePath::new(vec![vec![C64::new(1.0, 0.0)], vec![C64::new(4.0, 0.0)]]);
+    let mut starved = TrackerOptions::default();
+    starved.step.max_steps = 2;
+    let full = TrackerOptions::default();
+    let plan = |first| TrackingPlan {
+        endgame: false,
+        hand_over_when_steps_run_out: true,
+        abandon_when_steps_run_out: true,
+        ..TrackingPlan::with_endgame(first, &full)
+    };
+    for threads in [1, 4] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let retried =
+            pool.install(|| track_with_retries(&system, &starts, route, 1, plan(&starved)));
+        assert!(retried.handed_over);
+        assert_eq!((retried.tracked, retried.accounted), (40, 0));
+        assert!(retried.endpoints.is_empty());
+    }
+    let homotopy = PathParameterHomotopy::new(&system, route(0));
+    let abandoned =
+        track_all_unless_steps_run_out(&homotopy, &starts, &full).expect("no path runs out");
+    let whole = track_all(&homotopy, &starts, &full, false);
+    assert_eq!(abandoned.len(), 40);
+    for (a, w) in abandoned.iter().zip(&whole) {
+        assert_eq!(
+            (a.path_index, a.status, a.steps),
+            (w.path_index, w.status, w.steps)
+        );
+        assert_eq!(a.solution, w.solution);
+    }
+    let retried = track_with_retries(&system, &starts, route, 1, plan(&full));
+    assert!(!retried.handed_over);
+    let mut roots: Vec<f64> = retried.endpoints.iter().map(|e| e[0].re).collect();
+    roots.sort_by(f64::total_cmp);
+    assert_eq!(roots.len(), 2, "{roots:?}");
+    assert!((roots[0] + 2.0).abs() < 1e-12 && (roots[1] - 2.0).abs() < 1e-12);
+}
+
 /// `x² = p` from `p = 1` to `p = 4` with the start `1` given twice: the two paths
 /// from it always cross on `2`, so one path stays unaccounted for on every route.
 /// Of six whole detours only the first two are tracked: they add no endpoint and
