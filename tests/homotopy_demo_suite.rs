@@ -16,7 +16,7 @@ use singdist::homotopy::{
 use singdist::system::{CompiledSystem, System, bertini, phc};
 
 mod demo_support;
-use demo_support::{SYSTEMS, demo_file};
+use demo_support::{SINGULAR_SYSTEMS, SYSTEMS, demo_file};
 
 fn load(stem: &str) -> System {
     let path = demo_file(stem);
@@ -65,6 +65,25 @@ fn demo_systems_are_solved_completely_for_two_seeds() {
                 distinct_nonsingular(&compiled, &reported).len(),
                 expected,
                 "{stem}, seed {seed}: a nonsingular root is reported twice"
+            );
+        }
+    }
+}
+
+/// Paths to singular roots end there, classified singular with their multiplicity,
+/// for two seeds: `redcyc5` (two double roots besides its 14 nonsingular ones) and
+/// `tangents1` (six roots of multiplicity 4, where every finite path ends).
+#[test]
+fn every_path_to_a_singular_root_is_classified() {
+    for (stem, roots, paths) in SINGULAR_SYSTEMS {
+        let system = load(stem);
+        for seed in [0x5eed, 7] {
+            let s = solve(&system, seed).summary;
+            assert_eq!(s.failed, 0, "{stem}, seed {seed}: {s:?}");
+            assert_eq!(
+                (s.singular, s.singular_paths),
+                (roots, paths),
+                "{stem}, seed {seed}: {s:?}"
             );
         }
     }

@@ -6,7 +6,7 @@
 
 /// (file stem, verified number of distinct nonsingular roots) of the systems the
 /// total-degree homotopy solves without a failed path.
-pub const SYSTEMS: [(&str, usize); 13] = [
+pub const SYSTEMS: [(&str, usize); 14] = [
     ("cyclic5", 70),
     ("katsura6", 64),
     ("caprasse", 24),
@@ -24,7 +24,15 @@ pub const SYSTEMS: [(&str, usize); 13] = [
     ("kotsireas", 84),
     // Paths to infinity whose norm passes 10⁸ before the endgame zone (they failed).
     ("ku10", 2),
+    // A double root whose second path never got a Cauchy loop (its condition number grew,
+    // but stayed below the direct finish's bound) and failed.
+    ("redcyc5", 14),
 ];
+
+/// (file stem, singular roots, paths to them) of committed systems whose roots are
+/// all singular, or have singular ones besides the nonsingular ones: every path to a
+/// singular root ends there, classified, none fails.
+pub const SINGULAR_SYSTEMS: [(&str, usize, usize); 2] = [("redcyc5", 2, 4), ("tangents1", 6, 24)];
 
 /// The path of the committed Bertini file of demo system `stem`.
 pub fn demo_file(stem: &str) -> String {

@@ -23,6 +23,18 @@ pub(super) const FIRST_RADIUS_MAX_WINDING: usize = 4;
 /// similar, congruent, collinear-platform and close-base-12 designs (8 poses each).
 pub(super) const DIRECT_FINISH_STEPS: usize = 400;
 
+/// Successive radii of growing condition number (by more than 1.5 × per radius, as
+/// `s^{-(1 - 1/c)}` does towards a singular endpoint of winding number `c ≥ 2`) after
+/// which a bounded path below the deep radius `s = 10⁻⁸` gets Cauchy loops even while
+/// its condition number is below `direct_finish_condition`: otherwise neither the
+/// direct finish (which needs a stable condition number) nor a loop runs, and the
+/// path reaches the smallest radius without an estimate (PHCpack's `redcyc5`: a
+/// double root whose second path gave up at `s = 4·10⁻¹³` with `x₄ ~ s`,
+/// `x₁, x₂ ~ s^{1/2}`; `tangents1`: 4 such paths). Not above the deep radius: there a
+/// pair of nearby nonsingular roots still looks double, and a loop around both
+/// averages them (`discret3s`: two of its roots came out as one singular point).
+pub(super) const SINGULAR_CONDITION_GROWTH: usize = 3;
+
 /// The endgame's per-path buffers: Cauchy sums and estimates, valuations and their
 /// history (allocated once per tracker).
 pub(super) struct EndgameState {
@@ -83,6 +95,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let mut have_valuations = false;
         let mut have_estimate = false;
         let mut previous_condition = f64::INFINITY;
+        // Successive radii at which the condition number grew (`condition_stable`
+        // false).
+        let mut condition_growing = 0;
         let mut stable_divergence = 0;
         // Successive radii at which a grown coordinate had a negative valuation.
         let mut grown_divergence = 0;
@@ -223,6 +238,11 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // A singular endpoint shows as a condition number growing like
             // s^{-(1 - 1/c)} (factor ≥ 2 per checkpoint for c ≥ 2 and r = 1/4).
             let condition_stable = condition <= 1.5 * previous_condition;
+            condition_growing = if condition_stable {
+                0
+            } else {
+                condition_growing + 1
+            };
             previous_condition = condition;
             if !direct_failed
                 && valuations_finite
@@ -260,7 +280,11 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // valuation test above classifies a divergent path.
             if !diverging
                 && !vanishing_now
-                && (direct_failed || condition >= self.options.endgame.direct_finish_condition)
+                && (direct_failed
+                    || condition_growing >= SINGULAR_CONDITION_GROWTH
+                        && valuations_finite
+                        && s <= DEEP_RADIUS
+                    || condition >= self.options.endgame.direct_finish_condition)
             {
                 match self.cauchy_loop(s) {
                     Ok(c) => {
