@@ -12,6 +12,14 @@ use crate::system::Evaluator;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
+/// Paths per parallel task of [`track_all`] and [`track_all_unless_steps_run_out`]:
+/// they run in parallel over chunks of paths too (nested in the parallel poses ×
+/// sub-problems), so a stage with few groups — the seed stage, a rescue chain — uses
+/// every core; one tracker (workspace) per chunk. Per path instead of per chunk was
+/// 30 % slower on the example. Each path is a pure function of its start, so the
+/// results do not depend on the thread count.
+const PATH_CHUNK: usize = 16;
+
 /// Tracks every start solution through `homotopy` (with the endgame, or without:
 /// [`Tracker::track_between`] `0 → 1`, Newton at the end); returns the path results in
 /// order.
@@ -21,14 +29,8 @@ pub(crate) fn track_all<H: Homotopy + ?Sized>(
     options: &TrackerOptions,
     endgame: bool,
 ) -> Vec<PathResult> {
-    // In parallel over chunks of paths too (nested in the parallel poses ×
-    // sub-problems), so a stage with few groups — the seed stage, a rescue chain — uses
-    // every core; one tracker (workspace) per chunk. Per path instead of per chunk was
-    // 30 % slower on the example. Each path is a pure function of its start, so the
-    // results do not depend on the thread count.
-    const CHUNK: usize = 16;
     let chunks: Vec<Vec<PathResult>> = starts
-        .par_chunks(CHUNK)
+        .par_chunks(PATH_CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
             let mut tracker = Tracker::new(homotopy, options.clone());
@@ -37,9 +39,9 @@ pub(crate) fn track_all<H: Homotopy + ?Sized>(
                 .enumerate()
                 .map(|(i, x)| {
                     if endgame {
-                        tracker.track(x, c * CHUNK + i)
+                        tracker.track(x, c * PATH_CHUNK + i)
                     } else {
-                        tracker.track_between(x, 0.0, 1.0, c * CHUNK + i)
+                        tracker.track_between(x, 0.0, 1.0, c * PATH_CHUNK + i)
                     }
                 })
                 .collect()
@@ -58,10 +60,9 @@ pub(crate) fn track_all_unless_steps_run_out<H: Homotopy + ?Sized>(
     starts: &[Vec<C64>],
     options: &TrackerOptions,
 ) -> Option<Vec<PathResult>> {
-    const CHUNK: usize = 16;
     let out_of_steps = std::sync::atomic::AtomicBool::new(false);
     let chunks: Vec<Option<Vec<PathResult>>> = starts
-        .par_chunks(CHUNK)
+        .par_chunks(PATH_CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
             let mut tracker = Tracker::new(homotopy, options.clone());
@@ -70,7 +71,7 @@ pub(crate) fn track_all_unless_steps_run_out<H: Homotopy + ?Sized>(
                 if out_of_steps.load(std::sync::atomic::Ordering::Relaxed) {
                     return None;
                 }
-                let path = tracker.track_between(x, 0.0, 1.0, c * CHUNK + i);
+                let path = tracker.track_between(x, 0.0, 1.0, c * PATH_CHUNK + i);
                 if path.status == PathStatus::Failed(FailureReason::TooManySteps) {
                     out_of_steps.store(true, std::sync::atomic::Ordering::Relaxed);
                     return None;
