@@ -214,14 +214,15 @@ fn default_start_falls_back_to_the_total_degree_where_polyhedral_paths_fail() {
     assert!(value["start_system"].get("superseded").is_none());
 }
 
-/// PHCpack's `cassou` (mixed volume 24, 10 nonsingular roots): at seed 1 the
-/// polyhedral run loses two paths (it still finds the 10 roots); the default start then
-/// solves again from a fresh random lifting, which loses none, instead of running the
-/// 1,344 total-degree paths, and names the first run as superseded.
+/// PHCpack's `cassou` (mixed volume 24, 10 nonsingular roots): at seed 7 the
+/// polyhedral run loses a path (it still finds the 10 roots; the path's route in a
+/// projective chart ends at infinity, which does not settle it); the default start
+/// then solves again from a fresh random lifting, which loses none, instead of running
+/// the 1,344 total-degree paths, and names the first run as superseded.
 #[test]
 fn a_polyhedral_run_that_lost_a_path_is_run_again_from_a_fresh_lifting() {
     let file = demo_file("cassou");
-    let value = solve_json(&[&file, "--threads", "1", "--seed", "1"]);
+    let value = solve_json(&[&file, "--threads", "1", "--seed", "7"]);
     let start = &value["start_system"];
     assert_eq!(start["name"], "polyhedral", "{start}");
     assert_eq!(start["superseded"]["name"], "polyhedral", "{start}");
@@ -237,12 +238,76 @@ fn a_polyhedral_run_that_lost_a_path_is_run_again_from_a_fresh_lifting() {
         "--start",
         "polyhedral",
         "--seed",
-        "1",
+        "7",
         "--threads",
         "1",
         "--json",
     ]);
     assert_eq!(out.status.code(), Some(3));
+}
+
+/// PHCpack's `cassou` at seed 1: two polyhedral paths to its singular roots fail in
+/// affine space; tracked again from their start in a random projective chart, they
+/// end at those singular roots (3 roots, 6 paths), and the run is complete without a
+/// second lifting (`recovered_in_chart` counts them; without that route they stay
+/// failed, out of steps, and the run exits with code 3).
+#[test]
+fn failed_paths_tracked_in_a_projective_chart_reach_their_singular_roots() {
+    let file = demo_file("cassou");
+    let out = singdist(&[
+        "solve",
+        &file,
+        "--start",
+        "polyhedral",
+        "--seed",
+        "1",
+        "--threads",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let summary = &value["summary"];
+    assert_eq!(summary["failed"], 0, "{summary}");
+    assert_eq!(summary["recovered_in_chart"], 2, "{summary}");
+    assert_eq!(summary["nonsingular"], 10, "{summary}");
+    assert_eq!(summary["singular"], 3, "{summary}");
+    assert_eq!(summary["singular_paths"], 6, "{summary}");
+    assert_eq!(summary["at_infinity"], 8, "{summary}");
+}
+
+/// PHCpack's `des22_24` (mixed volume 42): the random start system of the polyhedral
+/// homotopy has roots of norm 3·10⁴, and at seeds 2 and 13 second-stage paths pass
+/// norms of 10⁸ before `t = 0.03`, where the affine tracker stops
+/// (`DivergedBeforeEndgame`). In a projective chart they stay finite and reach the
+/// system's roots: all 41 nonsingular roots and the singular one, no path failed.
+#[test]
+fn second_stage_paths_that_run_far_out_are_followed_in_a_projective_chart() {
+    let file = demo_file("des22_24");
+    for seed in ["2", "13"] {
+        let out = singdist(&[
+            "solve",
+            &file,
+            "--start",
+            "polyhedral",
+            "--seed",
+            seed,
+            "--threads",
+            "1",
+            "--json",
+        ]);
+        let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let summary = &value["summary"];
+        assert_eq!(out.status.code(), Some(0), "seed {seed}: {summary}");
+        assert_eq!(summary["paths"], 42, "seed {seed}: {summary}");
+        assert_eq!(summary["failed"], 0, "seed {seed}: {summary}");
+        assert!(
+            summary["recovered_in_chart"].as_u64() > Some(0),
+            "seed {seed}: {summary}"
+        );
+        assert_eq!(summary["nonsingular"], 41, "seed {seed}: {summary}");
+        assert_eq!(summary["singular"], 1, "seed {seed}: {summary}");
+    }
 }
 
 /// PHCpack's `cassou` at the default seed: two roots of the random-coefficient start

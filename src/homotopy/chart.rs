@@ -25,6 +25,7 @@ use super::solve::TargetSystem;
 use super::{FailureReason, Homotopy, PathResult, PathStatus, Tracker, TrackerOptions};
 use crate::C64;
 use crate::random;
+use crate::system::PlainSystem;
 use rayon::prelude::*;
 
 /// `H(x, t)` homogenised with degrees `d_i` on the chart `x₀ + b·y = 1`; unknowns
@@ -308,33 +309,9 @@ where
     let mut outcome = ChartRecheck::default();
     let mut stalled = Vec::new();
     let chart = ChartHomotopy::new(homotopy, degrees, chart_seed);
-    let mut options = options.clone();
-    options.step.max_steps = options.step.max_steps.min(CHART_MAX_STEPS);
-    options.endgame.homogenizing_valuation_test = true;
-    let n = homotopy.dimension();
     let target = TargetSystem { homotopy };
-    let found: Vec<(usize, PathResult)> = indices
-        .par_iter()
-        .map_init(
-            || {
-                (
-                    Tracker::new(&chart, options.clone()),
-                    vec![C64::new(0.0, 0.0); n],
-                    vec![C64::new(0.0, 0.0); n + 1],
-                )
-            },
-            |(tracker, x, z), &index| {
-                start(index, x);
-                chart.lift(x, z);
-                (index, tracker.track(z, index))
-            },
-        )
-        .collect();
-    let mut known: Vec<Vec<C64>> = paths
-        .iter()
-        .filter(|p| p.status.is_finite())
-        .map(|p| p.solution.clone())
-        .collect();
+    let found = track_in_chart(&chart, indices, start, options);
+    let mut known = finite_endpoints(paths);
     for (index, result) in found {
         // At infinity: classified there, or stopped (hyperplane test undecided, endgame
         // not converged) with its homogenising coordinate below any scale the affine
@@ -379,6 +356,158 @@ where
     }
     (outcome, stalled)
 }
+
+/// The paths `indices` of `start`, each lifted into `chart` and tracked there (at most
+/// [`CHART_MAX_STEPS`] steps, the homogenising coordinate's valuation tested).
+fn track_in_chart<H, S>(
+    chart: &ChartHomotopy<'_, H>,
+    indices: &[usize],
+    start: &S,
+    options: &TrackerOptions,
+) -> Vec<(usize, PathResult)>
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    let mut options = options.clone();
+    options.step.max_steps = options.step.max_steps.min(CHART_MAX_STEPS);
+    options.endgame.homogenizing_valuation_test = true;
+    let n = chart.n;
+    indices
+        .par_iter()
+        .map_init(
+            || {
+                (
+                    Tracker::new(chart, options.clone()),
+                    vec![C64::new(0.0, 0.0); n],
+                    vec![C64::new(0.0, 0.0); n + 1],
+                )
+            },
+            |(tracker, x, z), &index| {
+                start(index, x);
+                chart.lift(x, z);
+                (index, tracker.track(z, index))
+            },
+        )
+        .collect()
+}
+
+/// The finite endpoints of `paths`, in path order.
+fn finite_endpoints(paths: &[PathResult]) -> Vec<Vec<C64>> {
+    paths
+        .iter()
+        .filter(|p| p.status.is_finite())
+        .map(|p| p.solution.clone())
+        .collect()
+}
+
+/// Charts a failed path is re-tracked in by [`recover_failed_paths`], each for the
+/// paths the ones before left failed.
+const FAILED_PATH_CHARTS: usize = 2;
+
+/// Largest relative residual `‖F(x)‖∞ / (1 + ‖x‖∞)` of a singular endpoint a chart
+/// route gives a failed path ([`recover_failed_paths`]).
+const RECOVERED_SINGULAR_RESIDUAL: f64 = 1e-8;
+
+/// Re-tracks every failed path of `paths` from its start in up to
+/// [`FAILED_PATH_CHARTS`] random charts of `homotopy` (the homogenisation of
+/// [`ChartHomotopy`]), where a path that runs far out in affine space stays finite.
+/// Only a finite endpoint changes a path: one that Newton's method refines to a new
+/// nonsingular root of the target (condition below the endgame's
+/// `singular_condition`: a singular root refines to a condition of 10¹¹ on
+/// `des22_24`, within the bound of [`RECOVERED_MAX_CONDITION`]) records that root;
+/// any other finite endpoint the chart's endgame reached (off the hyperplane at
+/// infinity, below the affine norm cap, residual below
+/// [`RECOVERED_SINGULAR_RESIDUAL`]) is recorded singular, as the affine endgame labels
+/// an endpoint above that condition number. A chart endpoint at infinity leaves the
+/// path failed: a chart route may itself stray, and a
+/// lost path is reported rather than assumed to diverge. Returns the paths recovered.
+///
+/// On PHCpack's `des22_24`, paths of the polyhedral homotopy's second stage pass
+/// norms of 10⁸ within `t < 0.03` (the random system `Q` has roots of norm 3·10⁴),
+/// where the affine tracker stops (`DivergedBeforeEndgame`).
+pub(crate) fn recover_failed_paths<H, S>(
+    (homotopy, degrees, seed): (&H, &[u32], u64),
+    paths: &mut [PathResult],
+    start: S,
+    options: &TrackerOptions,
+    same_point: impl Fn(&[C64], &[C64]) -> bool + Sync,
+) -> usize
+where
+    H: Homotopy + ?Sized,
+    S: Fn(usize, &mut [C64]) + Sync,
+{
+    let target = TargetSystem { homotopy };
+    let norm_cap = 0.5 * options.endgame.at_infinity_norm;
+    let mut recovered = 0;
+    for pass in 0..FAILED_PATH_CHARTS {
+        let failed: Vec<usize> = paths
+            .iter()
+            .filter(|p| matches!(p.status, PathStatus::Failed(_)))
+            .map(|p| p.path_index)
+            .collect();
+        if failed.is_empty() {
+            break;
+        }
+        let chart_seed = seed ^ FAILED_CHART_SEED ^ (pass as u64).wrapping_mul(NEXT_CHART);
+        let chart = ChartHomotopy::new(homotopy, degrees, chart_seed);
+        let found = track_in_chart(&chart, &failed, &start, options);
+        let mut known = finite_endpoints(paths);
+        for (index, result) in found {
+            let off_hyperplane =
+                result.solution[0].norm() > VANISHED * (1.0 + max_norm(&result.solution));
+            if !result.status.is_finite() || !off_hyperplane {
+                continue;
+            }
+            let lowered = chart.lower(&result.solution);
+            if !lowered.iter().all(|v| v.re.is_finite() && v.im.is_finite())
+                || max_norm(&lowered) >= norm_cap
+            {
+                continue;
+            }
+            let refined = newton_refine(&target, &lowered, &[], 1e-13, 8);
+            let finite = refined
+                .point
+                .iter()
+                .all(|v| v.re.is_finite() && v.im.is_finite());
+            let path = &mut paths[index];
+            if finite && refined.is_nonsingular(options.endgame.singular_condition) {
+                if known.iter().any(|y| same_point(y, &refined.point)) {
+                    continue;
+                }
+                path.record_nonsingular_root(&refined);
+                known.push(refined.point);
+            } else {
+                let residual = target_residual(&target, &lowered);
+                if residual > RECOVERED_SINGULAR_RESIDUAL * (1.0 + max_norm(&lowered)) {
+                    continue;
+                }
+                path.status = PathStatus::Singular;
+                path.solution = lowered;
+                path.residual = residual;
+                path.condition = result.condition;
+                path.winding_number = result.winding_number;
+            }
+            path.steps += result.steps;
+            path.rejected_steps += result.rejected_steps;
+            path.last_t = result.last_t;
+            recovered += 1;
+        }
+    }
+    recovered
+}
+
+/// `‖F(x)‖∞` of the target system at `x`.
+fn target_residual<H: Homotopy + ?Sized>(target: &TargetSystem<'_, H>, x: &[C64]) -> f64 {
+    let mut work = vec![C64::new(0.0, 0.0); target.workspace_len()];
+    let mut f = vec![C64::new(0.0, 0.0); x.len()];
+    target.evaluate(x, &mut work, &mut f);
+    max_norm(&f)
+}
+
+/// Seed offset of the charts of [`recover_failed_paths`], apart from those of
+/// [`recover_from_infinity`].
+const FAILED_CHART_SEED: u64 = 0xfa11_0002;
 
 /// What [`recover_from_infinity`] did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

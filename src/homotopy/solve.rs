@@ -153,6 +153,11 @@ pub struct SolveSummary {
     /// method in place ([`super::conjugates`]; counted under `nonsingular`).
     #[serde(default)]
     pub completed_by_conjugation: usize,
+    /// Failed paths whose route in a random projective chart reached a finite root
+    /// (a new nonsingular one, or a singular one), counted there instead of under
+    /// `failed`.
+    #[serde(default)]
+    pub recovered_in_chart: usize,
 }
 
 /// Result of a solve run: every path in path order, and the summary.
@@ -447,6 +452,16 @@ where
         ),
         None => Default::default(),
     };
+    let recovered_failed = match chart_degrees {
+        Some(degrees) => super::chart::recover_failed_paths(
+            (homotopy, degrees, options.seed),
+            &mut paths,
+            &start,
+            &options.tracker,
+            |a, b| same_point(a, b, options.cluster_tolerance),
+        ),
+        None => 0,
+    };
     // Roots whose conjugates no path reported, recorded at the paths not accounted
     // for: those left at infinity by the norm cap alone first, then the failed ones.
     let doubtful: Vec<usize> = recheck
@@ -470,7 +485,7 @@ where
             options.tracker.endgame.singular_condition,
         ),
     );
-    if recheck.recovered > 0 || !conjugates.paths.is_empty() {
+    if recheck.recovered + recovered_failed > 0 || !conjugates.paths.is_empty() {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
     }
     if !conjugates.paths.is_empty() {
@@ -481,6 +496,7 @@ where
     let mut summary = summarize(&paths, options.real_tolerance, retracked);
     summary.rechecked_at_infinity = recheck.rechecked;
     summary.recovered_from_infinity = recheck.recovered;
+    summary.recovered_in_chart = recovered_failed;
     summary.unconfirmed_at_infinity = recheck
         .unconfirmed_paths
         .iter()
