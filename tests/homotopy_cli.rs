@@ -469,6 +469,27 @@ fn badly_scaled_systems_are_solved_completely_in_their_scaling() {
     }
 }
 
+/// Moderately badly scaled: PHCpack's `cohn2` (coefficients from 1 to 3·10⁶, a
+/// spread of 2^5.7 on average that the least-squares scaling brings to 2^1.3) is
+/// solved in its scaling by default, with its 18 nonsingular roots verified and
+/// distinct and no failed path, for two seeds.
+#[test]
+fn a_moderately_badly_scaled_system_is_solved_in_its_scaling() {
+    let file = demo_file("cohn2");
+    for seed in ["1", "24301"] {
+        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+        let exponents = &value["scaling"]["variable_exponents"];
+        assert!(
+            exponents.as_array().unwrap().iter().any(|d| d != 0),
+            "{seed}: {exponents}"
+        );
+        let summary = &value["summary"];
+        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
+        assert_eq!(summary["nonsingular"], 18, "{seed}: {summary}");
+        assert_eq!(verified_distinct_roots(&file, &value), 18, "{seed}");
+    }
+}
+
 /// PHCpack's `pb601` as distributed (coefficients from 1 to 10¹⁶): three of its 18
 /// roots (modulus 26 against 10⁻³ for the rest) lie beyond the endgame's norm cap,
 /// and their paths are re-tracked in random projective charts. At the default seed the
