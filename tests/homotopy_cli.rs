@@ -469,6 +469,46 @@ fn badly_scaled_systems_are_solved_completely_in_their_scaling() {
     }
 }
 
+/// PHCpack's `des22_24`: its mixed cells take 34,000–46,000 LP tests over seeds,
+/// within the default start's budget for 256 total-degree paths (20,000 + 100 per
+/// path), so the default tracks its 42 polyhedral paths: 41 nonsingular roots and
+/// the singular one, no failed path, for two seeds.
+#[test]
+fn the_default_start_of_des22_24_is_its_polyhedral_one() {
+    let file = demo_file("des22_24");
+    for seed in ["24301", "7"] {
+        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+        let start = &value["start_system"];
+        assert_eq!(start["name"], "polyhedral", "{seed}: {start}");
+        assert_eq!(start["paths"], 42, "{seed}: {start}");
+        let summary = &value["summary"];
+        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
+        assert_eq!(summary["nonsingular"], 41, "{seed}: {summary}");
+        assert_eq!(summary["singular"], 1, "{seed}: {summary}");
+    }
+}
+
+/// PHCpack's `reimer5` (total degree 720, 144 roots): 8 of the paths to infinity
+/// stop short of it in affine space (step size too small near `t = 1`). Tracked from
+/// their start in random projective charts they end at infinity in two charts each
+/// (`at_infinity_in_charts`), so no path is failed and every root is found, for two
+/// seeds; one chart alone would not be enough evidence (a chart route can stray).
+#[test]
+fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
+    let file = demo_file("reimer5");
+    for seed in ["24301", "1"] {
+        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+        let summary = &value["summary"];
+        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
+        assert_eq!(summary["nonsingular"], 144, "{seed}: {summary}");
+        assert_eq!(summary["at_infinity"], 576, "{seed}: {summary}");
+        assert!(
+            summary["at_infinity_in_charts"].as_u64() > Some(0),
+            "{seed}: {summary}"
+        );
+    }
+}
+
 /// Moderately badly scaled: PHCpack's `cohn2` (coefficients from 1 to 3·10⁶, a
 /// spread of 2^5.7 on average that the least-squares scaling brings to 2^1.3) is
 /// solved in its scaling by default, with its 18 nonsingular roots verified and

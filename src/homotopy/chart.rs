@@ -403,25 +403,43 @@ fn finite_endpoints(paths: &[PathResult]) -> Vec<Vec<C64>> {
 
 /// Charts a failed path is re-tracked in by [`recover_failed_paths`], each for the
 /// paths the ones before left failed.
-const FAILED_PATH_CHARTS: usize = 2;
+const FAILED_PATH_CHARTS: usize = 4;
+
+/// Charts whose endpoints must lie at infinity before [`recover_failed_paths`] names
+/// a failed path at infinity: one chart route may stray onto another path's way to
+/// infinity, two independent ones agreeing are the evidence the affine route lacked.
+const AT_INFINITY_VOTES: usize = 2;
 
 /// Largest relative residual `‖F(x)‖∞ / (1 + ‖x‖∞)` of a singular endpoint a chart
 /// route gives a failed path ([`recover_failed_paths`]).
 const RECOVERED_SINGULAR_RESIDUAL: f64 = 1e-8;
 
+/// What [`recover_failed_paths`] did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct FailedRecovery {
+    /// Failed paths now finite (a new nonsingular root, or a singular endpoint).
+    pub recovered: usize,
+    /// Paths still failed whose endpoints were at infinity in [`AT_INFINITY_VOTES`]
+    /// charts, in path order: the caller names them at infinity once no other route
+    /// (the conjugate completion) has placed a root at them.
+    pub at_infinity: Vec<usize>,
+}
+
 /// Re-tracks every failed path of `paths` from its start in up to
 /// [`FAILED_PATH_CHARTS`] random charts of `homotopy` (the homogenisation of
 /// [`ChartHomotopy`]), where a path that runs far out in affine space stays finite.
-/// Only a finite endpoint changes a path: one that Newton's method refines to a new
+/// A finite endpoint settles a path: one that Newton's method refines to a new
 /// nonsingular root of the target (condition below the endgame's
 /// `singular_condition`: a singular root refines to a condition of 10¹¹ on
 /// `des22_24`, within the bound of [`RECOVERED_MAX_CONDITION`]) records that root;
 /// any other finite endpoint the chart's endgame reached (off the hyperplane at
 /// infinity, below the affine norm cap, residual below
 /// [`RECOVERED_SINGULAR_RESIDUAL`]) is recorded singular, as the affine endgame labels
-/// an endpoint above that condition number. A chart endpoint at infinity leaves the
-/// path failed: a chart route may itself stray, and a
-/// lost path is reported rather than assumed to diverge. Returns the paths recovered.
+/// an endpoint above that condition number. An endpoint at infinity in one chart
+/// settles nothing (a chart route may itself stray: on `chemequs` one did, from a
+/// path whose root the conjugate completion then found); a path whose endpoints lie at
+/// infinity in [`AT_INFINITY_VOTES`] charts is returned in
+/// [`FailedRecovery::at_infinity`].
 ///
 /// On PHCpack's `des22_24`, paths of the polyhedral homotopy's second stage pass
 /// norms of 10⁸ within `t < 0.03` (the random system `Q` has roots of norm 3·10⁴),
@@ -432,7 +450,7 @@ pub(crate) fn recover_failed_paths<H, S>(
     start: S,
     options: &TrackerOptions,
     same_point: impl Fn(&[C64], &[C64]) -> bool + Sync,
-) -> usize
+) -> FailedRecovery
 where
     H: Homotopy + ?Sized,
     S: Fn(usize, &mut [C64]) + Sync,
@@ -440,10 +458,13 @@ where
     let target = TargetSystem { homotopy };
     let norm_cap = 0.5 * options.endgame.at_infinity_norm;
     let mut recovered = 0;
+    let mut votes = vec![0usize; paths.len()];
     for pass in 0..FAILED_PATH_CHARTS {
         let failed: Vec<usize> = paths
             .iter()
-            .filter(|p| matches!(p.status, PathStatus::Failed(_)))
+            .filter(|p| {
+                matches!(p.status, PathStatus::Failed(_)) && votes[p.path_index] < AT_INFINITY_VOTES
+            })
             .map(|p| p.path_index)
             .collect();
         if failed.is_empty() {
@@ -456,6 +477,12 @@ where
         for (index, result) in found {
             let off_hyperplane =
                 result.solution[0].norm() > VANISHED * (1.0 + max_norm(&result.solution));
+            if result.status == PathStatus::AtInfinity
+                || (matches!(result.status, PathStatus::Failed(_)) && !off_hyperplane)
+            {
+                votes[index] += 1;
+                continue;
+            }
             if !result.status.is_finite() || !off_hyperplane {
                 continue;
             }
@@ -494,7 +521,17 @@ where
             recovered += 1;
         }
     }
-    recovered
+    let at_infinity = paths
+        .iter()
+        .filter(|p| {
+            matches!(p.status, PathStatus::Failed(_)) && votes[p.path_index] >= AT_INFINITY_VOTES
+        })
+        .map(|p| p.path_index)
+        .collect();
+    FailedRecovery {
+        recovered,
+        at_infinity,
+    }
 }
 
 /// `‖F(x)‖∞` of the target system at `x`.

@@ -158,6 +158,10 @@ pub struct SolveSummary {
     /// `failed`.
     #[serde(default)]
     pub recovered_in_chart: usize,
+    /// Failed paths whose routes in two random projective charts both ended at
+    /// infinity, counted under `at_infinity` instead of under `failed`.
+    #[serde(default)]
+    pub at_infinity_in_charts: usize,
 }
 
 /// Result of a solve run: every path in path order, and the summary.
@@ -452,7 +456,7 @@ where
         ),
         None => Default::default(),
     };
-    let recovered_failed = match chart_degrees {
+    let failed_in_charts = match chart_degrees {
         Some(degrees) => super::chart::recover_failed_paths(
             (homotopy, degrees, options.seed),
             &mut paths,
@@ -460,7 +464,7 @@ where
             &options.tracker,
             |a, b| same_point(a, b, options.cluster_tolerance),
         ),
-        None => 0,
+        None => Default::default(),
     };
     // Roots whose conjugates no path reported, recorded at the paths not accounted
     // for: those left at infinity by the norm cap alone first, then the failed ones.
@@ -485,7 +489,16 @@ where
             options.tracker.endgame.singular_condition,
         ),
     );
-    if recheck.recovered + recovered_failed > 0 || !conjugates.paths.is_empty() {
+    // Failed paths that two charts put at infinity, unless the conjugate completion
+    // recorded a root at them.
+    let mut at_infinity_in_charts = 0;
+    for &index in &failed_in_charts.at_infinity {
+        if matches!(paths[index].status, PathStatus::Failed(_)) {
+            paths[index].status = PathStatus::AtInfinity;
+            at_infinity_in_charts += 1;
+        }
+    }
+    if recheck.recovered + failed_in_charts.recovered > 0 || !conjugates.paths.is_empty() {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
     }
     if !conjugates.paths.is_empty() {
@@ -496,7 +509,8 @@ where
     let mut summary = summarize(&paths, options.real_tolerance, retracked);
     summary.rechecked_at_infinity = recheck.rechecked;
     summary.recovered_from_infinity = recheck.recovered;
-    summary.recovered_in_chart = recovered_failed;
+    summary.recovered_in_chart = failed_in_charts.recovered;
+    summary.at_infinity_in_charts = at_infinity_in_charts;
     summary.unconfirmed_at_infinity = recheck
         .unconfirmed_paths
         .iter()
