@@ -232,18 +232,8 @@ fn a_polyhedral_run_that_lost_a_path_is_run_again_from_a_fresh_lifting() {
     assert_eq!(summary["failed"], 0, "{summary}");
     assert_eq!(summary["nonsingular"], 10, "{summary}");
     // Asked for, the polyhedral run of that seed is reported as it is (exit 3).
-    let out = singdist(&[
-        "solve",
-        &file,
-        "--start",
-        "polyhedral",
-        "--seed",
-        "7",
-        "--threads",
-        "1",
-        "--json",
-    ]);
-    assert_eq!(out.status.code(), Some(3));
+    let (code, _) = polyhedral_json(&file, "7");
+    assert_eq!(code, Some(3));
 }
 
 /// PHCpack's `cassou` at seed 1: two polyhedral paths to its singular roots fail in
@@ -254,19 +244,8 @@ fn a_polyhedral_run_that_lost_a_path_is_run_again_from_a_fresh_lifting() {
 #[test]
 fn failed_paths_tracked_in_a_projective_chart_reach_their_singular_roots() {
     let file = demo_file("cassou");
-    let out = singdist(&[
-        "solve",
-        &file,
-        "--start",
-        "polyhedral",
-        "--seed",
-        "1",
-        "--threads",
-        "1",
-        "--json",
-    ]);
-    assert_eq!(out.status.code(), Some(0));
-    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (code, value) = polyhedral_json(&file, "1");
+    assert_eq!(code, Some(0));
     let summary = &value["summary"];
     assert_eq!(summary["failed"], 0, "{summary}");
     assert_eq!(summary["recovered_in_chart"], 2, "{summary}");
@@ -285,20 +264,9 @@ fn failed_paths_tracked_in_a_projective_chart_reach_their_singular_roots() {
 fn second_stage_paths_that_run_far_out_are_followed_in_a_projective_chart() {
     let file = demo_file("des22_24");
     for seed in ["2", "13"] {
-        let out = singdist(&[
-            "solve",
-            &file,
-            "--start",
-            "polyhedral",
-            "--seed",
-            seed,
-            "--threads",
-            "1",
-            "--json",
-        ]);
-        let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let (code, value) = polyhedral_json(&file, seed);
         let summary = &value["summary"];
-        assert_eq!(out.status.code(), Some(0), "seed {seed}: {summary}");
+        assert_eq!(code, Some(0), "seed {seed}: {summary}");
         assert_eq!(summary["paths"], 42, "seed {seed}: {summary}");
         assert_eq!(summary["failed"], 0, "seed {seed}: {summary}");
         assert!(
@@ -475,16 +443,15 @@ fn badly_scaled_systems_are_solved_completely_in_their_scaling() {
 /// the singular one, no failed path, for two seeds.
 #[test]
 fn the_default_start_of_des22_24_is_its_polyhedral_one() {
-    let file = demo_file("des22_24");
-    for seed in ["24301", "7"] {
-        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+    for (seed, value) in solved_completely(&demo_file("des22_24"), &["24301", "7"], 41) {
         let start = &value["start_system"];
         assert_eq!(start["name"], "polyhedral", "{seed}: {start}");
         assert_eq!(start["paths"], 42, "{seed}: {start}");
-        let summary = &value["summary"];
-        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
-        assert_eq!(summary["nonsingular"], 41, "{seed}: {summary}");
-        assert_eq!(summary["singular"], 1, "{seed}: {summary}");
+        assert_eq!(
+            value["summary"]["singular"], 1,
+            "{seed}: {}",
+            value["summary"]
+        );
     }
 }
 
@@ -495,12 +462,8 @@ fn the_default_start_of_des22_24_is_its_polyhedral_one() {
 /// seeds; one chart alone would not be enough evidence (a chart route can stray).
 #[test]
 fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
-    let file = demo_file("reimer5");
-    for seed in ["24301", "1"] {
-        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+    for (seed, value) in solved_completely(&demo_file("reimer5"), &["24301", "1"], 144) {
         let summary = &value["summary"];
-        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
-        assert_eq!(summary["nonsingular"], 144, "{seed}: {summary}");
         assert_eq!(summary["at_infinity"], 576, "{seed}: {summary}");
         assert!(
             summary["at_infinity_in_charts"].as_u64() > Some(0),
@@ -516,16 +479,12 @@ fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
 #[test]
 fn a_moderately_badly_scaled_system_is_solved_in_its_scaling() {
     let file = demo_file("cohn2");
-    for seed in ["1", "24301"] {
-        let value = solve_json(&[&file, "--seed", seed, "--threads", "2"]);
+    for (seed, value) in solved_completely(&file, &["1", "24301"], 18) {
         let exponents = &value["scaling"]["variable_exponents"];
         assert!(
             exponents.as_array().unwrap().iter().any(|d| d != 0),
             "{seed}: {exponents}"
         );
-        let summary = &value["summary"];
-        assert_eq!(summary["failed"], 0, "{seed}: {summary}");
-        assert_eq!(summary["nonsingular"], 18, "{seed}: {summary}");
         assert_eq!(verified_distinct_roots(&file, &value), 18, "{seed}");
     }
 }
@@ -616,6 +575,46 @@ fn solve_json(args: &[&str]) -> serde_json::Value {
     let out = singdist(&all);
     assert_success(&out);
     serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// `solve --start polyhedral --seed SEED --threads 1 --json` of `file`: the exit code
+/// and the output.
+fn polyhedral_json(file: &str, seed: &str) -> (Option<i32>, serde_json::Value) {
+    let out = singdist(&[
+        "solve",
+        file,
+        "--start",
+        "polyhedral",
+        "--seed",
+        seed,
+        "--threads",
+        "1",
+        "--json",
+    ]);
+    let value = serde_json::from_slice(&out.stdout).unwrap();
+    (out.status.code(), value)
+}
+
+/// `solve --json --seed SEED --threads 2` of `file` for each of `seeds`, each checked
+/// complete (no failed path) with `roots` nonsingular roots; the outputs, seed first.
+fn solved_completely(
+    file: &str,
+    seeds: &[&'static str],
+    roots: u64,
+) -> Vec<(&'static str, serde_json::Value)> {
+    seeds
+        .iter()
+        .map(|&seed| {
+            let value = solve_json(&[file, "--seed", seed, "--threads", "2"]);
+            let summary = &value["summary"];
+            assert_eq!(summary["failed"], 0, "{file}, seed {seed}: {summary}");
+            assert_eq!(
+                summary["nonsingular"], roots,
+                "{file}, seed {seed}: {summary}"
+            );
+            (seed, value)
+        })
+        .collect()
 }
 
 /// The default start system on the committed demo systems (verified counts of distinct
