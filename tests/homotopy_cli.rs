@@ -472,6 +472,34 @@ fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
     }
 }
 
+/// PHCpack's `discret3s` at seed 7: Cauchy loops whose radius enclosed two nearby
+/// nonsingular roots closed after two turns at the roots' mean (residual 4.5·10⁻⁶
+/// relative), which was reported as a double root reached by two paths, twice, with
+/// no failed path and roots missing. No singular endpoint of winding number 2 or more
+/// may now have a residual above 10⁻⁸ relative to `1 + ‖x‖∞`.
+#[test]
+fn a_loop_around_two_roots_is_not_a_double_root() {
+    let value = solve_json(&[&demo_file("discret3s"), "--seed", "7", "--threads", "2"]);
+    for solution in value["solutions"].as_array().unwrap() {
+        if solution["status"] != "singular" || solution["winding_number"].as_u64() < Some(2) {
+            continue;
+        }
+        let size = solution["coordinates"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|z| z[0].as_f64().unwrap().hypot(z[1].as_f64().unwrap()))
+            .fold(1.0f64, |m, v| m.max(1.0 + v));
+        let residual = solution["residual"].as_f64().unwrap();
+        assert!(residual <= 1e-8 * size, "{solution}");
+    }
+    assert!(
+        value["summary"]["nonsingular"].as_u64() >= Some(117),
+        "{}",
+        value["summary"]
+    );
+}
+
 /// Moderately badly scaled: PHCpack's `cohn2` (coefficients from 1 to 3·10⁶, a
 /// spread of 2^5.7 on average that the least-squares scaling brings to 2^1.3) is
 /// solved in its scaling by default, with its 18 nonsingular roots verified and
