@@ -462,7 +462,8 @@ fn the_default_start_of_des22_24_is_its_polyhedral_one() {
 /// seeds; one chart alone would not be enough evidence (a chart route can stray).
 #[test]
 fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
-    for (seed, value) in solved_completely(&demo_file("reimer5"), &["24301", "1"], 144) {
+    let file = demo_file("reimer5");
+    for (seed, value) in solved_completely(&file, &["24301", "1"], 144) {
         let summary = &value["summary"];
         assert_eq!(summary["at_infinity"], 576, "{seed}: {summary}");
         assert!(
@@ -470,6 +471,14 @@ fn failed_paths_at_infinity_in_two_charts_are_at_infinity() {
             "{seed}: {summary}"
         );
     }
+    // The text summary says where those paths were settled.
+    let out = singdist(&["solve", &file, "--threads", "2"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("charts") && l.contains("ended at infinity in two")),
+        "{text}"
+    );
 }
 
 /// PHCpack's `discret3s` at seed 7: Cauchy loops whose radius enclosed two nearby

@@ -673,6 +673,12 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                 s.completed_by_conjugation
             ));
         }
+        if s.recovered_in_chart + s.at_infinity_in_charts > 0 {
+            text.push_str(&format!(
+                "charts        {} failed path(s) reached a finite root in a projective chart, {} ended at infinity in two\n",
+                s.recovered_in_chart, s.at_infinity_in_charts
+            ));
+        }
         if let Some(s) = &scaling {
             let exponents = |v: &[i32]| {
                 v.iter()

@@ -544,12 +544,13 @@ where
 /// roots, not a root: [`fail_averaging_loops`].
 const AVERAGING_LOOP_EXPONENT: i32 = 10;
 
-/// Marks failed (`EndgameDidNotConverge`), and returns, every singular endpoint of winding number
-/// `c ≥ 2` whose residual is above `10^(c − 10)` relative to `1 + ‖x‖∞`. A Cauchy
+/// Marks failed (`EndgameDidNotConverge`), and returns, every singular endpoint of
+/// winding number `c ≥ 2` whose residual is above `10^(c − 10)` relative to
+/// `1 + ‖x‖∞`. A Cauchy
 /// loop whose radius encloses two nearby nonsingular roots closes after two turns,
 /// and its estimate, stable from radius to radius, is their mean: PHCpack's
 /// `discret3s` at seed 7 counted two such means (residual 4.5·10⁻⁶ relative) as double
-/// roots, each reached by two paths, and missed two roots with no failed path. The
+/// roots, each reached by two paths, and missed roots with no failed path. The
 /// genuine singular endpoints of the demo suite (three seeds) stay far below the
 /// bound: winding 2 at most 1.7·10⁻¹³ (`caprasse`), 3 at 8·10⁻¹³, 8 and 9 at 3·10⁻⁹
 /// and 1.3·10⁻⁸ (`cohn3`). A failed path is re-tracked, then tried in projective
