@@ -63,9 +63,9 @@ pub struct SolveArgs {
     pub set: Vec<String>,
     /// Equation and variable scaling by powers of two (least squares on the logarithms
     /// of the coefficients): `auto` scales when the coefficients spread over more than
-    /// 2⁸ on average and the scaling halves that spread, else normalises the equations
-    /// alone when their sizes differ by more than 2⁸; solutions are always reported in
-    /// the file's variables.
+    /// 2⁴ on average around each equation's mean and the scaling at least halves that
+    /// spread, else normalises the equations alone when their sizes differ by more than
+    /// 2⁸; solutions are always reported in the file's variables.
     #[arg(long, value_enum, default_value_t = ScalingArg::Auto)]
     pub scaling: ScalingArg,
 }
