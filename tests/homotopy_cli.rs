@@ -509,6 +509,39 @@ fn a_loop_around_two_roots_is_not_a_double_root() {
     );
 }
 
+/// PHCpack's `discret3s` at seeds 12 and 15: the polyhedral run loses paths, the
+/// total-degree run it falls back on reports no failed path but lacks nonsingular roots
+/// the polyhedral run found (some of its paths sent to infinity end at roots of norm
+/// 10⁴–10⁵). The run is reported with exit code 3, the count of those roots in
+/// `start_system.roots_only_in_other_runs`, the text summary and a warning.
+#[test]
+fn roots_that_only_a_superseded_run_found_are_reported() {
+    let file = demo_file("discret3s");
+    for seed in ["12", "15"] {
+        let args = ["solve", &file, "--seed", seed, "--threads", "2"];
+        let out = singdist(&[&args[..], &["--json"]].concat());
+        assert_eq!(out.status.code(), Some(3), "seed {seed}");
+        let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let start = &value["start_system"];
+        assert_eq!(start["name"], "total-degree", "seed {seed}: {start}");
+        assert_eq!(value["summary"]["failed"], 0, "seed {seed}: {value}");
+        let missing = start["roots_only_in_other_runs"].as_u64().unwrap_or(0);
+        assert!(missing >= 1, "seed {seed}: {start}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains("found by another run of the default start are missing"),
+            "{stderr}"
+        );
+        let text = singdist(&args);
+        assert_eq!(text.status.code(), Some(3));
+        let text = String::from_utf8_lossy(&text.stdout);
+        assert!(
+            text.contains(&format!("other runs    {missing} nonsingular root(s)")),
+            "{text}"
+        );
+    }
+}
+
 /// Moderately badly scaled: PHCpack's `cohn2` (coefficients from 1 to 3·10⁶, a
 /// spread of 2^5.7 on average that the least-squares scaling brings to 2^1.3) is
 /// solved in its scaling by default, with its 18 nonsingular roots verified and

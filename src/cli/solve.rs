@@ -14,13 +14,14 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use rand::Rng;
 use serde::Serialize;
+use singdist::C64;
 use singdist::homotopy::multihomogeneous::{
     MonomialSupports, PartitionSearchOptions, SearchMethod, total_degree_paths,
 };
 use singdist::homotopy::{
     FailureReason, MonodromyOptions, PathStatus, PolyhedralSolve, PolyhedralStartSystem,
     SolveOptions, SolveResult, SolveSummary, StartChoice, StartRequest, Supports,
-    choose_start_system, polyhedral_if_fewer_paths, solve_by_monodromy,
+    choose_start_system, distinct_nonsingular_roots, polyhedral_if_fewer_paths, solve_by_monodromy,
     solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
 };
 use singdist::system::scaling::Scaling;
@@ -142,6 +143,16 @@ struct StartOutput {
     /// lifting, or the total-degree run.
     #[serde(skip_serializing_if = "Option::is_none")]
     superseded: Option<Superseded>,
+    /// Distinct nonsingular roots that another run of the default start (a superseded
+    /// polyhedral run, a polyhedral re-run, or the total-degree run) found and the
+    /// reported run lacks ([`roots_missing_from`]): the reported run lost them without
+    /// a failed path, and the solve exits with code 3.
+    #[serde(skip_serializing_if = "is_zero")]
+    roots_only_in_other_runs: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// A polyhedral run the default start replaced by a polyhedral re-run or by the
@@ -191,6 +202,7 @@ fn rerun_polyhedral(
     bezout_paths: u128,
     options: &SolveOptions,
     first: PolyhedralSolve,
+    others: &mut Vec<Vec<C64>>,
 ) -> anyhow::Result<(PolyhedralSolve, bool)> {
     if first.result.summary.failed > POLYHEDRAL_RERUN_MAX_FAILED
         || first
@@ -217,8 +229,11 @@ fn rerun_polyhedral(
         };
         let solved = solve_from_polyhedral_start(compiled, &start, &[], &rerun_options)?;
         if solves_better(&solved.result.summary, &best.result.summary) {
+            others.extend(best.result.nonsingular_solutions());
             best = solved;
             replaced = true;
+        } else {
+            others.extend(solved.result.nonsingular_solutions());
         }
         if best.result.summary.failed == 0 {
             break;
@@ -278,6 +293,7 @@ impl StartOutput {
             mixed_volume: None,
             mixed_cells: None,
             superseded: None,
+            roots_only_in_other_runs: 0,
         }
     }
 
@@ -296,6 +312,7 @@ impl StartOutput {
             mixed_volume: Some(solve.mixed_volume),
             mixed_cells: Some(solve.cells),
             superseded: None,
+            roots_only_in_other_runs: 0,
         }
     }
 
@@ -317,8 +334,12 @@ impl StartOutput {
             ),
             None => String::new(),
         };
+        let others = match self.roots_only_in_other_runs {
+            0 => String::new(),
+            n => format!("other runs    {n} nonsingular root(s) found only by another run\n"),
+        };
         format!(
-            "start system  {described}\nstart paths   {} (total degree {}{best})\n{superseded}",
+            "start system  {described}\nstart paths   {} (total degree {}{best})\n{superseded}{others}",
             self.paths, self.total_degree_paths
         )
     }
@@ -546,6 +567,8 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
     let bezout_paths = choice.as_ref().map_or(u128::MAX, StartChoice::paths);
     let mut polyhedral_output = None;
     let mut superseded = None;
+    // The nonsingular roots of the default start's runs that are not reported.
+    let mut other_runs: Vec<Vec<C64>> = Vec::new();
     let (result, trace_residual): (SolveResult, Option<f64>) =
         pool.install(|| match (&polyhedral_start, &choice) {
             (Some(start), _) => {
@@ -559,6 +582,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                         bezout_paths,
                         &options,
                         solved,
+                        &mut other_runs,
                     )?;
                     if rerun {
                         superseded = Some(first);
@@ -570,8 +594,10 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                     let by_degree = solve_total_degree(&compiled, &degrees, &[], &options)?;
                     if solves_better(&by_degree.summary, &solved.result.summary) {
                         superseded = Some(Superseded::of(&solved));
+                        other_runs.extend(solved.result.nonsingular_solutions());
                         return Ok((by_degree, None));
                     }
+                    other_runs.extend(by_degree.nonsingular_solutions());
                 }
                 polyhedral_output = Some(StartOutput::polyhedral(&solved, total));
                 Ok::<_, anyhow::Error>((solved.result, None))
@@ -590,6 +616,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
                 None,
             )),
         })?;
+    let roots_only_in_other_runs = roots_missing_from(&compiled, &result, &other_runs);
     let start_output = polyhedral_output
         .or_else(|| {
             choice
@@ -598,6 +625,7 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         })
         .map(|output| StartOutput {
             superseded,
+            roots_only_in_other_runs,
             ..output
         });
     let seconds = started.elapsed().as_secs_f64();
@@ -706,7 +734,38 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
         text.push_str(&format!("time          {seconds:.3} s\n"));
         emit(&text)?;
     }
-    Ok(Outcome::paths_lost_if(warn_failed_paths(&result)))
+    let lost_roots = roots_only_in_other_runs > 0;
+    if lost_roots {
+        eprintln!(
+            "singdist: warning: {}: {roots_only_in_other_runs} nonsingular root(s) found by another run of the default start are missing from the reported run, which lost them without a failed path (JSON start_system.roots_only_in_other_runs)",
+            args.file.display()
+        );
+    }
+    Ok(Outcome::paths_lost_if(
+        warn_failed_paths(&result) | lost_roots,
+    ))
+}
+
+/// How many distinct nonsingular roots of `others` (roots of other runs on the same
+/// system) `result` lacks: the distinct roots of `result`'s nonsingular solutions
+/// together with `others`, beyond those of `result`'s alone
+/// ([`distinct_nonsingular_roots`]: refined by Newton's method, grouped at their
+/// accuracy). Every run's nonsingular roots are roots of the system, so a run that
+/// reports no failed path but lacks one has classified a path to it wrongly (at
+/// infinity, or singular): on PHCpack's `discret3s` at seed 12 the total-degree run
+/// reported 114 nonsingular roots and no failed path, the polyhedral run it
+/// superseded (114 and two failed paths) had found others.
+fn roots_missing_from(system: &CompiledSystem, result: &SolveResult, others: &[Vec<C64>]) -> usize {
+    if others.is_empty() {
+        return 0;
+    }
+    let reported = result.nonsingular_solutions();
+    let alone = distinct_nonsingular_roots(system, &reported).len();
+    let mut all = reported;
+    all.extend_from_slice(others);
+    distinct_nonsingular_roots(system, &all)
+        .len()
+        .saturating_sub(alone)
 }
 
 /// The polyhedral supports of `system` from its `expansion`.
@@ -722,7 +781,7 @@ fn supports_of(
 }
 
 /// `‖F(x)‖∞` of the file's system (a solution found in scaled coordinates).
-fn original_residual(system: &System, x: &[singdist::C64]) -> f64 {
+fn original_residual(system: &System, x: &[C64]) -> f64 {
     system
         .evaluate_naive(x, &[])
         .iter()
