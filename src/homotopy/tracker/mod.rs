@@ -7,7 +7,12 @@
 //!    (local error `O(h⁵)`), every stage one LU solve. The first stage reuses the
 //!    factorisation of the corrector's last Newton iteration (a point within the
 //!    corrector tolerance of the accepted one), so a step costs three fresh Jacobians
-//!    for the predictor and one or two for the corrector.
+//!    for the predictor and one or two for the corrector. On a stiff stretch (a
+//!    cluster of solutions nearby, where the velocity field off the path varies on a
+//!    far shorter scale than the path: ten accepted steps in a row that each shrank
+//!    the step, now below 1 % of the distance to `t = 1`) the rest of the segment is
+//!    predicted by cubic Hermite extrapolation from the last two points and their
+//!    velocities (`hermite`; in the curve pipeline's presets).
 //! 2. **Corrector**: Newton's method at `t + h`, accepted only if it *contracts*:
 //!    the second update must be at most `max_contraction` times the first
 //!    (`‖Δ₁‖ ≤ κ‖Δ₀‖`). By Smale's α-theory an approximate zero has `‖Δ₁‖ ≤ ½‖Δ₀‖`,
@@ -56,7 +61,8 @@
 //!   accurate). Two successive estimates agreeing gives a finite singular endpoint.
 //!
 //! The pieces: `options` (the knobs and presets), `step` (one predictor–corrector
-//! step and the step-size control), `precision` (double / double-double evaluations
+//! step and the step-size control), `hermite` (the predictor of stiff stretches),
+//! `precision` (double / double-double evaluations
 //! and the switching rule), `endpoint` (Newton's method at a fixed `t`), `endgame`
 //! (the classification near `t = 1`); this module holds the loop along a route and
 //! the result types. Along a route the tracker reports only reached, diverged or
@@ -71,6 +77,7 @@ use step::{MIN_ABSOLUTE_STEP, step_factor, step_floor, step_fraction};
 
 mod endgame;
 mod endpoint;
+mod hermite;
 mod options;
 mod precision;
 mod step;
@@ -315,6 +322,9 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     x_checkpoint: Vec<C64>,
     /// The endgame's estimates and valuations ([`endgame::EndgameState`]).
     state: endgame::EndgameState,
+    /// The last points of the segment for the predictor of stiff stretches
+    /// ([`hermite::HermiteHistory`]).
+    hermite: hermite::HermiteHistory,
     step: f64,
     steps: usize,
     /// Steps after which [`Tracker::track_segment`] stops with
@@ -356,6 +366,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             x_saved: vec![z; n],
             x_checkpoint: vec![z; n],
             state: endgame::EndgameState::new(n),
+            hermite: hermite::HermiteHistory::new(n),
             step: 0.0,
             steps: 0,
             step_limit: options.step.max_steps,
@@ -632,6 +643,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         }
         let mut u = 0.0f64;
         self.factorization_current = false;
+        self.hermite
+            .start_segment(self.options.step.hermite_on_stiff_stretches);
         let floor = step_floor(&self.options, length);
         while u < 1.0 {
             if self.steps >= self.step_limit || self.precision.budget_spent(&self.options) {
@@ -661,6 +674,8 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
                     let factor =
                         step_factor(first_update / scale, self.options.step.prediction_tolerance);
                     self.step = (h * length * factor).min(self.options.step.max_step);
+                    let distance = (C64::new(1.0, 0.0) - self.t).norm();
+                    self.hermite.accepted(factor, (self.step, distance));
                     // Below [`MIN_ABSOLUTE_STEP`] `t` hardly moves near 1 (its spacing
                     // there is 1.1e-16): accepted steps of 1e-17 at t = 1 − 5e-8 once
                     // crawled on for 5,000 steps towards a singular endpoint far out. A

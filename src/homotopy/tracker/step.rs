@@ -53,7 +53,8 @@ pub(super) fn step_floor(options: &TrackerOptions, length: f64) -> f64 {
 }
 
 impl<H: Homotopy + ?Sized> Tracker<'_, H> {
-    /// RK4 prediction from `(x, t)` to `t_new` into `x_predicted`.
+    /// RK4 prediction from `(x, t)` to `t_new` into `x_predicted` (on a stiff stretch,
+    /// Hermite extrapolation: [`super::hermite`]).
     pub(super) fn predict(
         &mut self,
         t: C64,
@@ -75,6 +76,10 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             return None;
         }
         self.factorization_current = false;
+        self.hermite.record(t, &self.x, &self.k1);
+        if self.hermite.extrapolate(dt, h, &mut self.x_predicted) {
+            return Some(());
+        }
         for ((s, x), k) in self.x_stage.iter_mut().zip(&self.x).zip(&self.k1) {
             *s = x + k * (0.5 * h);
         }
