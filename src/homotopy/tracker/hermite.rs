@@ -77,8 +77,12 @@ impl HermiteHistory {
         self.allowed = allowed;
     }
 
-    /// Records the point `(t, x)` and its velocity the next prediction starts from.
+    /// Records the point `(t, x)` and its velocity the next prediction starts from
+    /// (nothing where Hermite extrapolation is not allowed: no copies per step).
     pub(super) fn record(&mut self, t: C64, x: &[C64], velocity: &[C64]) {
+        if !self.allowed {
+            return;
+        }
         self.current.0 = t;
         self.current.1.copy_from_slice(x);
         self.current.2.copy_from_slice(velocity);
@@ -90,6 +94,9 @@ impl HermiteHistory {
     /// [`STIFF_STEPS`] shrinking steps in a row shorter than [`STIFF_STEP_RATIO`] times
     /// `distance`.
     pub(super) fn accepted(&mut self, factor: f64, (step, distance): (f64, f64)) {
+        if !self.allowed {
+            return;
+        }
         std::mem::swap(&mut self.previous, &mut self.current);
         self.previous_valid = true;
         self.shrinking = if factor < 1.0 { self.shrinking + 1 } else { 0 };
@@ -138,6 +145,7 @@ mod tests {
         let cubic = |u: f64| u * u * u - 2.0 * u + 1.0;
         let slope = |u: f64| 3.0 * u * u - 2.0;
         let mut history = HermiteHistory::new(1);
+        history.start_segment(true);
         let point = |u: f64| C64::new(0.5 * u, 0.0);
         history.record(
             point(0.2),
@@ -159,6 +167,7 @@ mod tests {
         // x(u) = u⁴: error ∝ h⁴ (the spans scaled together).
         let error = |h: f64| {
             let mut history = HermiteHistory::new(1);
+            history.start_segment(true);
             history.active = true;
             let f = |u: f64| C64::new(u.powi(4), 0.0);
             let d = |u: f64| C64::new(4.0 * u.powi(3), 0.0);
