@@ -26,7 +26,8 @@ use crate::C64;
 /// Accepted steps in a row, each shrinking the step, after which the rest of the
 /// segment is predicted by Hermite extrapolation (on a smooth stretch the predictor
 /// error falls with the step, and the step grows again within a few steps). 20 instead
-/// of 10 made the `close-base-12` `rigid/rigid` curve 7 % slower.
+/// of 10 made the `close-base-12` `rigid/rigid` curve 7 % slower (measured before the
+/// [`STIFF_STEP_RATIO`] bound was added).
 pub(super) const STIFF_STEPS: usize = 10;
 
 /// Only where the steps have become shorter than this fraction of the distance to
