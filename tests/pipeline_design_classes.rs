@@ -457,6 +457,26 @@ fn close_base_anchors_seed_count_is_not_settled_too_low() {
     assert!(count >= 79, "seed count {count} of the generic {generic}");
 }
 
+/// The same design's `rigid/rigid` seed stage: four of the generic 88 critical points
+/// form two close pairs with multipliers near 10⁵ (condition numbers 10¹⁵ in affine
+/// multipliers, 10¹¹ in the projective twin). Their paths ran out of steps at every
+/// seed point, and two seed points that both lost them once "confirmed" 84 with no
+/// failure reported; a patient twin run reaches them, and a count that two such seed
+/// points agree on is no longer settled.
+#[test]
+fn close_base_anchors_rigid_seed_count_is_the_generic_one() {
+    let (count, generic, _, failures) = class_seed_counts(
+        "close-base-12",
+        ("rigid/rigid", "rigid/rigid:singularity"),
+        &CurveOptions::default(),
+    );
+    assert_eq!(
+        (count, failures),
+        (generic, 0),
+        "seed count {count} of the generic {generic}, {failures} failures"
+    );
+}
+
 /// The same design's seed stage: one of the generic 80 `bars/rigid` critical points
 /// has a multiplier λ ≈ 10¹⁰, and its path looks like one to a pole until the
 /// endgame's radius nears 10⁻¹⁰. The classic power-series test took it for a point at

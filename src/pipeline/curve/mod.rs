@@ -690,6 +690,7 @@ fn track_problem(
                 endgame: false,
                 whole_detours: true,
                 twin: seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin),
+                patient_twin: false,
                 hand_over_when_steps_run_out,
                 abandon_when_steps_run_out: true,
                 conjugate: Some(&conjugate),

@@ -1,7 +1,7 @@
 //! Robust tracking of a group of paths and its bookkeeping: re-runs, arcs around
 //! divergences, detours, crossings, and which paths are accounted for.
 
-use super::twin::{ProjectiveTwin, recheck_in_twin};
+use super::twin::{ProjectiveTwin, recheck_in_twin, recheck_patiently};
 use crate::C64;
 use crate::homotopy::{
     FailureReason, Homotopy, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, Tracker,
@@ -338,6 +338,11 @@ pub(crate) struct TrackingPlan<'a> {
     /// The family in a second formulation ([`ProjectiveTwin`]): the reference route's
     /// paths that end at infinity or stay lost are tracked once more there.
     pub twin: Option<&'a dyn ProjectiveTwin>,
+    /// Whether the twin's paths that ran out of steps near `t = 1`, if there are few
+    /// of them, get a patient second twin run ([`recheck_patiently`]): for a route
+    /// whose lost paths would otherwise leave a count unconfirmed (a seed point), not
+    /// for the many routes of the poses.
+    pub patient_twin: bool,
     /// Whether to stop right after the first run when a path of it ran out of steps
     /// ([`FailureReason::TooManySteps`]), with [`Retried::handed_over`] set: the
     /// caller has another route to try first. A route along which paths need more
@@ -373,6 +378,7 @@ impl<'a> TrackingPlan<'a> {
             endgame: true,
             whole_detours: true,
             twin: None,
+            patient_twin: false,
             hand_over_when_steps_run_out: false,
             abandon_when_steps_run_out: false,
             conjugate: None,
@@ -391,6 +397,14 @@ impl<'a> TrackingPlan<'a> {
     /// The same plan with a projective twin (`None`: without).
     pub fn with_twin(self, twin: Option<&'a dyn ProjectiveTwin>) -> Self {
         TrackingPlan { twin, ..self }
+    }
+
+    /// The same plan with a patient second twin run ([`TrackingPlan::patient_twin`]).
+    pub fn with_patient_twin(self) -> Self {
+        TrackingPlan {
+            patient_twin: true,
+            ..self
+        }
     }
 
     /// The same plan with the target's conjugation (see [`TrackingPlan::conjugate`]).
@@ -416,7 +430,9 @@ impl<'a> TrackingPlan<'a> {
 ///    with or similar to the platform, the `rigid/rigid` seed stage sends 64 of 88 paths
 ///    to infinity and a few of them stay unclassified on every detour);
 /// 4. with a projective twin (`plan.twin`), tracks the reference route's paths at
-///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]);
+///    infinity and those still lost once more in the twin ([`ProjectiveTwin`]), and
+///    with [`TrackingPlan::patient_twin`] the few lost ones that ran out of steps
+///    there near their end once more with a long budget ([`recheck_patiently`]);
 /// 5. gives the lost paths the twin did not classify a last, long re-run.
 ///
 /// Returns the merged finite endpoints, the number of accounted paths ([`accounted`]:
@@ -435,6 +451,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         endgame,
         whole_detours,
         twin,
+        patient_twin,
         hand_over_when_steps_run_out,
         abandon_when_steps_run_out,
         conjugate,
@@ -634,7 +651,21 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             .map(|(p, _)| p.path_index)
             .collect();
         if !unsettled.is_empty() {
-            let check = recheck_in_twin(twin, starts, &unsettled, path(0), tracker);
+            let mut check = recheck_in_twin(twin, starts, &unsettled, path(0), tracker);
+            // Lost paths (not those at infinity on the reference route) that ran out
+            // of steps in the twin too, close to their endpoints.
+            let nearly_there: Vec<usize> = check
+                .ran_out_near_the_end
+                .iter()
+                .copied()
+                .filter(|&i| paths[i].status != PathStatus::AtInfinity)
+                .collect();
+            let patient = patient_twin
+                .then(|| recheck_patiently(twin, starts, &nearly_there, path(0), tracker))
+                .flatten();
+            if let Some(again) = patient {
+                check.absorb(again);
+            }
             tracked += check.tracked;
             let mut recovered_from_infinity = 0;
             let classified = check.finite_or_at_infinity();

@@ -10,10 +10,11 @@
 //! data (e.g. a rigid part's shape) can send solutions to infinity at every seed, but
 //! a path lost or wrongly classified at infinity at one seed is not lost at another:
 //! a count below `G` counts only when two seed points (different parameters, reached
-//! along different routes) agree on it, or when the family's projective twin
-//! ([`super::ProjectiveTwin`]) accounts for every path of one seed point (each path
-//! not finite there is at infinity in both formulations); otherwise the shortfall is
-//! a seed-stage [`PathFailure`]. A seed point whose first run has paths that run out
+//! along different routes), each of which classified every path (finite or at
+//! infinity: its count not a mere lower bound), agree on it, or when the family's
+//! projective twin ([`super::ProjectiveTwin`]) accounts for every path of one seed
+//! point (each path not finite there is at infinity in both formulations); otherwise
+//! the shortfall is a seed-stage [`PathFailure`]. A seed point whose first run has paths that run out
 //! of steps, but already as many solutions as the best point so far, is left at that
 //! (its count a lower bound that confirms nothing) for the next seed point, except the
 //! first and the last one, which re-run, detour and re-track in the twin.
@@ -177,20 +178,25 @@ struct SeedRun<S> {
     parameters: Vec<C64>,
     solutions: Vec<Vec<C64>>,
     reasons: BTreeMap<String, usize>,
-    /// Whether the run stopped after its first run because paths ran out of steps
-    /// ([`Retried::handed_over`]): its count is only a lower bound, and confirms no
-    /// other point's count.
-    handed_over: bool,
+    /// Whether the run's count is only a lower bound, which confirms no other point's
+    /// count: it stopped after its first run because paths ran out of steps
+    /// ([`Retried::handed_over`]), or no attempt classified every path (a finite
+    /// endpoint or one at infinity, no crossing: [`Retried::accounted`] below the
+    /// generic count). Two seed points whose same paths fail agree on a shortfall they
+    /// never showed to be at infinity: on two base anchors 10⁻⁴ apart, four `rigid/rigid`
+    /// critical points with multipliers near 10⁵ ran out of steps at every one of five
+    /// seed points, and two of them "confirmed" 84 of the generic 88.
+    lower_bound: bool,
 }
 
 /// Whether `runs` settle the count: the generic count reached, or the largest count
-/// found by any run confirmed by two runs that were not handed over
-/// ([`seed_count_confirmed`] over those).
+/// found by any run confirmed by two runs whose counts are not mere lower bounds
+/// ([`SeedRun::lower_bound`]; [`seed_count_confirmed`] over those).
 fn runs_confirm<S>(runs: &[SeedRun<S>], generic: usize) -> bool {
     let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
     let counted: Vec<usize> = runs
         .iter()
-        .filter(|r| !r.handed_over)
+        .filter(|r| !r.lower_bound)
         .map(|r| r.solutions.len())
         .collect();
     most == generic || (counted.contains(&most) && seed_count_confirmed(&counted, generic))
@@ -222,11 +228,16 @@ pub(crate) fn seed_problem<F: Family>(
     let (source, starts) = family.generic_start(problem);
     let generic = starts.len();
     let twin = family.twin(problem);
+    // A seed point's lost paths leave its count unconfirmed: those the twin nearly
+    // tracked to the end get a patient twin run at every point.
     let plans = [
         TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
             .lost_paths_only()
-            .with_twin(twin),
-        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker).with_twin(twin),
+            .with_twin(twin)
+            .with_patient_twin(),
+        TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
+            .with_twin(twin)
+            .with_patient_twin(),
         // A confirming point before the last one: where its paths run out of steps,
         // the next seed point (a few hundred milliseconds on the rigid metrics of a
         // base similar to the platform) rather than this one's re-runs and last
@@ -268,14 +279,15 @@ pub(crate) fn seed_problem<F: Family>(
             )
         };
         // Whether `count` would end the search: the generic count, or the largest
-        // count so far, found by an earlier point too (one not handed over).
+        // count so far, found by an earlier point too (one whose count is not a mere
+        // lower bound).
         let confirms = |count: usize| {
             let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
             count == generic
                 || (count >= most
                     && runs
                         .iter()
-                        .any(|r| !r.handed_over && r.solutions.len() == count))
+                        .any(|r| !r.lower_bound && r.solutions.len() == count))
         };
         let lost_first = point > 0 && policy.confirm_lost_paths_first;
         let hand_over = lost_first && point + 1 < policy.points;
@@ -309,7 +321,7 @@ pub(crate) fn seed_problem<F: Family>(
                 parameters,
                 solutions,
                 reasons: retried.reasons,
-                handed_over: true,
+                lower_bound: true,
             });
             continue;
         }
@@ -327,7 +339,7 @@ pub(crate) fn seed_problem<F: Family>(
             parameters,
             solutions,
             reasons: retried.reasons,
-            handed_over: false,
+            lower_bound: retried.accounted < generic,
         });
         let most = runs.iter().map(|r| r.solutions.len()).max().unwrap_or(0);
         if settled_by_twin && count == most {
@@ -358,9 +370,10 @@ fn chosen_run<S>(
         .expect("at least one seed point is solved");
     let failure = (!confirmed).then(|| {
         let mut reasons = chosen.reasons.clone();
-        // The shortfall no second seed point confirmed: counted as lost.
+        // The shortfall no second seed point confirmed (the counts disagree, or
+        // agree only as lower bounds): counted as lost.
         reasons.insert(
-            format!("SeedCountsDisagree{counts:?}").replace(' ', ""),
+            format!("SeedCountsUnconfirmed{counts:?}").replace(' ', ""),
             generic - most,
         );
         PathFailure {
@@ -477,7 +490,7 @@ fn seed_problem_by_monodromy<F: Family>(
             parameters,
             solutions: completed.solutions,
             reasons: completed.reasons,
-            handed_over: false,
+            lower_bound: false,
         });
         if runs_confirm(&runs, generic) {
             let chosen = chosen_run(family.name(problem), runs, (generic, true), tracked);
@@ -636,21 +649,22 @@ pub(crate) fn split_seeded<S>(seeded: Vec<Seeded<S>>) -> (Vec<Seeded<S>>, Vec<Pa
 mod tests {
     use super::*;
 
-    fn run(count: usize, handed_over: bool) -> SeedRun<()> {
+    fn run(count: usize, lower_bound: bool) -> SeedRun<()> {
         SeedRun {
             seed: (),
             parameters: Vec::new(),
             solutions: vec![Vec::new(); count],
             reasons: BTreeMap::new(),
-            handed_over,
+            lower_bound,
         }
     }
 
-    /// A handed-over run's count is a lower bound: it confirms no other run's count,
+    /// A lower-bound run's count (handed over, or paths left unclassified) confirms
+    /// no other run's count,
     /// and a larger one leaves a smaller count agreed on by two full runs unconfirmed;
     /// the generic count settles the count whoever found it.
     #[test]
-    fn a_handed_over_seed_count_confirms_nothing() {
+    fn a_lower_bound_seed_count_confirms_nothing() {
         let confirm = |runs: &[(usize, bool)]| {
             let runs: Vec<SeedRun<()>> = runs.iter().map(|&(c, h)| run(c, h)).collect();
             runs_confirm(&runs, 88)

@@ -16,7 +16,8 @@
 use super::{simple_endpoint, track_all};
 use crate::C64;
 use crate::homotopy::{
-    HOMOGENEOUS_ZERO, ParameterPath, PathParameterHomotopy, PathResult, PathStatus, TrackerOptions,
+    FailureReason, HOMOGENEOUS_ZERO, ParameterPath, PathParameterHomotopy, PathResult, PathStatus,
+    TrackerOptions,
 };
 use crate::system::{CompiledSystem, Evaluator};
 
@@ -38,6 +39,20 @@ pub trait ProjectiveTwin: Sync {
 /// precision.
 pub(crate) const TWIN_MAX_STEPS: usize = 15_000;
 
+/// Paths a patient twin run re-tracks at most ([`recheck_patiently`]).
+pub(crate) const PATIENT_TWIN_PATHS: usize = 4;
+
+/// Steps of a patient twin run, each of which may be in double-double arithmetic. On
+/// a base with two anchors 10⁻⁴ apart, four `rigid/rigid` seed paths end at two close
+/// pairs of critical points with multipliers near 10⁵ (twin condition numbers
+/// 10¹¹): they ran out of the tracker's 1,000 double-double steps within 5·10⁻⁶ of
+/// `t = 1` at every seed point, and reached their endpoints in 6,100–11,100 steps.
+pub(crate) const PATIENT_TWIN_STEPS: usize = 15_000;
+
+/// Distance to `t = 1` within which a twin path that ran out of steps counts as having
+/// nearly arrived ([`TwinCheck::ran_out_near_the_end`]).
+const NEAR_THE_END: f64 = 1e-3;
+
 /// What re-tracking some paths in the twin found.
 pub(crate) struct TwinCheck {
     /// Finite endpoints (first formulation's coordinates), one per path that reached a
@@ -47,6 +62,10 @@ pub(crate) struct TwinCheck {
     /// infinity (its homogenising coordinate zero, the other coordinates finite): a
     /// classification the first formulation could not make, so an independent one.
     pub at_infinity: Vec<usize>,
+    /// Paths whose twin run ran out of steps (or of double-double steps) within
+    /// `10⁻³` of `t = 1`: on their way to an ill-conditioned endpoint, for
+    /// [`recheck_patiently`].
+    pub ran_out_near_the_end: Vec<usize>,
     /// Paths tracked.
     pub tracked: usize,
 }
@@ -55,6 +74,17 @@ impl TwinCheck {
     /// Paths the twin classified: a simple finite endpoint or one at infinity.
     pub fn finite_or_at_infinity(&self) -> usize {
         self.finite.len() + self.at_infinity.len()
+    }
+
+    /// This check with `again`'s re-tracking of some of its paths taken in: what
+    /// `again` classified counts as classified here.
+    pub fn absorb(&mut self, again: TwinCheck) {
+        let settled =
+            |i: &usize| again.finite.iter().any(|(j, _)| j == i) || again.at_infinity.contains(i);
+        self.ran_out_near_the_end.retain(|i| !settled(i));
+        self.finite.extend(again.finite);
+        self.at_infinity.extend(again.at_infinity);
+        self.tracked += again.tracked;
     }
 }
 
@@ -75,6 +105,7 @@ pub(crate) fn recheck_in_twin<P: ParameterPath>(
     let mut check = TwinCheck {
         finite: Vec::new(),
         at_infinity: Vec::new(),
+        ran_out_near_the_end: Vec::new(),
         tracked: indices.len(),
     };
     for (&i, result) in indices.iter().zip(&results) {
@@ -84,12 +115,36 @@ pub(crate) fn recheck_in_twin<P: ParameterPath>(
             && on_the_hyperplane_at_infinity(twin, &result.solution)
         {
             check.at_infinity.push(i);
+        } else if result.status == PathStatus::Failed(FailureReason::TooManySteps)
+            && (C64::new(1.0, 0.0) - result.last_t).norm() < NEAR_THE_END
+        {
+            check.ran_out_near_the_end.push(i);
         }
         // A path that diverges in the twin too (coordinates the twin shares with the
         // first formulation grow without bound) is at infinity by the same evidence as
         // in the first formulation: no independent confirmation, left unclassified.
     }
     check
+}
+
+/// [`recheck_in_twin`] with a patient budget: [`PATIENT_TWIN_STEPS`] steps per path,
+/// all of which may be in double-double arithmetic, for at most
+/// [`PATIENT_TWIN_PATHS`] paths that ran out of steps near the end of an ordinary twin
+/// run (`None` for more: the cost is bounded by the caller's few lost paths).
+pub(crate) fn recheck_patiently<P: ParameterPath>(
+    twin: &dyn ProjectiveTwin,
+    starts: &[Vec<C64>],
+    indices: &[usize],
+    path: P,
+    tracker: &TrackerOptions,
+) -> Option<TwinCheck> {
+    if indices.is_empty() || indices.len() > PATIENT_TWIN_PATHS {
+        return None;
+    }
+    let mut patient = tracker.clone();
+    patient.step.max_steps = PATIENT_TWIN_STEPS;
+    patient.precision.max_extended_steps = PATIENT_TWIN_STEPS;
+    Some(recheck_in_twin(twin, starts, indices, path, &patient))
 }
 
 /// Whether `y`'s homogenising coordinate is zero to within [`HOMOGENEOUS_ZERO`] times
