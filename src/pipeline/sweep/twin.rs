@@ -51,8 +51,11 @@ pub(crate) const PATIENT_TWIN_STEPS: usize = 15_000;
 
 /// Largest condition number of an endpoint tracked straight to `t = 1` (no endgame)
 /// that counts as a finite solution of the twin: a singular endpoint reached that way
-/// has a condition number near `1/ε ≈ 10¹⁶`.
-const STRAIGHT_MAX_CONDITION: f64 = 1e13;
+/// has a condition number near `1/ε ≈ 10¹⁶`. On a base 10⁻³ from a line, four
+/// `rigid/rigid` critical points of the self-check's seed stage have 1.3·10¹³ in the
+/// twin: with a bound of 10¹³ the endgame's run confirmed them as simple finite points
+/// (2.4 s where the straight run had taken 0.14 s).
+const STRAIGHT_MAX_CONDITION: f64 = 1e14;
 
 /// Distance to `t = 1` within which a twin path that ran out of steps counts as having
 /// nearly arrived ([`TwinCheck::ran_out_near_the_end`]).
@@ -89,6 +92,11 @@ impl TwinCheck {
         self.ran_out_near_the_end.retain(|i| !settled(i));
         self.finite.extend(again.finite);
         self.at_infinity.extend(again.at_infinity);
+        for i in again.ran_out_near_the_end {
+            if !self.ran_out_near_the_end.contains(&i) {
+                self.ran_out_near_the_end.push(i);
+            }
+        }
         self.tracked += again.tracked;
     }
 }
@@ -145,21 +153,25 @@ fn retrack_in_twin<P: ParameterPath>(
     check
 }
 
-/// [`recheck_in_twin`] with a patient budget, straight to `t = 1`:
-/// [`PATIENT_TWIN_STEPS`] steps per path, all of which may be in double-double
-/// arithmetic, for at most [`PATIENT_TWIN_PATHS`] paths that ran out of steps near the
-/// end of an ordinary twin run (`None` for more: the cost is bounded by the caller's
-/// few lost paths). Without the endgame: its Cauchy loops around `t = 1`, at radii from
-/// 2·10⁻⁵ down to 2·10⁻⁸, took 7,800–11,100 steps for the four paths of the example
-/// below (5.6 s), straight to `t = 1` 1,180–1,330 (0.24 s), to the same endpoints
-/// (condition numbers 1.5·10¹¹–2.9·10¹¹, residuals 10⁻¹¹). A path that nears a
-/// singular endpoint that way ends at a point whose condition number is of the order
-/// of 1/ε, which [`STRAIGHT_MAX_CONDITION`] does not count as finite.
+/// [`recheck_in_twin`] with a patient budget: [`PATIENT_TWIN_STEPS`] steps per path,
+/// all of which may be in double-double arithmetic, for at most
+/// [`PATIENT_TWIN_PATHS`] paths that ran out of steps near the end of an ordinary twin
+/// run (`None` for more: the cost is bounded by the caller's few lost paths), along
+/// `path()`. First straight to `t = 1` without the endgame: its Cauchy loops around
+/// `t = 1`, at radii from 2·10⁻⁵ down to 2·10⁻⁸, took 7,800–11,100 steps for the four
+/// paths of the example below (5.6 s), straight to `t = 1` 1,180–1,330 (0.24 s), to
+/// the same endpoints (condition numbers 1.5·10¹¹–2.9·10¹¹, residuals 10⁻¹¹). A path
+/// that nears a singular endpoint that way ends at a point whose condition number is of
+/// the order of 1/ε, which [`STRAIGHT_MAX_CONDITION`] does not count as finite. The
+/// paths that reach no finite endpoint so are tracked once more with the endgame, which
+/// tells a point at infinity (a base on a line posed in the generic family: four of its
+/// 88 `rigid/rigid` paths run out of steps on their way to infinity at every seed
+/// point, and only the endgame's twin run confirms them there).
 pub(crate) fn recheck_patiently<P: ParameterPath>(
     twin: &dyn ProjectiveTwin,
     starts: &[Vec<C64>],
     indices: &[usize],
-    path: P,
+    path: impl Fn() -> P,
     tracker: &TrackerOptions,
 ) -> Option<TwinCheck> {
     if indices.is_empty() || indices.len() > PATIENT_TWIN_PATHS {
@@ -168,13 +180,23 @@ pub(crate) fn recheck_patiently<P: ParameterPath>(
     let mut patient = tracker.clone();
     patient.step.max_steps = PATIENT_TWIN_STEPS;
     patient.precision.max_extended_steps = PATIENT_TWIN_STEPS;
-    Some(retrack_in_twin(
-        twin,
-        (starts, indices),
-        path,
-        &patient,
-        false,
-    ))
+    let mut check = retrack_in_twin(twin, (starts, indices), path(), &patient, false);
+    let rest: Vec<usize> = indices
+        .iter()
+        .copied()
+        .filter(|i| !check.finite.iter().any(|(j, _)| j == i))
+        .collect();
+    check.ran_out_near_the_end.clear();
+    if !rest.is_empty() {
+        check.absorb(retrack_in_twin(
+            twin,
+            (starts, &rest),
+            path(),
+            &patient,
+            true,
+        ));
+    }
+    Some(check)
 }
 
 /// Whether `y`'s homogenising coordinate is zero to within [`HOMOGENEOUS_ZERO`] times
