@@ -586,9 +586,9 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         complete_conjugates(&mut endpoints);
         best = best.max(endpoints.len() + at_infinity);
     }
-    // The lost paths along the first detour, before the twin: as cheap as the lost
-    // paths themselves, and often enough (on a base 10⁻³ from a line the twin took
-    // 3.7 s for `rigid/rigid` paths this detour settled in 0.6 s).
+    // The lost paths along the first detour, before the twin: it costs as many paths
+    // as were lost, and where it completes the set the twin re-tracks only the paths
+    // at infinity.
     let lost: Vec<usize> = {
         let crossed = crossings(&paths);
         paths
@@ -703,11 +703,11 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         if best >= expected || stagnant >= STAGNANT_DETOURS {
             break;
         }
-        let detour = PathParameterHomotopy::new(system, path(attempt));
         if attempt == 1 && first_detour_of_lost && !whole_detours {
             // Its lost paths are tracked along it already.
             continue;
         }
+        let detour = PathParameterHomotopy::new(system, path(attempt));
         let lost_only = if attempt == 1 {
             !first_detour_of_lost
         } else {
