@@ -14,10 +14,11 @@
 //! infinity: its count not a mere lower bound), agree on it, or when the family's
 //! projective twin ([`super::ProjectiveTwin`]) accounts for every path of one seed
 //! point (each path not finite there is at infinity in both formulations); otherwise
-//! the shortfall is a seed-stage [`PathFailure`]. A seed point whose first run has paths that run out
-//! of steps, but already as many solutions as the best point so far, is left at that
-//! (its count a lower bound that confirms nothing) for the next seed point, except the
-//! first and the last one, which re-run, detour and re-track in the twin.
+//! the shortfall is a seed-stage [`PathFailure`]. A seed point whose first run has
+//! paths that run out of steps, but already as many solutions as the best point so
+//! far, is left at that (its count a lower bound that confirms nothing) for the next
+//! seed point, except the first and the last one, which re-run, detour and re-track
+//! in the twin.
 //!
 //! Where a seed point's first run loses points only to path crossings (no path fails),
 //! the count is settled first by monodromy ([`SeedPolicy::monodromy_stagnant_loops`]):
@@ -660,9 +661,8 @@ mod tests {
     }
 
     /// A lower-bound run's count (handed over, or paths left unclassified) confirms
-    /// no other run's count,
-    /// and a larger one leaves a smaller count agreed on by two full runs unconfirmed;
-    /// the generic count settles the count whoever found it.
+    /// no other run's count, and a larger one leaves a smaller count agreed on by two
+    /// full runs unconfirmed; the generic count settles the count whoever found it.
     #[test]
     fn a_lower_bound_seed_count_confirms_nothing() {
         let confirm = |runs: &[(usize, bool)]| {

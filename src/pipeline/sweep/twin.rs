@@ -51,7 +51,10 @@ pub(crate) const PATIENT_TWIN_STEPS: usize = 15_000;
 
 /// Largest condition number of an endpoint tracked straight to `t = 1` (no endgame)
 /// that counts as a finite solution of the twin: a singular endpoint reached that way
-/// has a condition number near `1/ε ≈ 10¹⁶`. On a base 10⁻³ from a line, four
+/// typically has one near `1/ε ≈ 10¹⁶`. The bound does not exclude every singular
+/// endpoint (one reached by two paths may then count twice); the kept count never
+/// exceeds the generic one, and at most [`PATIENT_TWIN_PATHS`] paths of a seed point
+/// are tracked this way. On a base 10⁻³ from a line, four
 /// `rigid/rigid` critical points of the self-check's seed stage have 1.3·10¹³ in the
 /// twin: with a bound of 10¹³ the endgame's run confirmed them as simple finite points
 /// (2.4 s where the straight run had taken 0.14 s).
@@ -159,14 +162,15 @@ fn retrack_in_twin<P: ParameterPath>(
 /// run (`None` for more: the cost is bounded by the caller's few lost paths), along
 /// `path()`. First straight to `t = 1` without the endgame: its Cauchy loops around
 /// `t = 1`, at radii from 2·10⁻⁵ down to 2·10⁻⁸, took 7,800–11,100 steps for the four
-/// paths of the example below (5.6 s), straight to `t = 1` 1,180–1,330 (0.24 s), to
-/// the same endpoints (condition numbers 1.5·10¹¹–2.9·10¹¹, residuals 10⁻¹¹). A path
-/// that nears a singular endpoint that way ends at a point whose condition number is of
-/// the order of 1/ε, which [`STRAIGHT_MAX_CONDITION`] does not count as finite. The
-/// paths that reach no finite endpoint so are tracked once more with the endgame, which
-/// tells a point at infinity (a base on a line posed in the generic family: four of its
-/// 88 `rigid/rigid` paths run out of steps on their way to infinity at every seed
-/// point, and only the endgame's twin run confirms them there).
+/// paths of [`PATIENT_TWIN_STEPS`]'s example at one seed point (5.6 s), straight to
+/// `t = 1` 1,180–1,330 (0.24 s), to the same endpoints (condition numbers
+/// 1.5·10¹¹–2.9·10¹¹, residuals 10⁻¹¹). A path that nears a singular endpoint that way
+/// usually ends at a point whose condition number is of the order of 1/ε, which
+/// [`STRAIGHT_MAX_CONDITION`] does not count as finite. The paths that reach no finite
+/// endpoint so are tracked once more with the endgame, which tells a point at infinity
+/// (a base on a line posed in the generic family: four of its 88 `rigid/rigid` paths
+/// run out of steps on their way to infinity at every seed point, and only the
+/// endgame's twin run confirms them there).
 pub(crate) fn recheck_patiently<P: ParameterPath>(
     twin: &dyn ProjectiveTwin,
     starts: &[Vec<C64>],
