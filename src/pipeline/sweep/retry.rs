@@ -629,7 +629,14 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             .map(|(p, _)| p.path_index)
             .collect();
         if !unsettled.is_empty() {
-            let mut check = recheck_in_twin(twin, starts, &unsettled, path(0), tracker);
+            // The lost ones straight to `t = 1` first (see [`recheck_in_twin`]).
+            let lost_here: Vec<usize> = unsettled
+                .iter()
+                .copied()
+                .filter(|&i| paths[i].status != PathStatus::AtInfinity)
+                .collect();
+            let mut check =
+                recheck_in_twin(twin, (starts, &unsettled, &lost_here), || path(0), tracker);
             // Lost paths (not those at infinity on the reference route) that ran out
             // of steps in the twin too, close to their endpoints.
             let nearly_there: Vec<usize> = check

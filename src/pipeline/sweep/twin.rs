@@ -49,6 +49,12 @@ pub(crate) const PATIENT_TWIN_PATHS: usize = 4;
 /// `t = 1` at every seed point, and reached their endpoints in 6,100–11,100 steps.
 pub(crate) const PATIENT_TWIN_STEPS: usize = 15_000;
 
+/// Steps of the first, straight run of a lost path in the twin ([`recheck_in_twin`]):
+/// on two base anchors 10⁻⁴ apart (8 scattered poses), the lost `bars/rigid` pose
+/// paths it completed took 101–1,237 steps, where the endgame's Cauchy loops around
+/// such ill-conditioned endpoints take thousands (`rigid/rigid` 2.3 → 1.3 s).
+const STRAIGHT_FIRST_STEPS: usize = 2_000;
+
 /// Largest condition number of an endpoint tracked straight to `t = 1` (no endgame)
 /// that counts as a finite solution of the twin: a singular endpoint reached that way
 /// typically has one near `1/ε ≈ 10¹⁶`. The bound does not exclude every singular
@@ -105,32 +111,62 @@ impl TwinCheck {
 }
 
 /// Re-tracks the paths `indices` of `starts` (first formulation) in `twin` along
-/// `path`, with the endgame and a step budget of [`TWIN_MAX_STEPS`].
+/// `path()`: those of `straight_first` (paths the first formulation lost, not those
+/// it sent to infinity) first straight to `t = 1` with [`STRAIGHT_FIRST_STEPS`] steps,
+/// where an endpoint counts as finite only below [`STRAIGHT_MAX_CONDITION`] and one
+/// on the twin's hyperplane at infinity counts there; the others, and those that
+/// reach neither so, with the endgame and a step budget of [`TWIN_MAX_STEPS`].
 pub(crate) fn recheck_in_twin<P: ParameterPath>(
     twin: &dyn ProjectiveTwin,
-    starts: &[Vec<C64>],
-    indices: &[usize],
-    path: P,
+    (starts, indices, straight_first): (&[Vec<C64>], &[usize], &[usize]),
+    path: impl Fn() -> P,
     tracker: &TrackerOptions,
 ) -> TwinCheck {
-    retrack_in_twin(twin, (starts, indices), path, tracker, true)
+    let mut check = TwinCheck {
+        finite: Vec::new(),
+        at_infinity: Vec::new(),
+        ran_out_near_the_end: Vec::new(),
+        tracked: 0,
+    };
+    if !straight_first.is_empty() {
+        let mut quick = tracker.clone();
+        quick.step.max_steps = STRAIGHT_FIRST_STEPS;
+        check = retrack_in_twin(twin, (starts, straight_first), path(), &quick, false);
+        check.ran_out_near_the_end.clear();
+    }
+    let rest: Vec<usize> = indices
+        .iter()
+        .copied()
+        .filter(|i| !check.finite.iter().any(|(j, _)| j == i) && !check.at_infinity.contains(i))
+        .collect();
+    if !rest.is_empty() {
+        let mut options = tracker.clone();
+        options.step.max_steps = options.step.max_steps.max(TWIN_MAX_STEPS);
+        check.absorb(retrack_in_twin(
+            twin,
+            (starts, &rest),
+            path(),
+            &options,
+            true,
+        ));
+    }
+    check
 }
 
-/// [`recheck_in_twin`], with the endgame or (`endgame == false`) straight to `t = 1`
-/// and Newton's method there, where an endpoint counts as finite only below
+/// Re-tracks the paths `indices` of `starts` in `twin` along `path` with the options
+/// `options`, with the endgame or (`endgame == false`) straight to `t = 1` and
+/// Newton's method there, where an endpoint counts as finite only below
 /// [`STRAIGHT_MAX_CONDITION`].
 fn retrack_in_twin<P: ParameterPath>(
     twin: &dyn ProjectiveTwin,
     (starts, indices): (&[Vec<C64>], &[usize]),
     path: P,
-    tracker: &TrackerOptions,
+    options: &TrackerOptions,
     endgame: bool,
 ) -> TwinCheck {
-    let mut options = tracker.clone();
-    options.step.max_steps = options.step.max_steps.max(TWIN_MAX_STEPS);
     let lifted: Vec<Vec<C64>> = indices.iter().map(|&i| twin.lift(&starts[i])).collect();
     let homotopy = PathParameterHomotopy::new(twin.system(), path);
-    let results: Vec<PathResult> = track_all(&homotopy, &lifted, &options, endgame);
+    let results: Vec<PathResult> = track_all(&homotopy, &lifted, options, endgame);
     let mut check = TwinCheck {
         finite: Vec::new(),
         at_infinity: Vec::new(),
