@@ -35,6 +35,14 @@ pub(super) const DIRECT_FINISH_STEPS: usize = 400;
 /// averages them (`discret3s`: two of its roots came out as one singular point).
 pub(super) const SINGULAR_CONDITION_GROWTH: usize = 3;
 
+/// Two successive cycle-number estimates of the endgame agree when they differ by at
+/// most this fraction of the last.
+const CYCLE_ESTIMATE_AGREEMENT: f64 = 0.1;
+
+/// Radii after a failed direct finish at which the endgame waits for a stable
+/// cycle-number estimate before it loops anyway.
+const MAX_WAITING_RADII: usize = 4;
+
 /// The endgame's per-path buffers: Cauchy sums and estimates, valuations and their
 /// history (allocated once per tracker).
 pub(super) struct EndgameState {
@@ -54,6 +62,9 @@ pub(super) struct EndgameState {
     valuation_changes: Vec<f64>,
     /// The direct finish's singular endpoint (`settle_on_direct_endpoint`).
     direct_endpoint: Vec<C64>,
+    /// The path's point at the previous radius of the endgame (for the cycle-number
+    /// estimate of [`Tracker::endgame`]).
+    radius_point: Vec<C64>,
     /// The endgame's last valuation check found stable negative valuations.
     divergence_evidence: bool,
     /// The endgame's first radius `s₀` (loops there make at most
@@ -68,6 +79,7 @@ impl EndgameState {
         EndgameState {
             cauchy_sum: vec![zero; n],
             direct_endpoint: vec![zero; n],
+            radius_point: vec![zero; n],
             estimate: vec![zero; n],
             previous_estimate: vec![zero; n],
             valuations: vec![0.0; n],
@@ -118,8 +130,35 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         for (o, x) in self.state.endgame_origin.iter_mut().zip(&self.x) {
             *o = x.norm().max(1.0);
         }
+        // The cycle-number estimate from the path's points at three successive radii
+        // (`x(s) = x₀ + a s^{1/c} + …` moves by factors `r^{1/c}`, `r` the radius
+        // ratio): `c ≈ ln r / ln ρ`, `ρ` the ratio of the last two moves (the
+        // estimate of Morgan, Sommese and Wampler, "A power series method for
+        // computing singular solutions to nonlinear analytic systems", Numer. Math.
+        // 1992).
+        let mut previous_move = f64::NAN;
+        let mut previous_cycle_estimate = f64::NAN;
+        let mut have_radius_point = false;
+        // Radii at which a loop after a failed direct finish waited for the estimate.
+        let mut waited = 0;
         loop {
             let t = C64::new(1.0 - s, 0.0);
+            let mut cycle_estimate_stable = false;
+            if have_radius_point {
+                let moved = self
+                    .x
+                    .iter()
+                    .zip(&self.state.radius_point)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+                let cycle = self.options.endgame.endgame_ratio.ln() / (moved / previous_move).ln();
+                cycle_estimate_stable = cycle.is_finite()
+                    && cycle > 0.0
+                    && (cycle - previous_cycle_estimate).abs() <= CYCLE_ESTIMATE_AGREEMENT * cycle;
+                previous_cycle_estimate = cycle;
+                previous_move = moved;
+            }
+            self.state.radius_point.copy_from_slice(&self.x);
+            have_radius_point = true;
             let scale = max_norm(&self.x);
             if scale > self.options.endgame.at_infinity_norm {
                 return PathStatus::AtInfinity;
@@ -273,6 +312,20 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 self.step = saved_step;
                 direct_failed = true;
             }
+            // After a failed direct finish (a singular endpoint ahead), loops only once
+            // the path moves like a Puiseux series (a stable cycle-number estimate),
+            // in the deep zone, or after MAX_WAITING_RADII radii: further out a loop
+            // encloses other branch points and runs many turns in vain (PHCpack's
+            // `fbrfive4`: loops of 4–14 turns at radii 1.6·10⁻³ … 10⁻⁴, 400–600
+            // steps per path, before the winding number 1 of its singular endpoints).
+            let loop_after_direct = direct_failed
+                && (cycle_estimate_stable
+                    || !valuations_finite
+                    || s <= DEEP_RADIUS
+                    || waited >= MAX_WAITING_RADII);
+            if direct_failed && !loop_after_direct {
+                waited += 1;
+            }
             // While the large coordinates still grow (negative valuations), the path is
             // heading to infinity or has not reached the endgame's asymptotic regime:
             // a Cauchy loop (costly far out, where the Jacobian is ill-conditioned)
@@ -280,7 +333,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
             // valuation test above classifies a divergent path.
             if !diverging
                 && !vanishing_now
-                && (direct_failed
+                && (loop_after_direct
                     || condition_growing >= SINGULAR_CONDITION_GROWTH
                         && valuations_finite
                         && s <= DEEP_RADIUS
