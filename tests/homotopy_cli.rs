@@ -509,6 +509,33 @@ fn a_loop_around_two_roots_is_not_a_double_root() {
     );
 }
 
+/// PHCpack's `discret3s` at the default seed: the paths to its five largest roots
+/// (norms 4.8·10⁴–1.2·10⁵, of the 128 its demo file lists) stall near `t = 1` and are
+/// put at infinity at norms close to the largest root found; the run says a root of
+/// large norm may be missing. `reimer5`, whose stalled paths stop at 19 times its
+/// largest root or more, gets no such warning.
+#[test]
+fn paths_put_at_infinity_after_stalling_near_the_roots_are_reported() {
+    let out = singdist(&["solve", &demo_file("discret3s"), "--threads", "2", "--json"]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let summary = &value["summary"];
+    assert!(summary["nonsingular"].as_u64() < Some(128), "{summary}");
+    assert!(
+        summary["stalled_near_roots"].as_u64() >= Some(1),
+        "{summary}"
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("stalled_near_roots"), "{stderr}");
+    let out = singdist(&["solve", &demo_file("reimer5"), "--threads", "2", "--json"]);
+    let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        value["summary"]["stalled_near_roots"], 0,
+        "{}",
+        value["summary"]
+    );
+    assert!(value["summary"]["at_infinity"].as_u64() > Some(0));
+}
+
 /// PHCpack's `discret3s` at seeds 12 and 15: the polyhedral run loses paths, the
 /// total-degree run it falls back on reports no failed path but lacks nonsingular roots
 /// the polyhedral run found (some of its paths sent to infinity end at roots of norm

@@ -20,9 +20,9 @@ use singdist::homotopy::multihomogeneous::{
 };
 use singdist::homotopy::{
     FailureReason, MonodromyOptions, PathStatus, PolyhedralSolve, PolyhedralStartSystem,
-    SolveOptions, SolveResult, SolveSummary, StartChoice, StartRequest, Supports,
-    choose_start_system, distinct_nonsingular_roots, polyhedral_if_fewer_paths, solve_by_monodromy,
-    solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
+    STALLED_NEAR_ROOTS, SolveOptions, SolveResult, SolveSummary, StartChoice, StartRequest,
+    Supports, choose_start_system, distinct_nonsingular_roots, polyhedral_if_fewer_paths,
+    solve_by_monodromy, solve_from_polyhedral_start, solve_multihomogeneous, solve_total_degree,
 };
 use singdist::system::scaling::Scaling;
 use singdist::system::sparse::{ExpansionError, SparsePolynomial};
@@ -417,6 +417,12 @@ fn warn_failed_paths(result: &SolveResult) -> bool {
     if unconfirmed > 0 {
         eprintln!(
             "singdist: warning: {unconfirmed} path(s) classified at infinity only because their norm passed 1e8 were not confirmed in a projective chart (JSON unconfirmed_at_infinity): a root of large norm may be missing"
+        );
+    }
+    let stalled = result.summary.stalled_near_roots;
+    if stalled > 0 {
+        eprintln!(
+            "singdist: warning: {stalled} path(s) were put at infinity after stalling near t = 1 at a norm within {STALLED_NEAR_ROOTS} times the largest root found (JSON stalled_near_roots): a root of large norm may be missing"
         );
     }
     let failed: Vec<(usize, FailureReason)> = result

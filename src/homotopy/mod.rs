@@ -49,8 +49,8 @@ pub use refine::{
     newton_refine, same_point, same_root,
 };
 pub use solve::{
-    HomotopyError, SolveOptions, SolveResult, SolveSummary, solve_parameter_homotopy,
-    solve_total_degree, solve_with_homotopy,
+    HomotopyError, STALLED_NEAR_ROOTS, SolveOptions, SolveResult, SolveSummary,
+    solve_parameter_homotopy, solve_total_degree, solve_with_homotopy,
 };
 pub use start::TotalDegreeStartSystem;
 pub use tracker::{

@@ -26,5 +26,6 @@ pub(crate) fn path_result(index: usize, status: PathStatus, solution: Vec<C64>) 
         rejected_steps: 0,
         used_extended_precision: false,
         last_t: C64::new(1.0, 0.0),
+        stalled_at_infinity: false,
     }
 }

@@ -67,6 +67,8 @@ pub(super) struct EndgameState {
     radius_point: Vec<C64>,
     /// The endgame's last valuation check found stable negative valuations.
     divergence_evidence: bool,
+    /// [`Tracker::give_up`] put the path at infinity on that evidence.
+    pub(super) gave_up_at_infinity: bool,
     /// The endgame's first radius `s₀` (loops there make at most
     /// [`FIRST_RADIUS_MAX_WINDING`] turns); infinite outside an endgame.
     pub(super) first_radius: f64,
@@ -92,6 +94,7 @@ impl EndgameState {
             endgame_origin: vec![1.0; n],
             valuation_changes: vec![f64::NAN; n],
             divergence_evidence: false,
+            gave_up_at_infinity: false,
             first_radius: f64::INFINITY,
         }
     }
@@ -459,6 +462,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         } {
             self.classify_estimate(self.winding)
         } else if self.options.endgame.growth_before_divergence && self.state.divergence_evidence {
+            self.state.gave_up_at_infinity = true;
             PathStatus::AtInfinity
         } else {
             PathStatus::Failed(reason)

@@ -169,6 +169,11 @@ pub struct PathResult {
     /// failed one, where it stopped, possibly on an endgame loop around `t = 1`).
     #[serde(default)]
     pub last_t: C64,
+    /// Whether the endgame put the path at infinity after it stalled (its steps fell
+    /// below the resolution of `t`, or ran out) on the evidence of its growth alone,
+    /// rather than by a test that settled it.
+    #[serde(default)]
+    pub stalled_at_infinity: bool,
 }
 
 impl PathResult {
@@ -396,6 +401,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
         self.precision = Precision::default();
         self.eval.extended = false;
         self.winding = 1;
+        self.state.gave_up_at_infinity = false;
     }
 
     /// Tracks `start` (a solution of `H(x, 0) = 0`) to `t = 1`, runs the endgame and
@@ -596,6 +602,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             rejected_steps: self.rejected,
             used_extended_precision: self.precision.used,
             last_t: self.t,
+            stalled_at_infinity: status == PathStatus::AtInfinity && self.state.gave_up_at_infinity,
         }
     }
 
