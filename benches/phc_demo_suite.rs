@@ -224,6 +224,19 @@ fn json_point(value: &Value) -> Vec<C64> {
         .unwrap_or_default()
 }
 
+/// The points of a PHCpack solution list with coordinates in the order `names`.
+fn in_order(solutions: &[phc::PhcSolution], names: &[String]) -> Vec<Vec<C64>> {
+    solutions
+        .iter()
+        .map(|s| {
+            names
+                .iter()
+                .map(|n| s.value(n).unwrap_or_default())
+                .collect()
+        })
+        .collect()
+}
+
 struct Row {
     name: String,
     bezout: u128,
@@ -364,15 +377,7 @@ fn solve_one(
     // the output file holds the intermediate lists).
     let phc_points: Option<Vec<Vec<C64>>> = phc_code.map(|_| {
         let text = std::fs::read_to_string(&phc_file).unwrap_or_default();
-        phc::read_last_solutions(&text)
-            .iter()
-            .map(|s| {
-                names
-                    .iter()
-                    .map(|n| s.value(n).unwrap_or_default())
-                    .collect()
-            })
-            .collect()
+        in_order(&phc::read_last_solutions(&text), names)
     });
     let (our_distinct, our_roots) = distinct_nonsingular(&compiled, &balanced(our_points));
     let (phc_distinct, phc_roots) = match phc_points.clone() {
@@ -380,15 +385,7 @@ fn solve_one(
         None => (0, Vec::new()),
     };
     // The demo file's own solution list, in the system's variable order.
-    let listed_points: Vec<Vec<C64>> = listed
-        .iter()
-        .map(|s| {
-            names
-                .iter()
-                .map(|n| s.value(n).unwrap_or_default())
-                .collect()
-        })
-        .collect();
+    let listed_points = in_order(listed, names);
     let (listed_distinct, listed_roots) = distinct_nonsingular(&compiled, &balanced(listed_points));
     let union: Vec<(Vec<C64>, f64)> = our_roots
         .into_iter()
