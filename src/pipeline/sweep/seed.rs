@@ -234,7 +234,7 @@ pub(crate) fn seed_problem<F: Family>(
     // lost paths only: a whole detour re-tracks every path (1.2 s each on a base with
     // two coincident anchors, `plate/rigid`, where two whole detours in a row found
     // nothing), and the next seed point is the independent route for what a point
-    // cannot settle (design matrix 139.4 → 129.5 s, every distance identical).
+    // cannot settle (design matrix 139.4 → 131.3 s, every distance identical).
     let plans = [
         TrackingPlan::with_endgame(policy.tracker, policy.retry_tracker)
             .lost_paths_only()
@@ -331,7 +331,7 @@ pub(crate) fn seed_problem<F: Family>(
             // The monodromy points' first run left this point unconfirmed: its own
             // reference route afresh (on two base anchors 10⁻⁴ apart this confirmed
             // counts that otherwise took further seed points: `close-base-12`
-            // scattered 9.0 → 7.3 s).
+            // scattered 9.0 → 7.4 s).
             retried = track(&plans[0]);
             tracked += retried.tracked;
             solutions = distinct_solutions(retried.endpoints, generic);
