@@ -284,6 +284,7 @@ fn jump_to(
         tracked,
         reasons: Default::default(),
         confirmed_by_twin: false,
+        at_infinity_in_twin: 0,
         handed_over: false,
     })
 }

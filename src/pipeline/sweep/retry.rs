@@ -120,6 +120,11 @@ pub(crate) struct Retried {
     /// points at infinity account for every path (`false` without a twin, or where a
     /// twin run failed).
     pub confirmed_by_twin: bool,
+    /// Paths the projective twin ended on its hyperplane at infinity (`λ₀ = 0`, the
+    /// configuration finite): Fritz John points, singular points of the constraint
+    /// set, or critical points within about `|λ₀|` of one (see
+    /// [`crate::homotopy::HOMOGENEOUS_ZERO`]).
+    pub at_infinity_in_twin: usize,
     /// Whether the plan handed the group over after the first run
     /// ([`TrackingPlan::hand_over_when_steps_run_out`]): its paths ran out of steps,
     /// and nothing after the first run was tried.
@@ -485,6 +490,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                         tracked: starts.len(),
                         reasons: BTreeMap::from([("TooManySteps".to_string(), 1)]),
                         confirmed_by_twin: false,
+                        at_infinity_in_twin: 0,
                         handed_over: true,
                     };
                 }
@@ -506,6 +512,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
             tracked,
             reasons: unaccounted_reasons(&paths),
             confirmed_by_twin: false,
+            at_infinity_in_twin: 0,
             handed_over: true,
         };
     }
@@ -610,6 +617,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         best = best.max(endpoints.len() + at_infinity);
     }
     let mut confirmed_by_twin = false;
+    let mut at_infinity_in_twin = 0;
     // Paths the twin classified (finite, or on its hyperplane at infinity): the last
     // chance below is for the others.
     let mut resolved_by_twin: Vec<usize> = Vec::new();
@@ -683,6 +691,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
                 + lost_at_infinity;
             complete_conjugates(&mut endpoints);
             best = best.max(endpoints.len() + at_infinity);
+            at_infinity_in_twin = check.at_infinity.len();
             confirmed_by_twin = endpoints.len() + check.at_infinity.len() >= expected
                 && classified == unsettled.len();
         }
@@ -797,6 +806,7 @@ pub(crate) fn track_with_retries<E: Evaluator + ?Sized, P: ParameterPath>(
         tracked,
         reasons,
         confirmed_by_twin,
+        at_infinity_in_twin,
         handed_over: false,
     }
 }
