@@ -53,19 +53,31 @@ fn motion_path_velocity_matches_finite_differences() {
 /// options, the stage and the index of its `singularity` sub-problem.
 fn plate_plate_stage() -> (Motion, CurveOptions, SeedStage, usize) {
     let (design, motion) = (example_design(), example_motion());
-    let metrics = Metric::parse_list("plate/plate").expect("metric");
+    let (options, stage, index) = singularity_stage(&design, &motion, "plate/plate");
+    (motion, options, stage, index)
+}
+
+/// The seed stage of `metric` alone (no self-check) and the index of its singularity
+/// sub-problem.
+fn singularity_stage(
+    design: &Design,
+    motion: &Motion,
+    metric: &str,
+) -> (CurveOptions, SeedStage, usize) {
+    let metrics = Metric::parse_list(metric).expect("metric");
     let options = CurveOptions {
         self_check: false,
         ..CurveOptions::default()
     };
     let start = default_start_solutions;
-    let stage = seed_stage(&design, &motion, &metrics, &options, &start).expect("stage");
+    let stage = seed_stage(design, motion, &metrics, &options, &start).expect("stage");
+    let name = format!("{metric}:singularity");
     let index = stage
         .problems
         .iter()
-        .position(|p| p.id.name() == "plate/plate:singularity")
-        .expect("plate/plate");
-    (motion, options, stage, index)
+        .position(|p| p.id.name() == name)
+        .expect("the singularity sub-problem");
+    (options, stage, index)
 }
 
 /// A seed count below the generic one is tested at the motion's first pose: the
@@ -198,23 +210,7 @@ fn a_critical_point_at_a_fritz_john_point_of_the_twin_completes_the_generic_rout
     let design = case.design().expect("design");
     let motion = case.scattered_motion();
     let metrics = Metric::parse_list("bars/rigid").expect("metric");
-    let options = CurveOptions {
-        self_check: false,
-        ..CurveOptions::default()
-    };
-    let stage = seed_stage(
-        &design,
-        &motion,
-        &metrics,
-        &options,
-        &default_start_solutions,
-    )
-    .expect("stage");
-    let index = stage
-        .problems
-        .iter()
-        .position(|p| p.id.name() == "bars/rigid:singularity")
-        .expect("bars/rigid");
+    let (options, stage, index) = singularity_stage(&design, &motion, "bars/rigid");
     let samples = sample_motion(&motion, 0).expect("samples");
     let context = SolveContext {
         stage: &stage,
