@@ -821,13 +821,22 @@ fn track_problem(
 }
 
 /// The generic route to a pose: the user homotopy from the start file's generic
-/// parameters straight to the pose's (with the endgame, detours on retries), as the
-/// seed stage tracks to the seed. Where the design is close to a degenerate one (two
-/// anchors of a rigid part 1e-4 apart), critical points come in clusters at every
-/// parameter of the design, and a seed → pose path must stay inside its cluster along
-/// the whole route; from the generic point the cluster forms only as `t → 1`, where
-/// the step size shrinks geometrically. Returns the route's distinct finite
-/// endpoints.
+/// parameters straight to the pose's (detours on retries), as the seed stage tracks to
+/// the seed. Where the design is close to a degenerate one (two anchors of a rigid
+/// part 1e-4 apart), critical points come in clusters at every parameter of the
+/// design, and a seed → pose path must stay inside its cluster along the whole route;
+/// from the generic point the cluster forms only as `t → 1`, where the step size
+/// shrinks geometrically. Returns the route's distinct finite endpoints.
+///
+/// The first run has the endgame only where the sub-problem's expected count is below
+/// its generic count, i.e. where paths end at infinity at a real pose. Elsewhere every
+/// path ends at a finite critical point, and as on the seed route the endpoints are
+/// refined by Newton's method at `t = 1`; a path that diverges, fails or crosses
+/// another one is re-run with the endgame. On two base anchors 10⁻⁴ apart the
+/// endgame's loops around the near-double critical points there (pairs 10⁻¹⁰ apart
+/// relative to their norm) took 0.11–0.42 s per pose of `bars/rigid` against
+/// 0.09–0.25 s without (design matrix, 8 scattered poses: 4.89 → 4.31 s; no other
+/// class slower by more than the timing noise, every distance the same to 2.3·10⁻¹⁵).
 fn generic_route(
     seeded: &SeededProblem,
     parameters: &[C64],
@@ -856,10 +865,13 @@ fn generic_route(
             PolylinePath::new(points)
         },
         options.seed_retry_attempts,
-        TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
-            .lost_paths_only()
-            .with_twin(seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin))
-            .with_conjugate(Some(&conjugate)),
+        TrackingPlan {
+            endgame: seeded.at_seed.start_count < seeded.at_seed.generic_count,
+            ..TrackingPlan::with_endgame(&options.tracker, &options.retry_tracker)
+        }
+        .lost_paths_only()
+        .with_twin(seeded.twin.as_ref().map(|t| t as &dyn ProjectiveTwin))
+        .with_conjugate(Some(&conjugate)),
     );
     Retried {
         endpoints: distinct_solutions(retried.endpoints, seeded.at_seed.generic_count),
