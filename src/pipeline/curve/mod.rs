@@ -100,7 +100,9 @@ struct PoseEntry {
 use super::start_file::StartSolutions;
 use crate::C64;
 use crate::certify::distance::{self as certification, SubproblemCertificate};
-use crate::homotopy::{ParameterPath, PathParameterHomotopy, PolylinePath, TrackerOptions};
+use crate::homotopy::{
+    ParameterPath, PathParameterHomotopy, PathResult, PolylinePath, TrackerOptions,
+};
 use crate::mechanism::rpr::{Design, Motion, Pose, SampledPose, singularity_polynomial};
 use crate::metric::Metric;
 use crate::problem::{
@@ -652,6 +654,8 @@ fn track_problem(
     };
     let stream = ((index as u64 + 1) << 32) | problem_index as u64;
     let seed_route = matches!(route, Route::Seed);
+    // The seed route's first run to a pose list's first pose, tracked in the seed stage.
+    let probe = (seeded.seed_route_probe.as_ref()).filter(|p| seed_route && p.target == target);
     // The pose is real: the endpoints' conjugates are critical points too.
     let conjugate = |x: &[C64]| seeded.problem.conjugate(x);
     let track_route = |hand_over_when_steps_run_out: bool| {
@@ -694,7 +698,7 @@ fn track_problem(
                 hand_over_when_steps_run_out,
                 abandon_when_steps_run_out: true,
                 conjugate: Some(&conjugate),
-                first_run: None,
+                first_run: probe.and_then(|p| p.first_run.as_deref()),
             },
         )
     };
@@ -718,11 +722,14 @@ fn track_problem(
                     && finite + generic.at_infinity_in_twin >= generic_count))
     };
     // Where the seed has fewer solutions than the expected count (a seed count refuted
-    // at a real pose, see `probe_seed_counts`), the seed route cannot complete a pose:
-    // the generic route first.
+    // at a real pose, see `probe_seed_counts`), the seed route cannot complete a pose,
+    // and where it ran out of steps at a pose list's first pose (`probe_seed_route`)
+    // it hardly will: the generic route first.
     let mut generic = None;
     let mut generic_tracked = 0;
-    if seed_route && seeded.at_seed.solutions.len() < seeded.at_seed.start_count {
+    let seed_route_hopeless = seeded.at_seed.solutions.len() < seeded.at_seed.start_count
+        || (seeded.seed_route_probe.as_ref()).is_some_and(SeedRouteProbe::ran_out_of_steps);
+    if seed_route && seed_route_hopeless {
         let from_generic = generic_route(seeded, &parameters, stream, options);
         if generic_complete(&from_generic) {
             let at = (&parameters[..], &k);

@@ -5,7 +5,7 @@ use crate::metric::Part;
 use crate::pipeline::family::Family;
 use crate::pipeline::sweep::{
     MonodromyLoops, ProjectiveTwin, SeedPolicy, SeedSolutions, completed_by_monodromy, first_run,
-    seed_family, split_seeded,
+    seed_family, split_seeded, track_all_unless_steps_run_out,
 };
 use crate::problem::{equilateral, pedal};
 use crate::system::CompiledSystem;
@@ -38,6 +38,9 @@ pub struct SeededProblem {
     /// The same sub-problem with multipliers in a random chart, where paths that end
     /// at infinity or are lost are checked once more ([`CurveOptions::twin_check`]).
     pub twin: Option<ChartTwin>,
+    /// For a pose list, the first run of the seed route to its first pose, tracked in
+    /// the seed stage ([`probe_seed_route`]).
+    pub seed_route_probe: Option<SeedRouteProbe>,
     /// [`SeededProblem::problem`] with affine multipliers, built on first use where
     /// the tracked system uses [`Multipliers::Chart`] (certification works with the
     /// real system of affine multipliers).
@@ -443,6 +446,7 @@ pub(super) fn seed_stage_with_probes(
                 let (seed, at_seed) = SeedSolutions::new(seeded, (source, starts));
                 SeededProblem {
                     affine: std::sync::OnceLock::new(),
+                    seed_route_probe: None,
                     id,
                     problem,
                     twin,
@@ -460,6 +464,17 @@ pub(super) fn seed_stage_with_probes(
         options,
         known_probes,
     );
+    let route_probes: Vec<Option<SeedRouteProbe>> = problems
+        .par_iter()
+        .map(|seeded| probe_seed_route(seeded, motion, normalization, options))
+        .collect();
+    let mut route_probed = 0;
+    for (seeded, probe) in problems.iter_mut().zip(route_probes) {
+        if probe.is_some() {
+            route_probed += seeded.at_seed.solutions.len();
+        }
+        seeded.seed_route_probe = probe;
+    }
     let mut failures = failures;
     settle_seed_failures(&problems, &mut failures);
     let closed_form_systems = closed_form
@@ -487,8 +502,71 @@ pub(super) fn seed_stage_with_probes(
         seed_configuration: normalization.restore(&k_star),
         failures,
         probes,
-        paths_tracked: paths_tracked + probed,
+        paths_tracked: paths_tracked + probed + route_probed,
     })
+}
+
+/// The first run of the seed route to a pose list's first pose ([`probe_seed_route`]).
+pub struct SeedRouteProbe {
+    /// The pose.
+    pub target: MotionPoint,
+    /// The paths of the run, or `None` where one of them ran out of steps.
+    pub first_run: Option<Vec<PathResult>>,
+}
+
+impl SeedRouteProbe {
+    /// Whether a path of the run ran out of steps.
+    pub fn ran_out_of_steps(&self) -> bool {
+        self.first_run.is_none()
+    }
+}
+
+/// For a pose list, the first run of a pose's seed route (see `track_problem`) to its
+/// first pose, which the pose then takes as its own. A pose list's poses are solved
+/// from the seed wherever they are far apart, and where this run runs out of steps,
+/// every pose takes the generic route first; where the generic route does not
+/// complete a pose, the seed route still follows with its re-runs and detours. A
+/// rigid part's shape constants stay those of the design along the whole seed route,
+/// so where two of its anchors are close the critical points come in clusters (pairs
+/// 10⁻¹⁰ apart relative to their norm, on two base anchors 10⁻⁴ apart) all along it,
+/// not only at its end, and a route that runs out of steps at one pose runs out at
+/// the others: on that design the `bars/rigid` and `plate/rigid` seed routes ran out
+/// at 19 of the 20 poses of an 8-pose run and its self-check, each after about 30 ms,
+/// before the generic route solved the pose. `None` for analytic motions (whose poses
+/// are solved from their neighbours, a few from the seed) and where the seed has
+/// fewer solutions than the expected count (the generic route comes first anyway).
+fn probe_seed_route(
+    seeded: &SeededProblem,
+    motion: &Motion,
+    normalization: Normalization,
+    options: &CurveOptions,
+) -> Option<SeedRouteProbe> {
+    let Motion::Poses(list) = motion else {
+        return None;
+    };
+    let first = SampledPose {
+        tau: 0.0,
+        pose: *list.poses.first()?,
+    };
+    let starts = &seeded.at_seed.solutions;
+    if starts.len() < seeded.at_seed.start_count {
+        return None;
+    }
+    let design = &seeded.design;
+    let k = normalization.apply(&to_real(&design.configuration(first.pose).to_array()));
+    let parameters = normalized_parameters(&seeded.problem, design, &k, normalization);
+    let target = MotionPoint::target(motion, &first);
+    let route = MotionPath::new(
+        design,
+        motion,
+        vec![seeded.seed.point, target],
+        seeded.seed.perturbation,
+        normalization,
+        parameters[12..].to_vec(),
+    );
+    let homotopy = PathParameterHomotopy::new(seeded.problem.evaluator(), route);
+    let first_run = track_all_unless_steps_run_out(&homotopy, starts, &options.tracker);
+    Some(SeedRouteProbe { target, first_run })
 }
 
 /// Tests every seed count below the generic one at a real pose (the motion's first;

@@ -251,3 +251,73 @@ fn a_critical_point_at_a_fritz_john_point_of_the_twin_completes_the_generic_rout
         );
     }
 }
+
+/// On two base anchors 10⁻⁴ apart the `bars/rigid` seed route runs out of steps at
+/// a pose list's first pose, and the stage records it: at another pose the generic
+/// route comes first, and the pose is complete without the seed route's paths
+/// (before: the 80 seed-route paths, abandoned when one ran out of steps, then the
+/// generic route's). On a generic design the probe completes and is the first pose's
+/// first run.
+#[test]
+fn a_seed_route_that_runs_out_of_steps_at_the_first_pose_is_skipped_at_the_others() {
+    use crate::reference::designs::design_case;
+    let probed = |class: &str| {
+        let case = design_case(class, 1).expect("a class of the matrix");
+        let (design, motion) = (case.design().expect("design"), case.scattered_motion());
+        let (options, stage, index) = singularity_stage(&design, &motion, "bars/rigid");
+        (motion, options, stage, index)
+    };
+    let (motion, options, stage, index) = probed("close-base-12");
+    let seeded = &stage.problems[index];
+    let probe = seeded
+        .seed_route_probe
+        .as_ref()
+        .expect("a pose list is probed");
+    assert!(probe.ran_out_of_steps());
+    let generic = seeded.at_seed.generic_count;
+    let samples = sample_motion(&motion, 0).expect("samples");
+    let context = SolveContext {
+        stage: &stage,
+        motion: &motion,
+        options: &options,
+    };
+    let at_pose = track_problem(context, (3, samples[3]), index, Route::Seed);
+    assert!(
+        at_pose.entry.failure.is_none(),
+        "{:?}",
+        at_pose.entry.failure
+    );
+    assert_eq!(at_pose.entry.accounted, generic);
+    assert!(
+        at_pose.entry.tracked < 2 * generic,
+        "{} paths",
+        at_pose.entry.tracked
+    );
+    // Where the probe completes, its pose takes the probe's paths as its first run:
+    // the same endpoints as a pose whose seed route is tracked afresh, and the paths
+    // are not tracked (nor counted) twice.
+    let (motion, options, mut stage, index) = probed("random-scale-1");
+    let probe = stage.problems[index]
+        .seed_route_probe
+        .as_ref()
+        .expect("probed");
+    assert!(!probe.ran_out_of_steps());
+    let samples = sample_motion(&motion, 0).expect("samples");
+    let solve = |stage: &SeedStage| {
+        let context = SolveContext {
+            stage,
+            motion: &motion,
+            options: &options,
+        };
+        track_problem(context, (0, samples[0]), index, Route::Seed).entry
+    };
+    let reused = solve(&stage);
+    stage.problems[index].seed_route_probe = None;
+    let afresh = solve(&stage);
+    assert_eq!(reused.accounted, afresh.accounted);
+    assert_eq!(reused.tracked + afresh.accounted, afresh.tracked);
+    assert_eq!(
+        format!("{:?}", reused.candidates),
+        format!("{:?}", afresh.candidates)
+    );
+}
