@@ -219,6 +219,15 @@ impl Design {
         }
     }
 
+    /// The shortest edge of the base triangle (`platform == false`) or of the
+    /// platform triangle over its longest: 0 where two anchors coincide, at least
+    /// about 1/2 for a well-shaped triangle.
+    pub fn edge_ratio(&self, platform: bool) -> f64 {
+        let lengths = edges(if platform { &self.platform } else { &self.base });
+        let longest = lengths.into_iter().fold(0.0f64, f64::max);
+        lengths.into_iter().fold(f64::INFINITY, f64::min) / longest
+    }
+
     /// Base anchors `A_1, A_2, A_3` (fixed frame).
     pub fn base(&self) -> &[Point<f64>; 3] {
         &self.base

@@ -506,6 +506,17 @@ pub(super) fn seed_stage_with_probes(
     })
 }
 
+/// Rigid parts whose shortest edge is below this fraction of their longest get the
+/// seed-route probe of [`probe_seed_route`].
+const CLOSE_ANCHORS: f64 = 1e-2;
+
+/// Whether a rigid part of `id`'s metric has two anchors closer than
+/// [`CLOSE_ANCHORS`] times its longest edge (coincident ones included).
+pub(super) fn close_rigid_anchors(id: ProblemId, design: &Design) -> bool {
+    (id.metric.base == Part::Rigid && design.edge_ratio(false) < CLOSE_ANCHORS)
+        || (id.metric.platform == Part::Rigid && design.edge_ratio(true) < CLOSE_ANCHORS)
+}
+
 /// The first run of the seed route to a pose list's first pose ([`probe_seed_route`]).
 pub struct SeedRouteProbe {
     /// The pose.
@@ -532,9 +543,14 @@ impl SeedRouteProbe {
 /// not only at its end, and a route that runs out of steps at one pose runs out at
 /// the others: on that design the `bars/rigid` and `plate/rigid` seed routes ran out
 /// at 19 of the 20 poses of an 8-pose run and its self-check, each after about 30 ms,
-/// before the generic route solved the pose. `None` for analytic motions (whose poses
-/// are solved from their neighbours, a few from the seed) and where the seed has
-/// fewer solutions than the expected count (the generic route comes first anyway).
+/// before the generic route solved the pose. Only for designs with such close anchors
+/// ([`close_rigid_anchors`]): elsewhere the seed route completes the poses, and the run
+/// to the first pose is best left to the poses' parallel stage (on generic designs
+/// tracking it here made 8-pose lists 3–5 % slower, the same paths). `None` also for
+/// analytic motions (whose poses are solved from their neighbours, a few from the
+/// seed), for a list of one pose (a seed stage at a pose, see [`super::local_seed`],
+/// whose counts may be all it is for) and where the seed has fewer solutions than the
+/// expected count (the generic route comes first anyway).
 fn probe_seed_route(
     seeded: &SeededProblem,
     motion: &Motion,
@@ -544,6 +560,9 @@ fn probe_seed_route(
     let Motion::Poses(list) = motion else {
         return None;
     };
+    if list.poses.len() < 2 || !close_rigid_anchors(seeded.id, &seeded.design) {
+        return None;
+    }
     let first = SampledPose {
         tau: 0.0,
         pose: *list.poses.first()?,

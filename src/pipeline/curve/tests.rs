@@ -256,8 +256,7 @@ fn a_critical_point_at_a_fritz_john_point_of_the_twin_completes_the_generic_rout
 /// a pose list's first pose, and the stage records it: at another pose the generic
 /// route comes first, and the pose is complete without the seed route's paths
 /// (before: the 80 seed-route paths, abandoned when one ran out of steps, then the
-/// generic route's). On a generic design the probe completes and is the first pose's
-/// first run.
+/// generic route's). Where the probe completes, it is the first pose's first run.
 #[test]
 fn a_seed_route_that_runs_out_of_steps_at_the_first_pose_is_skipped_at_the_others() {
     use crate::reference::designs::design_case;
@@ -293,10 +292,13 @@ fn a_seed_route_that_runs_out_of_steps_at_the_first_pose_is_skipped_at_the_other
         "{} paths",
         at_pose.entry.tracked
     );
-    // Where the probe completes, its pose takes the probe's paths as its first run:
-    // the same endpoints as a pose whose seed route is tracked afresh, and the paths
-    // are not tracked (nor counted) twice.
-    let (motion, options, mut stage, index) = probed("random-scale-1");
+    // A generic design is not probed. Where the probe completes (base anchors 2 and 3
+    // 10⁻⁴ apart), its pose takes the probe's paths as its first run: the same
+    // endpoints as a pose whose seed route is tracked afresh, and the paths are not
+    // tracked (nor counted) twice.
+    let (_, _, stage, index) = probed("random-scale-1");
+    assert!(stage.problems[index].seed_route_probe.is_none());
+    let (motion, options, mut stage, index) = probed("close-base-23");
     let probe = stage.problems[index]
         .seed_route_probe
         .as_ref()
