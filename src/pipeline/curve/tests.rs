@@ -80,6 +80,28 @@ fn singularity_stage(
     (options, stage, index)
 }
 
+/// Sub-problem `index` solved from the seed at a pose: no failure, all `generic` paths
+/// accounted for, fewer than `most` paths tracked.
+fn complete_from_the_seed(
+    context: SolveContext<'_>,
+    (pose, sample): (usize, SampledPose),
+    index: usize,
+    (generic, most): (usize, usize),
+) {
+    let at_pose = track_problem(context, (pose, sample), index, Route::Seed);
+    assert!(
+        at_pose.entry.failure.is_none(),
+        "{:?}",
+        at_pose.entry.failure
+    );
+    assert_eq!(at_pose.entry.accounted, generic);
+    assert!(
+        at_pose.entry.tracked < most,
+        "{} paths",
+        at_pose.entry.tracked
+    );
+}
+
 /// A seed count below the generic one is tested at the motion's first pose: the
 /// example's `plate/plate` seed has all 50 critical points; with one dropped (a count
 /// two seed points could have agreed on wrongly) the generic route to the first pose
@@ -227,18 +249,7 @@ fn a_critical_point_at_a_fritz_john_point_of_the_twin_completes_the_generic_rout
         (generic, generic - 1)
     );
     assert!(from_generic.at_infinity_in_twin >= 1);
-    let at_pose = track_problem(context, (4, samples[4]), index, Route::Seed);
-    assert!(
-        at_pose.entry.failure.is_none(),
-        "{:?}",
-        at_pose.entry.failure
-    );
-    assert_eq!(at_pose.entry.accounted, generic);
-    assert!(
-        at_pose.entry.tracked < 200,
-        "{} paths",
-        at_pose.entry.tracked
-    );
+    complete_from_the_seed(context, (4, samples[4]), index, (generic, 200));
     let pose = samples[4].pose;
     let result = solve_pose(&stage, &design, &motion, &metrics, 4, samples[4], &options);
     let k = design.configuration(pose).to_array();
@@ -280,18 +291,7 @@ fn a_seed_route_that_runs_out_of_steps_at_the_first_pose_is_skipped_at_the_other
         motion: &motion,
         options: &options,
     };
-    let at_pose = track_problem(context, (3, samples[3]), index, Route::Seed);
-    assert!(
-        at_pose.entry.failure.is_none(),
-        "{:?}",
-        at_pose.entry.failure
-    );
-    assert_eq!(at_pose.entry.accounted, generic);
-    assert!(
-        at_pose.entry.tracked < 2 * generic,
-        "{} paths",
-        at_pose.entry.tracked
-    );
+    complete_from_the_seed(context, (3, samples[3]), index, (generic, 2 * generic));
     // A generic design is not probed. Where the probe completes (base anchors 2 and 3
     // 10⁻⁴ apart), its pose takes the probe's paths as its first run: the same
     // endpoints as a pose whose seed route is tracked afresh, and the paths are not
