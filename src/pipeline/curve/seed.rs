@@ -544,9 +544,9 @@ impl SeedRouteProbe {
 /// the others: on that design the `bars/rigid` and `plate/rigid` seed routes ran out
 /// at 19 of the 20 poses of an 8-pose run and its self-check, each after about 30 ms,
 /// before the generic route solved the pose. Only for designs with such close anchors
-/// ([`close_rigid_anchors`]): elsewhere the seed route completes the poses, and the run
-/// to the first pose is best left to the poses' parallel stage (on generic designs
-/// tracking it here made 8-pose lists 3–5 % slower, the same paths). `None` also for
+/// ([`close_rigid_anchors`]): elsewhere the seed route completes the poses, and the
+/// probe would only move the first pose's run from the poses' parallel stage into the
+/// seed stage. `None` also for
 /// analytic motions (whose poses are solved from their neighbours, a few from the
 /// seed), for a list of one pose (a seed stage at a pose, see [`super::local_seed`],
 /// whose counts may be all it is for) and where the seed has fewer solutions than the
