@@ -105,6 +105,8 @@ impl Default for SolveOptions {
                     growth_before_divergence: true,
                     settle_on_direct_endpoint: true,
                     settle_on_stalled_estimate: true,
+                    direct_finish_at_settled_condition: true,
+                    reject_averaging_loops: true,
                     ..EndgameOptions::default()
                 },
                 ..TrackerOptions::default()
@@ -432,6 +434,9 @@ where
         options.tracker.endgame.settle_on_direct_endpoint;
     conservative.endgame.settle_on_stalled_estimate =
         options.tracker.endgame.settle_on_stalled_estimate;
+    conservative.endgame.direct_finish_at_settled_condition =
+        options.tracker.endgame.direct_finish_at_settled_condition;
+    conservative.endgame.reject_averaging_loops = options.tracker.endgame.reject_averaging_loops;
     if options.retry_failed {
         assign_multiplicities(&mut paths, options.cluster_tolerance);
         let duplicated = duplicated_nonsingular(homotopy, &paths);
@@ -566,31 +571,24 @@ where
     }
 }
 
-/// A singular endpoint of winding number `c ≥ 2` whose residual exceeds
-/// `10^(c − AVERAGING_LOOP_EXPONENT)` relative to `1 + ‖x‖∞` is the average of distinct
-/// roots, not a root: [`fail_averaging_loops`].
-const AVERAGING_LOOP_EXPONENT: i32 = 10;
-
-/// Marks failed (`EndgameDidNotConverge`), and returns, every singular endpoint of
-/// winding number `c ≥ 2` whose residual is above `10^(c − 10)` relative to
-/// `1 + ‖x‖∞`. A Cauchy
-/// loop whose radius encloses two nearby nonsingular roots closes after two turns,
-/// and its estimate, stable from radius to radius, is their mean: PHCpack's
-/// `discret3s` at seed 7 counted two such means (residual 4.5·10⁻⁶ relative) as double
-/// roots, each reached by two paths, and missed roots with no failed path. The
-/// genuine singular endpoints of the demo suite (three seeds) stay far below the
-/// bound: winding 2 at most 1.7·10⁻¹³ (`caprasse`), 3 at 8·10⁻¹³, 8 and 9 at 3·10⁻⁹
-/// and 1.3·10⁻⁸ (`cohn3`). A failed path is re-tracked, then tried in projective
-/// charts, and reported if it still fails.
+/// Marks failed (`EndgameDidNotConverge`), and returns, every singular endpoint that
+/// is the average of distinct roots ([`super::tracker::is_averaged_estimate`]: residual
+/// above `10^(c − 10)` relative to `1 + ‖x‖∞` at winding number `c ≥ 2`), the mean a
+/// Cauchy loop around two nearby nonsingular roots closes on. The endgame rejects
+/// such estimates itself where `reject_averaging_loops` is on; this catches those of
+/// trackers without it. A failed path is re-tracked, then tried in projective charts,
+/// and reported if it still fails.
 fn fail_averaging_loops(paths: &mut [PathResult]) -> Vec<usize> {
     let mut failed = Vec::new();
     for p in paths.iter_mut() {
         if p.status != PathStatus::Singular || p.winding_number < 2 {
             continue;
         }
-        let exponent =
-            (p.winding_number as i32).min(AVERAGING_LOOP_EXPONENT) - AVERAGING_LOOP_EXPONENT;
-        if p.residual > 10f64.powi(exponent) * (1.0 + super::newton::max_norm(&p.solution)) {
+        if super::tracker::is_averaged_estimate(
+            p.winding_number,
+            p.residual,
+            super::newton::max_norm(&p.solution),
+        ) {
             p.status = PathStatus::Failed(FailureReason::EndgameDidNotConverge);
             failed.push(p.path_index);
         }

@@ -13,6 +13,16 @@ use super::{
 };
 use crate::C64;
 
+/// Ratio of successive Newton updates above which [`Tracker::refine_at`] leaves double
+/// precision: near a regular root each update is at most half the last (Smale's
+/// α-theory), so a larger ratio is rounding noise or a singular root.
+const REFINEMENT_STAGNATION: f64 = 0.5;
+
+/// Newton iterations [`Tracker::refine_at`] has at least left after switching to
+/// extended precision: its first update removes the double-precision iterate's error,
+/// the next ones confirm quadratic convergence.
+const EXTENDED_REFINEMENT_ITERATIONS: usize = 3;
+
 impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     /// Newton's method at `t` from `prediction` (an approximation of a nonsingular
     /// solution of `H(x, t) = 0`, e.g. extrapolated from the solutions at neighbouring
@@ -138,14 +148,18 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     }
 
     /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
-    /// In double precision (unless the tracker is in extended mode) while the updates
-    /// contract; where they stagnate above `10⁻¹³` relative (rounding noise of an
-    /// ill-conditioned point) the remaining iterations run in extended precision.
+    /// In double precision (unless the tracker is in extended mode) while each update
+    /// is at most half the last ([`REFINEMENT_STAGNATION`]); where they stagnate
+    /// above `10⁻¹³` relative (rounding noise of an ill-conditioned point, or a
+    /// Jacobian rounded there) the remaining iterations, at least
+    /// [`EXTENDED_REFINEMENT_ITERATIONS`], run in extended precision.
     pub(super) fn refine_at(&mut self, t: C64) -> (bool, f64) {
         let mut previous = f64::INFINITY;
         let mut converged = false;
         let mut extended = self.precision.extended;
-        for _ in 0..self.options.endgame.refinement_iterations {
+        let mut remaining = self.options.endgame.refinement_iterations;
+        while remaining > 0 {
+            remaining -= 1;
             self.x_saved.copy_from_slice(&self.x);
             match self.eval.newton(self.homotopy, &mut self.x, t, extended) {
                 NewtonUpdate::Singular => {
@@ -154,22 +168,32 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 }
                 NewtonUpdate::Step(norm) => {
                     let scale = 1.0 + max_norm(&self.x);
-                    if norm > previous && norm > 1e-14 * scale {
-                        // No longer contracting: keep the previous iterate. In double
-                        // precision try again in extended precision; there, if the
-                        // updates were already at rounding level for the condition of
-                        // the point (below 1e-9 relative), that is the attainable
-                        // accuracy: converged.
-                        self.x.copy_from_slice(&self.x_saved);
-                        if !extended {
-                            extended = true;
-                            continue;
-                        }
-                        converged = previous <= 1e-9 * scale;
-                        break;
-                    }
                     if norm <= 1e-13 * scale {
                         converged = true;
+                        previous = norm;
+                        break;
+                    }
+                    if !extended && norm > REFINEMENT_STAGNATION * previous {
+                        // Double precision stagnates: rounding noise of an
+                        // ill-conditioned point (or the linear convergence at a
+                        // singular one). A worse iterate is dropped; extended
+                        // precision takes over, its first update measuring the error
+                        // of the double-precision iterate.
+                        if norm > previous {
+                            self.x.copy_from_slice(&self.x_saved);
+                        }
+                        extended = true;
+                        previous = f64::INFINITY;
+                        remaining = remaining.max(EXTENDED_REFINEMENT_ITERATIONS);
+                        continue;
+                    }
+                    if norm > previous {
+                        // No longer contracting in extended precision: keep the
+                        // previous iterate; if its update was already at rounding level
+                        // for the condition of the point (below 1e-9 relative), that
+                        // is the attainable accuracy: converged.
+                        self.x.copy_from_slice(&self.x_saved);
+                        converged = previous <= 1e-9 * scale;
                         break;
                     }
                     previous = norm;
@@ -184,6 +208,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
 mod tests {
     use super::*;
     use crate::homotopy::tracker::tests::on_square;
+    use crate::homotopy::{Homotopy, TrackerOptions};
 
     #[test]
     fn correct_at_converges_to_the_nearest_root_and_counts_its_updates() {
@@ -211,6 +236,89 @@ mod tests {
             PathStatus::Failed(FailureReason::CorrectorDidNotConverge),
             "{result:?}"
         );
+    }
+
+    /// A regular root of condition 4·10¹⁰ (two nearly parallel lines): in double
+    /// precision Newton's updates are rounding noise of about 10⁻⁶, neither shrinking
+    /// nor growing steadily; the refinement switches to extended precision, where two
+    /// updates reach the root.
+    #[test]
+    fn refinement_of_an_ill_conditioned_root_converges_in_extended_precision() {
+        use crate::homotopy::test_support::read_xy;
+        use crate::homotopy::{StraightLineHomotopy, TotalDegreeStartSystem};
+        let target = read_xy("f = x + y - 2;\ng = x + 1.0000000001*y - 2.0000000001;");
+        let start = TotalDegreeStartSystem::new(vec![1, 1]);
+        let homotopy = StraightLineHomotopy::new(&start, &target, vec![], C64::new(0.6, 0.8));
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        let one = C64::new(1.0, 0.0);
+        for offset in [1e-3, 1e-6, -3e-5] {
+            tracker.reset(
+                &[C64::new(1.0 + offset, 0.0), C64::new(1.0 - offset, 0.0)],
+                1.0,
+            );
+            let (converged, last) = tracker.refine_at(one);
+            assert!(converged, "offset {offset}: last update {last:e}");
+            assert!(tracker.condition_at(one) > 1e10);
+            let error = (tracker.x[0] - one).norm().max((tracker.x[1] - one).norm());
+            assert!(error < 1e-4, "offset {offset}: {:?}", tracker.x);
+        }
+    }
+
+    /// `H(x, t) = x − 1` whose double-precision Jacobian is off by a factor 5 (as a
+    /// Jacobian rounded at an ill-conditioned point is) while the extended one is
+    /// exact: Newton's updates in double precision shrink by 0.8 each, never growing.
+    struct InaccurateDoubleJacobian;
+
+    impl Homotopy for InaccurateDoubleJacobian {
+        fn dimension(&self) -> usize {
+            1
+        }
+        fn workspace_len(&self) -> usize {
+            0
+        }
+        fn evaluate(&self, x: &[C64], _: C64, _: &mut [C64], h: &mut [C64]) {
+            h[0] = x[0] - 1.0;
+        }
+        fn evaluate_with_jacobian(
+            &self,
+            x: &[C64],
+            t: C64,
+            work: &mut [C64],
+            h: &mut [C64],
+            jac: &mut [C64],
+        ) {
+            self.evaluate(x, t, work, h);
+            jac[0] = C64::new(5.0, 0.0);
+        }
+        fn evaluate_time_derivative(&self, _: &[C64], _: C64, _: &mut [C64], dh: &mut [C64]) {
+            dh[0] = C64::new(0.0, 0.0);
+        }
+        fn evaluate_with_jacobian_extended(
+            &self,
+            x: &[C64],
+            t: C64,
+            work: &mut [C64],
+            h: &mut [C64],
+            (jac, jac_low): (&mut [C64], &mut [C64]),
+        ) {
+            self.evaluate(x, t, work, h);
+            jac[0] = C64::new(1.0, 0.0);
+            jac_low[0] = C64::new(0.0, 0.0);
+        }
+    }
+
+    /// Double-precision updates that contract only linearly (by 0.8 here) hand over
+    /// to extended precision, which converges; before, six such updates ended the
+    /// refinement unconverged.
+    #[test]
+    fn linearly_contracting_double_updates_hand_over_to_extended_precision() {
+        let homotopy = InaccurateDoubleJacobian;
+        let mut tracker = Tracker::new(&homotopy, TrackerOptions::default());
+        let one = C64::new(1.0, 0.0);
+        tracker.reset(&[C64::new(1.5, 0.0)], 1.0);
+        let (converged, _) = tracker.refine_at(one);
+        assert!(converged);
+        assert!((tracker.x[0] - one).norm() < 1e-15, "{:?}", tracker.x);
     }
 
     #[test]

@@ -82,6 +82,7 @@ mod options;
 mod precision;
 mod step;
 
+pub(crate) use endgame::is_averaged_estimate;
 pub use options::{
     CURVE_AT_INFINITY_NORM, CURVE_EXTENDED_AFTER_REJECTIONS, CURVE_MAX_STEPS,
     CURVE_PREDICTION_TOLERANCE, CURVE_SEED_EXTENDED_AFTER_REJECTIONS, EndgameOptions,

@@ -150,7 +150,11 @@ pub struct EndgameOptions {
     /// root if it converges there with a condition number below
     /// `singular_condition` (a duplicate of another path's root is then reported as a
     /// jumped path), else the endpoint is singular. PHCpack's `fourbar` lost two such
-    /// paths per run. On for `solve`, off in the presets.
+    /// paths per run. An estimate at a point that is not singular after equilibration
+    /// is refined the same way and ends the path at a nonsingular root if Newton's
+    /// method converges there with an equilibrated condition number below
+    /// `singular_condition` (a regular root too badly scaled for the loops' estimates
+    /// to agree), else the path fails. On for `solve`, off in the presets.
     #[serde(default)]
     pub settle_on_stalled_estimate: bool,
     /// In a chart of projective space (a homotopy with a homogenising coordinate
@@ -160,6 +164,27 @@ pub struct EndgameOptions {
     /// `solve` turns it on; off in the presets.
     #[serde(default)]
     pub homogenizing_valuation_test: bool,
+    /// The direct finish to `t = 1` also above `direct_finish_condition` (up to
+    /// `singular_condition`) once the condition number has settled: at most 1.5 ×
+    /// its value at the previous radius, at two radii in a row. Towards a singular
+    /// endpoint of winding number `c` it grows like `s^{-(1 - 1/c)}` (at least 2 × per
+    /// radius); a nonsingular but ill-conditioned root keeps its condition number, and
+    /// a Cauchy loop around it may enclose the branch points where its path meets a
+    /// neighbour's (PHCpack's `discret3s`: roots of condition 10⁸–10⁹ at norms
+    /// 10⁴–10⁵, 11 % apart). On for `solve`, off in the presets.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub direct_finish_at_settled_condition: bool,
+    /// A Cauchy estimate of winding number `c ≥ 2` whose residual is above
+    /// `10^(c − 10)` relative to `1 + ‖x‖∞` ([`super::is_averaged_estimate`]) is not
+    /// accepted; the endgame goes on to smaller radii. Such a loop encloses a branch
+    /// point where two paths to distinct roots meet, not the endpoint: the mean of
+    /// the two sheets is analytic inside it, so the estimates agree from radius to
+    /// radius, but inside the branch point's radius the loop closes after one turn
+    /// on the path's own root (`discret3s`: two roots of norm 2·10⁴, loops of winding
+    /// number 2 down to `s = 3.7·10⁻¹⁰`, one turn at `9·10⁻¹¹`). On for `solve`, off
+    /// in the presets.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub reject_averaging_loops: bool,
 }
 
 fn is_false(value: &bool) -> bool {
@@ -262,6 +287,8 @@ impl Default for EndgameOptions {
             settle_on_direct_endpoint: false,
             settle_on_stalled_estimate: false,
             homogenizing_valuation_test: false,
+            direct_finish_at_settled_condition: false,
+            reject_averaging_loops: false,
         }
     }
 }
