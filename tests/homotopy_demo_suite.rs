@@ -263,3 +263,35 @@ fn roots_of_q_lost_on_one_lifting_are_found_on_another() {
     assert_eq!(roots.len(), 198, "{s:?}");
     assert_eq!(s.nonsingular, 198, "{s:?}");
 }
+
+/// The report of paths put at infinity after stalling near the roots
+/// (`summary.stalled_near_roots`): with residuals in double precision only
+/// (`extended_residual: false`) and the endgame's settled-condition direct finish and
+/// averaging test off, as before they existed, the paths to `discret3s`'s largest roots
+/// (norms 5·10⁴–1.2·10⁵) stall at `s ≈ 10⁻¹⁰` and are put at infinity: they are counted,
+/// and roots are missing. With the default options every root is found and nothing is
+/// counted; `reimer5`'s stalled paths stop at 19 times its largest root or more, and
+/// are not counted either.
+#[test]
+fn paths_stalled_near_the_roots_are_counted() {
+    let system = load("discret3s");
+    let degrees: Vec<u32> = system.degrees().iter().map(|&d| d as u32).collect();
+    let mut options = SolveOptions::default();
+    options.tracker.precision.extended_residual = false;
+    options.tracker.endgame.direct_finish_at_settled_condition = false;
+    options.tracker.endgame.reject_averaging_loops = false;
+    let compiled = system.compile();
+    let stalled = solve_total_degree(&compiled, &degrees, &[], &options).unwrap();
+    let s = &stalled.summary;
+    assert!(s.stalled_near_roots >= 1, "{s:?}");
+    assert!(s.nonsingular < 128, "{s:?}");
+    let solved = solve_total_degree(&compiled, &degrees, &[], &SolveOptions::default()).unwrap();
+    assert_eq!(solved.summary.stalled_near_roots, 0, "{:?}", solved.summary);
+    assert_eq!(solved.summary.nonsingular, 128, "{:?}", solved.summary);
+    let system = load("reimer5");
+    let degrees: Vec<u32> = system.degrees().iter().map(|&d| d as u32).collect();
+    let result =
+        solve_total_degree(&system.compile(), &degrees, &[], &SolveOptions::default()).unwrap();
+    assert_eq!(result.summary.stalled_near_roots, 0, "{:?}", result.summary);
+    assert!(result.summary.at_infinity > 0);
+}

@@ -758,8 +758,9 @@ pub fn run(args: SolveArgs) -> anyhow::Result<Outcome> {
 /// ([`distinct_nonsingular_roots`]: refined by Newton's method, grouped at their
 /// accuracy). Every run's nonsingular roots are roots of the system, so a run that
 /// reports no failed path but lacks one has classified a path to it wrongly (at
-/// infinity, or singular): on PHCpack's `discret3s` at seed 12 the total-degree run
-/// reported 114 nonsingular roots and no failed path, the polyhedral run it
+/// infinity, or singular): on PHCpack's `discret3s` at seed 12, before its
+/// ill-conditioned roots were followed in extended precision, the total-degree run
+/// reported 114 nonsingular roots and no failed path, and the polyhedral run it
 /// superseded (114 and two failed paths) had found others.
 fn roots_missing_from(system: &CompiledSystem, result: &SolveResult, others: &[Vec<C64>]) -> usize {
     if others.is_empty() {
@@ -800,5 +801,59 @@ fn emit(text: &str) -> anyhow::Result<()> {
     match std::io::stdout().lock().write_all(text.as_bytes()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         other => Ok(other?),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cubic() -> CompiledSystem {
+        let text = "INPUT\nvariable_group x;\nfunction f;\nf = (x^2 - 1)*(x - 2);\nEND;\n";
+        bertini::read(text).unwrap().compile()
+    }
+
+    /// A run that put the path to one root at infinity (no failed path) lacks the
+    /// root another run found: counted once, however often the other run lists it or
+    /// however far its copy is from the refined root; the roots it has are not.
+    #[test]
+    fn roots_only_another_run_found_are_counted() {
+        let system = cubic();
+        let mut result = solve_total_degree(&system, &[3], &[], &SolveOptions::default()).unwrap();
+        assert_eq!(result.summary.nonsingular, 3);
+        let lost = result
+            .paths
+            .iter()
+            .position(|p| (p.solution[0] - 2.0).norm() < 1e-12)
+            .unwrap();
+        result.paths[lost].status = PathStatus::AtInfinity;
+        let others = result.finite_endpoints();
+        assert_eq!(roots_missing_from(&system, &result, &others), 0);
+        let two = vec![C64::new(2.0 + 1e-9, 0.0)];
+        let found = [others.clone(), vec![two.clone(), two]].concat();
+        assert_eq!(roots_missing_from(&system, &result, &found), 1);
+        assert_eq!(roots_missing_from(&system, &result, &[]), 0);
+    }
+
+    /// The text summary names the roots only other runs found.
+    #[test]
+    fn the_summary_names_roots_only_other_runs_found() {
+        let mut output = StartOutput::new(
+            &StartChoice::TotalDegree {
+                paths: 3,
+                search: None,
+            },
+            3,
+            &[],
+        );
+        assert!(!output.text().contains("other runs"));
+        output.roots_only_in_other_runs = 2;
+        assert!(
+            output
+                .text()
+                .contains("other runs    2 nonsingular root(s) found only by another run\n"),
+            "{}",
+            output.text()
+        );
     }
 }

@@ -175,10 +175,11 @@ pub struct SolveSummary {
 /// norm is at most this many times the largest nonsingular root's is counted in
 /// [`SolveSummary::stalled_near_roots`]. PHCpack's `discret3s` has 128 roots (its demo
 /// file's list), the largest of norms 4.8·10⁴–1.2·10⁵ along a direction in which the
-/// system nearly has solutions at infinity; at the default seed the paths to five of
-/// them stall at `s = 10⁻¹⁰ … 6·10⁻⁹` with norms 1.9–13 times the largest root found
-/// (3.1·10⁴). Elsewhere on the demo suite the stalled paths stop at 19 (`reimer5`)
-/// to 10⁷ times the largest root, except `fbremb2`'s two (1.2 times).
+/// system nearly has solutions at infinity; with residuals in double precision only
+/// the paths to five of them stall at `s = 10⁻¹⁰ … 6·10⁻⁹` with norms 1.9–13 times
+/// the largest root found (3.1·10⁴). Elsewhere on the demo suite the stalled paths
+/// stop at 19 (`reimer5`) to 10⁷ times the largest root, except `fbremb2`'s two (1.2
+/// times) and `cohn3`'s at some seeds (1–9 paths, all of its 130 roots found).
 pub const STALLED_NEAR_ROOTS: f64 = 10.0;
 
 /// Result of a solve run: every path in path order, and the summary.

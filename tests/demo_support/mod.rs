@@ -6,7 +6,7 @@
 
 /// (file stem, verified number of distinct nonsingular roots) of the systems the
 /// total-degree homotopy solves without a failed path.
-pub const SYSTEMS: [(&str, usize); 14] = [
+pub const SYSTEMS: [(&str, usize); 15] = [
     ("cyclic5", 70),
     ("katsura6", 64),
     ("caprasse", 24),
@@ -27,6 +27,10 @@ pub const SYSTEMS: [(&str, usize); 14] = [
     // A double root whose second path never got a Cauchy loop (its condition number grew,
     // but stayed below the direct finish's bound) and failed.
     ("redcyc5", 14),
+    // Roots of norm up to 1.2·10⁵ and condition up to 7·10⁹ (a Hilbert-like quadratic
+    // part, nearly solutions at infinity), pairs of them 11 % apart: paths stalled in
+    // double-precision residuals and Cauchy loops closed around two roots at once.
+    ("discret3s", 128),
 ];
 
 /// (file stem, singular roots, paths to them) of committed systems whose roots are
