@@ -31,9 +31,7 @@
 mod bench_support;
 use serde_json::Value;
 use singdist::C64;
-use singdist::homotopy::{
-    accuracy_at_condition, equilibrated_condition, group_roots, newton_refine,
-};
+use singdist::homotopy::{accuracy_at_condition, group_roots, newton_refine};
 use singdist::system::scaling::Scaling;
 use singdist::system::{CompiledSystem, System, bertini, phc};
 use std::path::{Path, PathBuf};
@@ -42,10 +40,7 @@ use std::time::Instant;
 
 /// Newton stops at corrections below this (relative).
 const NEWTON_TOLERANCE: f64 = 1e-13;
-/// Condition number below which a converged Newton limit is a nonsingular root: its
-/// condition number as it is or after row and column equilibration
-/// ([`equilibrated_condition`]), which a badly scaled root needs (`cohn3`'s root of
-/// norm 10⁴: 1.2·10¹¹ in the least-squares scaling, 1.3·10⁵ equilibrated).
+/// Condition number below which a converged Newton limit is a nonsingular root.
 const NONSINGULAR_CONDITION: f64 = 1e11;
 /// Two refined nonsingular roots closer than this (relative, plus `10·κ·ε`, how far a
 /// root at condition κ moves when the coefficients are rounded) are the same root.
@@ -196,11 +191,7 @@ fn distinct_nonsingular(
     let refined: Vec<(Vec<C64>, f64)> = points
         .iter()
         .map(|x| newton_refine(system, x, &[], NEWTON_TOLERANCE, 60))
-        .filter(|r| {
-            r.is_nonsingular(NONSINGULAR_CONDITION)
-                || r.converged
-                    && equilibrated_condition(system, &r.point, &[]) < NONSINGULAR_CONDITION
-        })
+        .filter(|r| r.is_nonsingular(NONSINGULAR_CONDITION))
         .map(|r| {
             let accuracy = accuracy_at_condition(r.condition);
             (r.point, accuracy)

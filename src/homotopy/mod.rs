@@ -45,8 +45,8 @@ pub use polyhedral::{
     solve_from_polyhedral_start, solve_polyhedral,
 };
 pub use refine::{
-    Refinement, accuracy_at_condition, contains_point, distinct_nonsingular_roots,
-    equilibrated_condition, group_roots, newton_refine, same_point, same_root,
+    Refinement, accuracy_at_condition, contains_point, distinct_nonsingular_roots, group_roots,
+    newton_refine, same_point, same_root,
 };
 pub use solve::{
     HomotopyError, STALLED_NEAR_ROOTS, SolveOptions, SolveResult, SolveSummary,

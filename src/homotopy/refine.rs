@@ -120,49 +120,6 @@ pub fn newton_refine<F: Evaluator + ?Sized>(
     result
 }
 
-/// Condition estimate of `∂F/∂x` at `x` after row and column equilibration (each row,
-/// then each column, divided by its largest modulus): diagonal scalings keep the rank,
-/// so a singular Jacobian stays ill-conditioned, while a nonsingular root whose
-/// coordinates or equations are badly scaled comes out well conditioned (PHCpack's
-/// `cohn3`: a root of norm 10⁴ at condition 1.2·10¹¹ in the system's least-squares
-/// scaling, 1.3·10⁵ equilibrated). Infinite where the Jacobian is singular.
-pub fn equilibrated_condition<F: Evaluator + ?Sized>(
-    system: &F,
-    x: &[C64],
-    parameters: &[C64],
-) -> f64 {
-    let n = system.num_variables();
-    let zero = C64::new(0.0, 0.0);
-    let mut work = vec![zero; system.workspace_len()];
-    let mut f = vec![zero; system.num_equations()];
-    let mut jac = vec![zero; system.num_equations() * n];
-    system.evaluate_with_jacobian(x, parameters, &mut work, &mut f, &mut jac);
-    equilibrate(&mut jac, n);
-    let mut lu = LuWorkspace::new(n);
-    if lu.factor(&jac) {
-        lu.condition_estimate()
-    } else {
-        f64::INFINITY
-    }
-}
-
-/// Divides each row of the row-major matrix `a` (`n` columns), then each column, by
-/// its largest modulus (rows or columns of zeros stay as they are).
-pub(crate) fn equilibrate(a: &mut [C64], n: usize) {
-    for row in a.chunks_mut(n) {
-        let largest = row.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-        if largest > 0.0 {
-            row.iter_mut().for_each(|v| *v /= largest);
-        }
-    }
-    for j in 0..n {
-        let largest = a.chunks(n).fold(0.0f64, |m, row| m.max(row[j].norm()));
-        if largest > 0.0 {
-            a.chunks_mut(n).for_each(|row| row[j] /= largest);
-        }
-    }
-}
-
 /// Whether two refined roots `a` and `b` (limits of [`newton_refine`]) are the same
 /// root: their distance is below `(tolerance + accuracy) · (1 + ‖a‖∞)`, `accuracy` the
 /// larger relative accuracy of the two ([`accuracy_at_condition`] or
@@ -257,21 +214,6 @@ mod tests {
 
     fn system(text: &str) -> crate::system::CompiledSystem {
         bertini::read(text).unwrap().compile()
-    }
-
-    /// A root whose coordinates differ in size by 10¹² has a Jacobian of condition 10¹²
-    /// as it is and 1 equilibrated; a singular Jacobian stays singular.
-    #[test]
-    fn equilibration_removes_bad_scaling_but_not_singularity() {
-        let f = system("variable_group x, y;\nfunction f, g;\nf = x - 1;\ng = 1e-12*y - 1;\n");
-        let root = [C64::new(1.0, 0.0), C64::new(1e12, 0.0)];
-        let raw = newton_refine(&f, &root, &[], 1e-13, 5).condition;
-        assert!(raw > 1e11, "{raw}");
-        assert!((equilibrated_condition(&f, &root, &[]) - 1.0).abs() < 1e-12);
-        let g =
-            system("variable_group x, y;\nfunction f, g;\nf = x + y - 2;\ng = 2*x + 2*y - 4;\n");
-        let point = [C64::new(1.0, 0.0), C64::new(1.0, 0.0)];
-        assert!(equilibrated_condition(&g, &point, &[]) > 1e15);
     }
 
     /// Newton converges to the nonsingular root √2 and stalls at the double root of x².

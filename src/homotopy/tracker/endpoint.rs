@@ -128,7 +128,18 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         let e = &mut self.eval;
         self.homotopy
             .evaluate_with_jacobian(&self.x, t, &mut e.work, &mut e.h, &mut e.jac);
-        crate::homotopy::refine::equilibrate(&mut e.jac, n);
+        for row in e.jac.chunks_mut(n) {
+            let largest = row.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+            if largest > 0.0 {
+                row.iter_mut().for_each(|v| *v /= largest);
+            }
+        }
+        for j in 0..n {
+            let largest = (0..n).fold(0.0f64, |m, i| m.max(e.jac[i * n + j].norm()));
+            if largest > 0.0 {
+                (0..n).for_each(|i| e.jac[i * n + j] /= largest);
+            }
+        }
         if e.lu.factor(&e.jac) {
             e.lu.condition_estimate()
         } else {
