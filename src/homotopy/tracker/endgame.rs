@@ -43,6 +43,10 @@ const CYCLE_ESTIMATE_AGREEMENT: f64 = 0.1;
 /// cycle-number estimate before it loops anyway.
 const MAX_WAITING_RADII: usize = 4;
 
+/// Largest ratio of successive Newton updates that [`Tracker::refines_to_regular_root`]
+/// takes for quadratic convergence (at a double root each update is half the last).
+const QUADRATIC_CONVERGENCE_RATIO: f64 = 0.01;
+
 /// Exponent of the averaging test ([`is_averaged_estimate`]).
 const AVERAGING_LOOP_EXPONENT: i32 = 10;
 
@@ -503,13 +507,18 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     }
 
     /// Whether Newton's method at `t = 1` from the last Cauchy estimate
-    /// (`previous_estimate`) converges to a root whose equilibrated condition number
-    /// ([`Tracker::equilibrated_condition_at`]) is below `singular_condition`: a
-    /// regular root too badly scaled for the loops' estimates to agree to the
-    /// endgame's tolerance. Its raw condition number may exceed `singular_condition`
-    /// (PHCpack's `cohn3`: a root of norm 10⁴, found by neither PHCpack nor singdist
-    /// before, condition 10¹¹ in the scaled variables, 10⁵ after equilibration). If so
-    /// the tracker stays at that root; else it is left where it was.
+    /// (`previous_estimate`) converges *quadratically* to a root whose equilibrated
+    /// condition number ([`Tracker::equilibrated_condition_at`]) is below
+    /// `singular_condition`: a regular root too badly scaled for the loops' estimates
+    /// to agree to the endgame's tolerance. Its raw condition number may exceed
+    /// `singular_condition` (PHCpack's `cohn3`: a root of norm 10⁴, found by neither
+    /// PHCpack nor singdist before, condition 10¹¹ in the scaled variables, 10⁵ after
+    /// equilibration). Equilibration alone does not prove regularity (at a double root
+    /// a Jacobian row may vanish with the distance to it, and dividing it by its size
+    /// hides that), so some Newton update must have been at most
+    /// [`QUADRATIC_CONVERGENCE_RATIO`] of the one before (they halve at a double
+    /// root; on `cohn3`'s root 2.4·10⁻⁶ → 4.2·10⁻¹⁴). If so the tracker stays at that
+    /// root; else it is left where it was.
     fn refines_to_regular_root(&mut self) -> bool {
         self.x_checkpoint.copy_from_slice(&self.x);
         let t_checkpoint = self.t;
@@ -517,6 +526,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         self.t = C64::new(1.0, 0.0);
         let (converged, _) = self.refine_at(self.t);
         if converged
+            && self.refinement_contraction <= QUADRATIC_CONVERGENCE_RATIO
             && self.equilibrated_condition_at(self.t) < self.options.endgame.singular_condition
         {
             return true;

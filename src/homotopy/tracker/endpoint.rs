@@ -147,7 +147,9 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
         }
     }
 
-    /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖).
+    /// Newton refinement at `t`, keeping the best iterate; returns (converged, ‖Δ‖)
+    /// and leaves the smallest ratio of successive updates (within one precision) in
+    /// `refinement_contraction`.
     /// In double precision (unless the tracker is in extended mode) while each update
     /// is at most half the last ([`REFINEMENT_STAGNATION`]); where they stagnate
     /// above `10⁻¹³` relative (rounding noise of an ill-conditioned point, or a
@@ -156,6 +158,7 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
     pub(super) fn refine_at(&mut self, t: C64) -> (bool, f64) {
         let mut previous = f64::INFINITY;
         let mut converged = false;
+        self.refinement_contraction = f64::INFINITY;
         let mut extended = self.precision.extended;
         let mut remaining = self.options.endgame.refinement_iterations;
         while remaining > 0 {
@@ -168,6 +171,10 @@ impl<H: Homotopy + ?Sized> Tracker<'_, H> {
                 }
                 NewtonUpdate::Step(norm) => {
                     let scale = 1.0 + max_norm(&self.x);
+                    if previous.is_finite() && previous > 0.0 {
+                        self.refinement_contraction =
+                            self.refinement_contraction.min(norm / previous);
+                    }
                     if norm <= 1e-13 * scale {
                         converged = true;
                         previous = norm;

@@ -339,6 +339,9 @@ pub struct Tracker<'h, H: Homotopy + ?Sized> {
     step_limit: usize,
     /// Accepted steps in a row shorter than [`MIN_ABSOLUTE_STEP`] (see [`CRAWL_STEPS`]).
     crawled: usize,
+    /// Smallest ratio of successive Newton updates of the last [`Tracker::refine_at`]
+    /// (infinite if it made fewer than two in one precision).
+    refinement_contraction: f64,
     rejected: usize,
     /// Double or double-double arithmetic, and the counters that switch between them.
     precision: Precision,
@@ -377,6 +380,7 @@ impl<'h, H: Homotopy + ?Sized> Tracker<'h, H> {
             steps: 0,
             step_limit: options.step.max_steps,
             crawled: 0,
+            refinement_contraction: f64::INFINITY,
             rejected: 0,
             precision: Precision::default(),
             winding: 1,
