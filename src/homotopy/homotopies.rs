@@ -149,13 +149,26 @@ impl<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> StraightLineHomotopy<'a, 
         self.gamma
     }
 
-    /// `g ← G(x)` (returned, at the head of `work`) and `f ← F(x; p)`.
-    fn start_and_target<'w>(&self, x: &[C64], work: &'w mut [C64], f: &mut [C64]) -> &'w [C64] {
+    /// `g ← G(x)` (returned, at the head of `work`) and `f ← F(x; p)`, in double-double
+    /// arithmetic and rounded if `extended` ([`Evaluator::evaluate_extended`]).
+    fn start_and_target<'w>(
+        &self,
+        x: &[C64],
+        work: &'w mut [C64],
+        f: &mut [C64],
+        extended: bool,
+    ) -> &'w [C64] {
         let n = self.n;
         let (g, rest) = work.split_at_mut(n);
         let rest = &mut rest[n * n..];
-        self.start.evaluate(x, &[], rest, g);
-        self.target.evaluate(x, &self.target_parameters, rest, f);
+        if extended {
+            self.start.evaluate_extended(x, &[], rest, g);
+            self.target
+                .evaluate_extended(x, &self.target_parameters, rest, f);
+        } else {
+            self.start.evaluate(x, &[], rest, g);
+            self.target.evaluate(x, &self.target_parameters, rest, f);
+        }
         g
     }
 
@@ -176,23 +189,6 @@ impl<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> StraightLineHomotopy<'a, 
         (g, g_jac)
     }
 
-    /// [`Self::start_and_target`] with both systems evaluated in double-double
-    /// arithmetic and rounded ([`Evaluator::evaluate_extended`]).
-    fn start_and_target_extended<'w>(
-        &self,
-        x: &[C64],
-        work: &'w mut [C64],
-        f: &mut [C64],
-    ) -> &'w [C64] {
-        let n = self.n;
-        let (g, rest) = work.split_at_mut(n);
-        let rest = &mut rest[n * n..];
-        self.start.evaluate_extended(x, &[], rest, g);
-        self.target
-            .evaluate_extended(x, &self.target_parameters, rest, f);
-        g
-    }
-
     /// `h ← H` from both systems' values in double-double arithmetic, rounded;
     /// `jac ← ∂H/∂x` in double precision (`jac_low = 0`); `dh ← ∂H/∂t = F − γG` from
     /// the double-double values if asked.
@@ -209,7 +205,7 @@ impl<'a, G: Evaluator + ?Sized, F: Evaluator + ?Sized> StraightLineHomotopy<'a, 
         let (_, g_jac) = self.start_and_target_with_jacobians(x, work, h, jac);
         blend(t, a, jac, g_jac);
         jac_low.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-        let g = self.start_and_target_extended(x, work, h);
+        let g = self.start_and_target(x, work, h, true);
         if let Some(dh) = dh {
             for ((di, fi), gi) in dh.iter_mut().zip(h.iter()).zip(g) {
                 *di = *fi - self.gamma * gi;
@@ -241,7 +237,7 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
     }
 
     fn evaluate(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let g = self.start_and_target(x, work, h);
+        let g = self.start_and_target(x, work, h, false);
         blend(t, self.start_weight(t), h, g);
     }
 
@@ -278,14 +274,14 @@ impl<G: Evaluator + ?Sized, F: Evaluator + ?Sized> Homotopy for StraightLineHomo
     }
 
     fn evaluate_time_derivative(&self, x: &[C64], _t: C64, work: &mut [C64], dh: &mut [C64]) {
-        let g = self.start_and_target(x, work, dh);
+        let g = self.start_and_target(x, work, dh, false);
         for (di, gi) in dh.iter_mut().zip(g) {
             *di -= self.gamma * gi;
         }
     }
 
     fn evaluate_extended(&self, x: &[C64], t: C64, work: &mut [C64], h: &mut [C64]) {
-        let g = self.start_and_target_extended(x, work, h);
+        let g = self.start_and_target(x, work, h, true);
         blend(t, self.start_weight(t), h, g);
     }
 
